@@ -1,0 +1,13 @@
+#pragma once
+// The verbs of the `weft` command-line tool. Each returns the process exit code and throws
+// InputError / NumericalError for main() to report.
+
+#include <string>
+#include <vector>
+
+namespace weft::cli {
+
+int simulateCommand(const std::vector<std::string>& args);
+int benchCommand(const std::vector<std::string>& args);
+
+}  // namespace weft::cli

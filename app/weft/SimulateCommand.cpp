@@ -1,0 +1,72 @@
+#include "CommandLine.h"
+#include "Commands.h"
+
+#include <weft/core/Error.h>
+#include <weft/io/StagedDirectory.h>
+#include <weft/output/RunWriter.h>
+#include <weft/physics/Simulator.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+
+namespace weft::cli {
+
+std::vector<SceneOverride> parseOverrides(const CommandLine& cl) {
+  std::vector<SceneOverride> overrides;
+  for (const std::string& s : cl.values("--set")) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) cl.fail("--set", "expects PATH=VALUE, got '" + s + "'");
+    overrides.push_back({s.substr(0, eq), s.substr(eq + 1)});
+  }
+  return overrides;
+}
+
+int applyThreads(const CommandLine& cl) {
+  const int threads = cl.integer("--threads", 0, 0, 1024);
+  if (threads > 0) omp_set_num_threads(threads);
+  return omp_get_max_threads();
+}
+
+int simulateCommand(const std::vector<std::string>& args) {
+  CommandLine cl(args, {"--steps", "--out", "--set", "--threads"}, {"--quiet"});
+  if (cl.positional().size() != 1) cl.fail("SCENE", "simulate takes exactly one scene file");
+  const std::string file = cl.positional()[0];
+  cl.setContext(file);
+  const int threads = applyThreads(cl);
+  Scene scene = loadScene(file, parseOverrides(cl));
+  const int steps = cl.integer("--steps", scene.time.steps, 0, 10000000);
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const std::string outDir = cl.value("--out", "out/" + scene.name);
+  StagedDirectory out(outDir);  // fails early on an unusable --out, before simulating
+
+  const auto start = std::chrono::steady_clock::now();
+  Simulator sim(scene);
+  Trajectory trajectory;
+  const bool quiet = cl.has("--quiet");
+  const int every = std::max(1, steps / 10);
+  sim.run(steps, trajectory, [&](const StepStats& s) {
+    if (!quiet && (s.step % every == 0))
+      std::fprintf(stderr, "\rstep %d/%d  pd %d  residual %.2e", s.step, steps, s.pdIterations, s.residual);
+  });
+  if (!quiet && steps > 0) std::fprintf(stderr, "\n");
+  RunSummary run;
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.moduleNames = sim.moduleNames();
+  run.moduleSeconds = sim.moduleSeconds();
+  run.threads = threads;
+  writeRun(out.path(), scene, sim.model(), trajectory, run);
+  out.commit();
+
+  long long iterations = 0;
+  for (const StepStats& s : trajectory.steps) iterations += s.pdIterations;
+  std::printf("simulate: %s: %d steps, %d vertices, %.3f s (%.2f ms/step, %.1f PD iterations/step) -> %s\n",
+              scene.name.c_str(), steps, sim.model().nodeCount(), run.seconds,
+              steps ? 1e3 * run.seconds / steps : 0.0, steps ? double(iterations) / steps : 0.0,
+              outDir.c_str());
+  return 0;
+}
+
+}  // namespace weft::cli

@@ -1,0 +1,49 @@
+// `weft`: the command-line face of the engine. Exit codes: 0 success, 2 bad input or usage,
+// 3 numerical failure (the contract of the product spec).
+
+#include "Commands.h"
+
+#include <weft/core/Error.h>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace {
+
+const char* kUsage =
+    "usage: weft <verb> [arguments]\n"
+    "  simulate SCENE [--steps N] [--out DIR] [--set PATH=VALUE ...] [--threads N] [--quiet]\n"
+    "  bench NAME [--out DIR] [--quick]        (NAME: forward)\n"
+    "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::fputs(kUsage, args.empty() ? stderr : stdout);
+    return args.empty() ? 2 : 0;
+  }
+  const std::string verb = args[0];
+  args.erase(args.begin());
+  try {
+    if (verb == "simulate") return weft::cli::simulateCommand(args);
+    if (verb == "bench") return weft::cli::benchCommand(args);
+    std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(), kUsage);
+    return 2;
+  } catch (const weft::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const weft::NumericalError& e) {
+    std::fprintf(stderr, "error: numerical failure: %s\n", e.what());
+    return 3;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "error: out of memory\n");
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: internal: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,82 @@
+#include <weft/io/Npy.h>
+
+#include <weft/core/Error.h>
+
+#include <cstring>
+#include <fstream>
+#include <numeric>
+#include <regex>
+#include <sstream>
+
+namespace weft {
+
+void writeNpy(const std::string& path, const std::vector<std::size_t>& shape, const double* data) {
+  std::ostringstream dict;
+  dict << "{'descr': '<f8', 'fortran_order': False, 'shape': (";
+  for (std::size_t i = 0; i < shape.size(); ++i) dict << shape[i] << (shape.size() == 1 || i + 1 < shape.size() ? ", " : "");
+  dict << "), }";
+  std::string header = dict.str();
+  // Magic (6) + version (2) + header length (2) + header, padded with spaces to 64 bytes + '\n'.
+  const std::size_t unpadded = 10 + header.size() + 1;
+  header.append((64 - unpadded % 64) % 64, ' ');
+  header.push_back('\n');
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(path, "output", "cannot open for writing");
+  const char magic[8] = {'\x93', 'N', 'U', 'M', 'P', 'Y', 1, 0};
+  out.write(magic, 8);
+  const std::uint16_t len = static_cast<std::uint16_t>(header.size());
+  const char lenBytes[2] = {static_cast<char>(len & 0xff), static_cast<char>(len >> 8)};
+  out.write(lenBytes, 2);
+  out.write(header.data(), static_cast<std::streamsize>(header.size()));
+  const std::size_t count = std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(count * sizeof(double)));
+  if (!out) throw InputError(path, "output", "write failed");
+}
+
+NpyArray readNpy(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "npy", "cannot open file");
+  char magic[8];
+  in.read(magic, 8);
+  if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0) throw InputError(path, "npy", "not a .npy file");
+  std::size_t headerLen = 0;
+  if (magic[6] == 1) {
+    unsigned char b[2];
+    in.read(reinterpret_cast<char*>(b), 2);
+    headerLen = b[0] | (b[1] << 8);
+  } else {
+    unsigned char b[4];
+    in.read(reinterpret_cast<char*>(b), 4);
+    headerLen = b[0] | (b[1] << 8) | (b[2] << 16) | (static_cast<std::size_t>(b[3]) << 24);
+  }
+  std::string header(headerLen, '\0');
+  in.read(header.data(), static_cast<std::streamsize>(headerLen));
+  if (!in) throw InputError(path, "npy", "truncated header");
+  std::smatch m;
+  if (!std::regex_search(header, m, std::regex("'descr':\\s*'([<|=]?)(f[48])'")))
+    throw InputError(path, "npy", "only little-endian float32/float64 arrays are supported");
+  const bool isDouble = m[2] == "f8";
+  if (std::regex_search(header, std::regex("'fortran_order':\\s*True")))
+    throw InputError(path, "npy", "Fortran-order arrays are not supported");
+  if (!std::regex_search(header, m, std::regex("'shape':\\s*\\(([^)]*)\\)")))
+    throw InputError(path, "npy", "header has no shape");
+  NpyArray array;
+  std::string dims = m[1];
+  std::regex num("[0-9]+");
+  for (auto it = std::sregex_iterator(dims.begin(), dims.end(), num); it != std::sregex_iterator(); ++it)
+    array.shape.push_back(std::stoull(it->str()));
+  const std::size_t count =
+      std::accumulate(array.shape.begin(), array.shape.end(), std::size_t{1}, std::multiplies<>());
+  array.data.resize(count);
+  if (isDouble) {
+    in.read(reinterpret_cast<char*>(array.data.data()), static_cast<std::streamsize>(count * 8));
+  } else {
+    std::vector<float> tmp(count);
+    in.read(reinterpret_cast<char*>(tmp.data()), static_cast<std::streamsize>(count * 4));
+    std::copy(tmp.begin(), tmp.end(), array.data.begin());
+  }
+  if (!in) throw InputError(path, "npy", "file shorter than its shape says");
+  return array;
+}
+
+}  // namespace weft

@@ -1,0 +1,41 @@
+#pragma once
+// Attachments as stiff PD springs to a target (DiffCloth's attachment constraints): one row per
+// attached node selecting it, projection = the target. Fixed attachments hold the node's
+// initial position; handles follow their trajectory, evaluated once per step at its end time.
+
+#include <weft/physics/ProjectiveConstraint.h>
+#include <weft/scene/HandleTrajectory.h>
+
+#include <vector>
+
+namespace weft {
+
+struct ClothModel;
+struct Scene;
+
+class AttachmentConstraint final : public ProjectiveConstraint {
+ public:
+  struct Row {
+    int node;
+    double stiffness;
+    const HandleTrajectory* trajectory;  // null for a fixed attachment
+  };
+  AttachmentConstraint(const char* name, std::vector<Row> rows, const NodeMatrix& initial);
+  const char* name() const override { return name_; }
+  void beginStep(double time) override;
+  double project(const NodeMatrix& x, NodeMatrix& weightedProjections) const override;
+  const std::vector<Row>& rows() const { return rows_; }
+  const NodeMatrix& targets() const { return targets_; }
+
+ private:
+  const char* name_;
+  std::vector<Row> rows_;
+  NodeMatrix anchors_;  // initial positions of the attached nodes
+  NodeMatrix targets_;  // current targets
+};
+
+// Fixed attachments ("attachments") or handles ("handles") of the whole scene; the scene must
+// outlive the constraint (trajectories are referenced).
+AttachmentConstraint makeAttachmentConstraint(const Scene& scene, const ClothModel& model, bool handles);
+
+}  // namespace weft

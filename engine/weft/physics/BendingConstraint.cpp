@@ -1,0 +1,99 @@
+#include <weft/physics/BendingConstraint.h>
+
+#include <weft/mesh/TriangleMesh.h>
+#include <weft/physics/ClothModel.h>
+#include <weft/scene/Scene.h>
+
+#include <cmath>
+
+namespace weft {
+namespace {
+
+// Cotangent of the angle at `apex` in the triangle (apex, p, q).
+double cotangent(const Vec3& apex, const Vec3& p, const Vec3& q) {
+  const Vec3 u = p - apex, v = q - apex;
+  return u.dot(v) / u.cross(v).norm();
+}
+
+int oppositeVertex(const TriangleIndices& tris, int t, int a, int b) {
+  for (int k = 0; k < 3; ++k)
+    if (tris(t, k) != a && tris(t, k) != b) return tris(t, k);
+  return -1;
+}
+
+}  // namespace
+
+std::vector<Hinge> buildHinges(const NodeMatrix& rest, const TriangleIndices& triangles, double stiffness) {
+  TriangleMesh mesh;
+  mesh.vertices = rest;
+  mesh.triangles = triangles;
+  std::vector<Hinge> hinges;
+  for (const MeshEdge& e : buildEdges(mesh)) {
+    if (e.faces.size() != 2) continue;  // boundary or non-manifold: no hinge
+    Hinge h;
+    h.nodes[0] = e.a;
+    h.nodes[1] = e.b;
+    h.nodes[2] = oppositeVertex(triangles, e.faces[0], e.a, e.b);
+    h.nodes[3] = oppositeVertex(triangles, e.faces[1], e.a, e.b);
+    const Vec3 x0 = rest.row(h.nodes[0]), x1 = rest.row(h.nodes[1]), x2 = rest.row(h.nodes[2]),
+               x3 = rest.row(h.nodes[3]);
+    const double c00 = cotangent(x0, x1, x2), c01 = cotangent(x1, x0, x2);  // triangle 0
+    const double c10 = cotangent(x0, x1, x3), c11 = cotangent(x1, x0, x3);  // triangle 1
+    h.cot[0] = c01 + c11;
+    h.cot[1] = c00 + c10;
+    h.cot[2] = -(c00 + c01);
+    h.cot[3] = -(c10 + c11);
+    const Vec3 restVector = h.cot[0] * x0 + h.cot[1] * x1 + h.cot[2] * x2 + h.cot[3] * x3;
+    const double edgeLength = (x1 - x0).norm();
+    h.restNorm = restVector.norm() > 1e-8 * edgeLength ? restVector.norm() : 0.0;
+    const double area = 0.5 * ((x1 - x0).cross(x2 - x0).norm() + (x1 - x0).cross(x3 - x0).norm());
+    h.weight = stiffness * 3.0 / area;
+    hinges.push_back(h);
+  }
+  return hinges;
+}
+
+BendingConstraint::BendingConstraint(std::vector<Hinge> hinges, int nodes) : hinges_(std::move(hinges)) {
+  weights_.resize(static_cast<int>(hinges_.size()));
+  std::vector<Eigen::Triplet<double>> rows;
+  rows.reserve(4 * hinges_.size());
+  for (std::size_t r = 0; r < hinges_.size(); ++r) {
+    weights_[static_cast<int>(r)] = hinges_[r].weight;
+    for (int k = 0; k < 4; ++k) rows.emplace_back(static_cast<int>(r), hinges_[r].nodes[k], hinges_[r].cot[k]);
+  }
+  setSelection(nodes, rows);
+}
+
+double BendingConstraint::project(const NodeMatrix& x, NodeMatrix& wp) const {
+  double energy = 0.0;
+  const int count = static_cast<int>(hinges_.size());
+#pragma omp parallel for schedule(static) reduction(+ : energy)
+  for (int r = 0; r < count; ++r) {
+    const Hinge& h = hinges_[r];
+    Vec3 e = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) e += h.cot[k] * x.row(h.nodes[k]).transpose();
+    Vec3 p = Vec3::Zero();
+    if (h.restNorm > 0.0) {
+      const double n = e.norm();
+      if (n > 0.0) p = (h.restNorm / n) * e;
+    }
+    energy += 0.5 * h.weight * (e - p).squaredNorm();
+    wp.row(r) = h.weight * p.transpose();
+  }
+  return energy;
+}
+
+BendingConstraint makeBendingConstraint(const Scene& scene, const ClothModel& model) {
+  std::vector<Hinge> all;
+  for (std::size_t c = 0; c < scene.cloths.size(); ++c) {
+    const double k = scene.cloths[c].material.bend;
+    if (k <= 0.0) continue;
+    const int t0 = model.triangleOffset[c], t1 = model.triangleOffset[c + 1];
+    const TriangleIndices tris = model.rest.triangles.middleRows(t0, t1 - t0);
+    const auto hinges = buildHinges(model.rest.vertices, tris, k);
+    all.insert(all.end(), hinges.begin(), hinges.end());
+  }
+  return BendingConstraint(std::move(all), model.nodeCount());
+}
+
+}  // namespace weft

@@ -1,0 +1,84 @@
+#pragma once
+// The forward simulator: Projective Dynamics cloth (DiffCloth Sec. 3.1) with the modules the
+// scene names and nothing else. Owns the prefactorised system matrix P (Eq. 7).
+
+#include <weft/core/Types.h>
+#include <weft/physics/AndersonAccelerator.h>
+#include <weft/physics/ClothModel.h>
+#include <weft/physics/ExternalForce.h>
+#include <weft/physics/ProjectiveConstraint.h>
+#include <weft/physics/SparseCholesky.h>
+#include <weft/physics/StepStats.h>
+#include <weft/physics/Trajectory.h>
+#include <weft/scene/Scene.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace weft {
+
+class Simulator {
+ public:
+  // Builds the modules the scene names and factorises P. The scene must outlive the simulator.
+  // Throws InputError for scene features this build cannot simulate.
+  explicit Simulator(const Scene& scene);
+  ~Simulator();
+
+  const Scene& scene() const { return scene_; }
+  const ClothModel& model() const { return model_; }
+  const NodeMatrix& positions() const { return x_; }
+  const NodeMatrix& velocities() const { return v_; }
+  double time() const { return time_; }
+  int stepIndex() const { return step_; }
+  double dt() const { return h_; }
+
+  // Advances one step. Throws NumericalError naming step, module and quantity on NaN/Inf or
+  // on a blow-up.
+  const StepStats& step();
+  // Runs `steps` steps from the current state, recording into `trajectory` (which gets the
+  // current state first if it is empty). `progress` is called after every step.
+  void run(int steps, Trajectory& trajectory,
+           const std::function<void(const StepStats&)>& progress = nullptr);
+
+  // Modules built for this scene, in a fixed order, with their accumulated seconds.
+  const std::vector<std::string>& moduleNames() const { return moduleNames_; }
+  const std::vector<double>& moduleSeconds() const { return moduleSeconds_; }
+  const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const { return constraints_; }
+  const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return forces_; }
+  // The one-coordinate system matrix M + h^2 sum_i w_i A_i^T A_i (P = this (x) I_3).
+  const Eigen::SparseMatrix<double>& systemMatrix() const { return system_; }
+
+ private:
+  int addModule(const std::string& name);
+  double localStep(const NodeMatrix& x);  // fills projections_, returns energy g(x)
+  void assembleAndFactorize();
+  void diagnoseNonFinite(const NodeMatrix& lastGood) const;
+
+  const Scene& scene_;
+  ClothModel model_;
+  double h_;
+  std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
+  std::vector<int> constraintModule_;
+  std::vector<std::unique_ptr<ExternalForce>> forces_;
+  std::vector<int> forceModule_;
+  int solverModule_ = -1;
+  std::vector<std::string> moduleNames_;
+  std::vector<double> moduleSeconds_;
+
+  Eigen::SparseMatrix<double> system_;
+  SparseCholesky cholesky_;
+  AndersonAccelerator anderson_;
+
+  NodeMatrix x_, v_;
+  double time_ = 0.0;
+  int step_ = 0;
+  StepStats stats_;
+
+  // Work buffers, allocated once.
+  NodeMatrix force_, y_, massY_, iterate_, global_, accelerated_, change_, rhs_;
+  std::vector<NodeMatrix> projections_;
+};
+
+}  // namespace weft

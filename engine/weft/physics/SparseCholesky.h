@@ -1,0 +1,44 @@
+#pragma once
+// CHOLMOD Cholesky factorisation of the PD system matrix, factorised once and reused for
+// every global step until the matrix changes (DiffCloth Sec. 3.1: "P is a constant matrix that
+// can be prefactorized"). Solves use cholmod_solve2 with kept workspace: no allocation per solve.
+
+#include <weft/core/Types.h>
+
+#include <Eigen/SparseCore>
+
+struct cholmod_common_struct;
+struct cholmod_factor_struct;
+struct cholmod_dense_struct;
+
+namespace weft {
+
+class SparseCholesky {
+ public:
+  SparseCholesky();
+  ~SparseCholesky();
+  SparseCholesky(const SparseCholesky&) = delete;
+  SparseCholesky& operator=(const SparseCholesky&) = delete;
+
+  // Factorises a symmetric positive definite matrix (only its lower triangle is read). The
+  // symbolic analysis is kept while the sparsity pattern stays the same.
+  // Returns false if the matrix is not positive definite.
+  bool factorize(const Eigen::SparseMatrix<double>& matrix);
+  bool factorized() const { return factor_ != nullptr; }
+  int size() const { return size_; }
+
+  // b <- P^{-1} b, for an n x k column-major block (k right-hand sides solved together).
+  void solveInPlace(double* data, int columns);
+  void solveInPlace(NodeMatrix& b) { solveInPlace(b.data(), 3); }
+  void solveInPlace(Eigen::VectorXd& b) { solveInPlace(b.data(), 1); }
+
+ private:
+  cholmod_common_struct* common_;
+  cholmod_factor_struct* factor_ = nullptr;
+  cholmod_dense_struct *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;
+  Eigen::SparseMatrix<double> lower_;  // kept: CHOLMOD views its arrays
+  int size_ = 0;
+  long long patternNonZeros_ = -1;
+};
+
+}  // namespace weft

@@ -1,0 +1,25 @@
+#pragma once
+// The recorded forward run: the converged state of every step (what the backward pass needs to
+// rebuild each step's projections and contact branches) and the per-step statistics.
+
+#include <weft/core/Types.h>
+#include <weft/physics/StepStats.h>
+
+#include <string>
+#include <vector>
+
+namespace weft {
+
+struct Trajectory {
+  std::vector<NodeMatrix> positions;   // states 0..N
+  std::vector<NodeMatrix> velocities;  // states 0..N
+  std::vector<StepStats> steps;        // steps 1..N
+  std::vector<std::string> moduleNames;
+
+  int stepCount() const { return static_cast<int>(steps.size()); }
+  int nodeCount() const { return positions.empty() ? 0 : static_cast<int>(positions.front().rows()); }
+  // positions as one [states, nodes, 3] C-order array (the layout of positions.npy).
+  std::vector<double> flattenedPositions() const;
+};
+
+}  // namespace weft

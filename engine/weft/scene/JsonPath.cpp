@@ -1,0 +1,106 @@
+#include <weft/scene/JsonPath.h>
+
+#include <cstdlib>
+#include <sstream>
+
+namespace weft {
+
+std::vector<std::string> splitJsonPath(const std::string& path) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(path);
+  while (std::getline(in, part, '.')) parts.push_back(part);
+  return parts;
+}
+
+namespace {
+
+bool parseIndex(const std::string& s, std::size_t& out) {
+  if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) return false;
+  out = std::stoull(s);
+  return true;
+}
+
+template <class J>
+J* walk(J& doc, const std::vector<std::string>& parts, std::size_t count) {
+  J* node = &doc;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::string& p = parts[k];
+    if (node->is_object()) {
+      auto it = node->find(p);
+      if (it == node->end()) return nullptr;
+      node = &*it;
+    } else if (node->is_array()) {
+      std::size_t i;
+      if (!parseIndex(p, i) || i >= node->size()) return nullptr;
+      node = &(*node)[i];
+    } else {
+      return nullptr;
+    }
+  }
+  return node;
+}
+
+}  // namespace
+
+const nlohmann::json* findJsonPath(const nlohmann::json& doc, const std::string& path) {
+  const auto parts = splitJsonPath(path);
+  return walk(doc, parts, parts.size());
+}
+
+nlohmann::json* findJsonPath(nlohmann::json& doc, const std::string& path) {
+  const auto parts = splitJsonPath(path);
+  return walk(doc, parts, parts.size());
+}
+
+nlohmann::json parseOverrideValue(const std::string& text) {
+  nlohmann::json v = nlohmann::json::parse(text, nullptr, false);
+  if (!v.is_discarded()) return v;
+  if (text.find(',') != std::string::npos) {
+    nlohmann::json arr = nlohmann::json::array();
+    std::istringstream in(text);
+    std::string item;
+    bool allNumbers = true;
+    while (std::getline(in, item, ',')) {
+      nlohmann::json n = nlohmann::json::parse(item, nullptr, false);
+      if (n.is_discarded() || !n.is_number()) allNumbers = false;
+      arr.push_back(n);
+    }
+    if (allNumbers) return arr;
+  }
+  return text;
+}
+
+std::string setJsonPath(nlohmann::json& doc, const std::string& path, const nlohmann::json& value) {
+  const auto parts = splitJsonPath(path);
+  if (parts.empty() || path.empty()) return "empty path";
+  for (const auto& p : parts)
+    if (p.empty()) return "malformed path (empty component)";
+  nlohmann::json* parent = walk(doc, parts, parts.size() - 1);
+  if (!parent) return "unknown path (no such object in the scene)";
+  const std::string& last = parts.back();
+  nlohmann::json* target = nullptr;
+  if (parent->is_object()) {
+    auto it = parent->find(last);
+    if (it == parent->end()) {
+      (*parent)[last] = value;  // a key the file omitted; the validator decides if it is known
+      return "";
+    }
+    target = &*it;
+  } else if (parent->is_array()) {
+    std::size_t i;
+    if (!parseIndex(last, i) || i >= parent->size()) return "unknown path (index out of range)";
+    target = &(*parent)[i];
+  } else {
+    return "unknown path (" + parts[parts.size() - 2] + " is not an object or array)";
+  }
+  if (target->is_number() && !value.is_number()) return "must be a number, got " + value.dump();
+  if (target->is_array() && (!value.is_array() || value.size() != target->size()))
+    return "must be an array of " + std::to_string(target->size()) + " values, got " + value.dump();
+  if (target->is_object() || (target->is_array() && !value.is_array()))
+    return "is not a scalar or vector";
+  *target = value;
+  return "";
+}
+
+}  // namespace weft

@@ -1,0 +1,27 @@
+#pragma once
+// Dotted JSON paths into a scene document ("cloths.0.material.stretch"), the addressing used by
+// `--set`, by task parameters and by error messages.
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace weft {
+
+std::vector<std::string> splitJsonPath(const std::string& path);
+// The value at `path`, or nullptr if any component does not exist.
+const nlohmann::json* findJsonPath(const nlohmann::json& doc, const std::string& path);
+nlohmann::json* findJsonPath(nlohmann::json& doc, const std::string& path);
+
+// Parses an override value from the command line: JSON if it parses ("[0,-9.8,0]", "0.2",
+// "true", "\"text\""), a comma list of numbers as an array ("0,-9.8,0"), otherwise a string.
+nlohmann::json parseOverrideValue(const std::string& text);
+
+// Sets `path` to `value`. The parent must exist; an existing number may only be replaced by a
+// number, an array by an array of the same length. A missing final key is created (the scene
+// validator then rejects it if it is not a key of the format). Returns an error text, or ""
+// on success.
+std::string setJsonPath(nlohmann::json& doc, const std::string& path, const nlohmann::json& value);
+
+}  // namespace weft

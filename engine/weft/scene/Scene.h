@@ -1,0 +1,122 @@
+#pragma once
+// The validated, in-memory scene: everything the engine needs, with defaults filled in and
+// meshes built. Produced only by SceneLoader, which checks every key and value.
+
+#include <weft/core/Types.h>
+#include <weft/mesh/RigidTransform.h>
+#include <weft/mesh/TriangleMesh.h>
+#include <weft/scene/HandleTrajectory.h>
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace weft {
+
+struct TimeSettings {
+  double dt = 0.01;  // s
+  int steps = 100;
+};
+
+struct BackwardSettings {
+  double tolerance = 1e-4;
+  int maxIterations = 200;
+  std::string fallback = "direct";  // "direct" (sparse LU) or "none"
+};
+
+enum class Acceleration { None, Anderson };
+
+struct SolverSettings {
+  int pdIterations = 100;
+  // Converged when the mass-weighted RMS imbalance of the implicit-Euler equations
+  // (DiffCloth Eq. 3 gradient divided by nodal mass) falls below this, in m/s^2.
+  double pdTolerance = 1e-6;
+  Acceleration acceleration = Acceleration::Anderson;
+  int andersonWindow = 5;
+  BackwardSettings backward;
+};
+
+struct Material {
+  double density = 0.1;  // kg/m^2 (areal)
+  double stretch = 100;  // N/m (membrane)
+  double bend = 0.0;     // N*m
+};
+
+struct Attachment {
+  enum class Kind { Fixed, Handle };
+  Kind kind = Kind::Fixed;
+  std::vector<int> vertices;  // cloth-local indices
+  double stiffness = 1e4;     // N/m per vertex (PD attachment weight)
+  HandleTrajectory trajectory;  // handles only
+};
+
+struct PointForce {
+  std::vector<int> vertices;  // cloth-local indices
+  Vec3 force = Vec3::Zero();  // N on each listed vertex
+};
+
+struct SelfCollision {
+  double radius = 0.004;  // m
+  double friction = 0.3;
+};
+
+struct Cloth {
+  TriangleMesh mesh;  // rest mesh, transformed, in scene units (m)
+  Material material;
+  std::vector<Attachment> attachments;
+  std::vector<PointForce> forces;
+  Vec3 initialVelocity = Vec3::Zero();
+  std::optional<SelfCollision> selfCollision;
+};
+
+struct Obstacle {
+  enum class Shape { Plane, Sphere, Capsule, Box, Cylinder, Mesh };
+  Shape shape = Shape::Plane;
+  Vec3 point = Vec3::Zero();              // plane
+  Vec3 normal = Vec3::UnitY();            // plane (unit)
+  Vec3 center = Vec3::Zero();             // sphere, box
+  double radius = 0.0;                    // sphere, capsule, cylinder
+  Vec3 a = Vec3::Zero(), b = Vec3::Zero();  // capsule, cylinder axis end points
+  Vec3 halfExtents = Vec3::Zero();        // box
+  Mat3 rotation = Mat3::Identity();       // box orientation
+  TriangleMesh mesh;                      // mesh obstacle (transformed)
+  bool smoothNormals = true;              // mesh obstacle
+  double friction = 0.0;
+};
+
+struct Wind {
+  Vec3 direction = Vec3::UnitX();  // used as given: its length scales the pressure
+  double strength = 0.0;           // N/m^2, spread over vertices by lumped area
+  double frequency = 0.0;          // Hz
+  double phase = 0.0;              // rad
+  // DiffCloth's model: f = strength * area * 0.5 * (sin(2 pi frequency t + phase) + 1) * direction
+  // ("sinusoid"), or without the time factor ("constant").
+  bool constant = false;
+};
+
+struct Task {
+  nlohmann::json loss;                  // validated structure; interpreted by the diff concern
+  std::vector<std::string> parameters;  // JSON paths of scalars in the scene
+};
+
+struct Scene {
+  std::string name;
+  std::string file;  // the scene file as given
+  std::string directory;  // for resolving relative paths
+  TimeSettings time;
+  std::optional<Vec3> gravity;
+  SolverSettings solver;
+  std::vector<Cloth> cloths;
+  std::vector<Obstacle> obstacles;
+  std::optional<Wind> wind;
+  std::optional<Task> task;
+  nlohmann::json document;            // the document as loaded, overrides applied
+  std::vector<std::string> warnings;  // repaired or suspicious input, for the user
+
+  int vertexCount() const;
+  bool hasSelfCollision() const;
+};
+
+}  // namespace weft

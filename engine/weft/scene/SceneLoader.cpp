@@ -1,0 +1,394 @@
+#include <weft/scene/SceneLoader.h>
+
+#include <weft/io/MeshReader.h>
+#include <weft/mesh/GridMesh.h>
+#include <weft/mesh/MeshCheck.h>
+#include <weft/scene/JsonPath.h>
+#include <weft/scene/JsonReader.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace weft {
+namespace {
+
+constexpr double kMaxStiffness = 1e12;
+
+RigidTransform readTransform(const JsonReader& r) {
+  r.allowOnly({"translate", "rotate_deg"});
+  RigidTransform t;
+  if (auto v = r.optional("translate")) t.translate = v->vec3();
+  if (auto v = r.optional("rotate_deg")) t.rotateDeg = v->vec3();
+  return t;
+}
+
+// A mesh file with optional "scale" (applied first) and "transform".
+TriangleMesh readMeshFile(const JsonReader& r, const std::string& directory, const char* fileKey) {
+  const JsonReader fileNode = r.at(fileKey);
+  const std::string path = resolveScenePath(directory, fileNode.string());
+  TriangleMesh mesh;
+  try {
+    mesh = readMesh(path);
+  } catch (const InputError& e) {
+    fileNode.fail(e.reason() + " (" + path + ")");
+  }
+  if (auto s = r.optional("scale")) mesh.vertices *= s->positive();
+  if (auto t = r.optional("transform")) readTransform(*t).applyTo(mesh.vertices);
+  return mesh;
+}
+
+// Mesh checks: errors stop the load unless "repair" is set, in which case degenerate
+// triangles are dropped with a warning. Non-manifold edges and thin triangles only warn.
+void checkClothMesh(TriangleMesh& mesh, const JsonReader& meshNode, bool repair,
+                    std::vector<std::string>& warnings) {
+  MeshReport report = checkMesh(mesh);
+  const std::string where = meshNode.file() + ": " + meshNode.path() + ": ";
+  if (!report.nonFiniteVertices.empty())
+    meshNode.fail("non-finite vertex coordinates at vertices " + formatIndexList(report.nonFiniteVertices));
+  if (!report.badIndexTriangles.empty())
+    meshNode.fail("triangles with out-of-range or repeated vertex indices: " +
+                  formatIndexList(report.badIndexTriangles));
+  if (!report.degenerateTriangles.empty()) {
+    if (!repair)
+      meshNode.fail("degenerate (zero-area) triangles " + formatIndexList(report.degenerateTriangles) +
+                    "; fix the mesh or set \"repair\": true to drop them");
+    warnings.push_back(where + "dropped degenerate triangles " + formatIndexList(report.degenerateTriangles));
+    removeTriangles(mesh, report.degenerateTriangles);
+    report = checkMesh(mesh);
+  }
+  if (!report.unreferencedVertices.empty()) {
+    // A vertex in no triangle has no mass: it cannot be simulated as cloth.
+    meshNode.fail("vertices in no triangle " + formatIndexList(report.unreferencedVertices) +
+                  (repair ? " (left after dropping degenerate triangles)" : "") +
+                  "; remove them from the mesh");
+  }
+  if (!report.nonManifoldEdges.empty()) {
+    std::vector<int> flat;
+    for (auto [a, b] : report.nonManifoldEdges) flat.push_back(a), flat.push_back(b);
+    warnings.push_back(where + std::to_string(report.nonManifoldEdges.size()) +
+                       " non-manifold edges (vertex pairs " + formatIndexList(flat) +
+                       "); no bending is applied across them");
+  }
+  if (!report.thinTriangles.empty())
+    warnings.push_back(where + "triangles with an angle under 5 degrees " +
+                       formatIndexList(report.thinTriangles) + " may converge slowly");
+}
+
+TriangleMesh readClothMesh(const JsonReader& r, const std::string& directory,
+                           std::vector<std::string>& warnings) {
+  r.allowOnly({"grid", "file", "scale", "transform", "repair"});
+  const std::string kind = r.oneOf({"grid", "file"});
+  TriangleMesh mesh;
+  if (kind == "grid") {
+    const JsonReader g = r.at("grid");
+    g.allowOnly({"size", "resolution"});
+    const JsonReader size = g.at("size");
+    if (size.size() != 2) size.fail("must be [extent X, extent Z]");
+    const double sx = size[0].positive(), sz = size[1].positive();
+    const JsonReader res = g.at("resolution");
+    if (res.size() != 2) res.fail("must be [quads X, quads Z]");
+    const int qx = res[0].integer(1, 4096), qz = res[1].integer(1, 4096);
+    mesh = makeGrid(sx, sz, qx, qz);
+    if (r.has("scale")) r.at("scale").fail("applies to mesh files only; set the grid size instead");
+    if (auto t = r.optional("transform")) readTransform(*t).applyTo(mesh.vertices);
+  } else {
+    mesh = readMeshFile(r, directory, "file");
+  }
+  const bool repair = r.optional("repair") ? r.at("repair").boolean() : false;
+  checkClothMesh(mesh, r, repair, warnings);
+  return mesh;
+}
+
+HandleTrajectory readTrajectory(const JsonReader& r) {
+  r.allowOnly({"keyframes", "hermite", "rotate"});
+  HandleTrajectory traj;
+  if (r.has("keyframes") && r.has("hermite")) r.fail("give 'keyframes' or 'hermite', not both");
+  auto checkTimes = [](const JsonReader& node, const std::vector<double>& times) {
+    for (std::size_t i = 1; i < times.size(); ++i)
+      if (!(times[i] > times[i - 1])) node.fail("times must be strictly increasing");
+  };
+  if (auto k = r.optional("keyframes")) {
+    traj.kind = HandleTrajectory::Kind::Keyframes;
+    if (k->size() == 0) k->fail("needs at least one keyframe");
+    for (std::size_t i = 0; i < k->size(); ++i) {
+      const JsonReader key = (*k)[i];
+      key.allowOnly({"time", "offset"});
+      traj.times.push_back(key.at("time").number(0.0));
+      traj.offsets.push_back(key.at("offset").vec3());
+    }
+    checkTimes(*k, traj.times);
+  } else if (auto h = r.optional("hermite")) {
+    traj.kind = HandleTrajectory::Kind::Hermite;
+    h->allowOnly({"times", "points", "tangents"});
+    const JsonReader times = h->at("times"), points = h->at("points"), tangents = h->at("tangents");
+    const std::size_t n = times.size();
+    if (n < 2) times.fail("needs at least two knots");
+    if (points.size() != n) points.fail("needs one point per time (" + std::to_string(n) + ")");
+    if (tangents.size() != n) tangents.fail("needs one tangent per time (" + std::to_string(n) + ")");
+    for (std::size_t i = 0; i < n; ++i) {
+      traj.times.push_back(times[i].number(0.0));
+      traj.offsets.push_back(points[i].vec3());
+      traj.tangents.push_back(tangents[i].vec3());
+    }
+    checkTimes(times, traj.times);
+  }
+  if (auto rot = r.optional("rotate")) {
+    rot->allowOnly({"center", "axis", "degrees_per_second"});
+    traj.rotates = true;
+    traj.rotationCenter = rot->at("center").vec3();
+    traj.rotationAxis = rot->at("axis").unitVec3();
+    traj.rotationRateDeg = rot->at("degrees_per_second").number();
+  }
+  if (traj.times.empty() && !traj.rotates) r.fail("needs 'keyframes', 'hermite' or 'rotate'");
+  return traj;
+}
+
+Cloth readCloth(const JsonReader& r, const std::string& directory, std::vector<std::string>& warnings) {
+  r.allowOnly({"name", "mesh", "material", "attachments", "forces", "initial_velocity",
+               "self_collision"});
+  if (auto n = r.optional("name")) n->string();
+  Cloth cloth;
+  cloth.mesh = readClothMesh(r.at("mesh").object(), directory, warnings);
+  const int m = cloth.mesh.vertexCount();
+
+  const JsonReader mat = r.at("material");
+  mat.allowOnly({"density", "stretch", "bend"});
+  cloth.material.density = mat.at("density").positive();
+  cloth.material.stretch = mat.at("stretch").number(0.0, kMaxStiffness);
+  cloth.material.bend = mat.number("bend", 0.0, 0.0, kMaxStiffness);
+
+  if (auto list = r.optional("attachments")) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const JsonReader a = (*list)[i];
+      a.allowOnly({"vertices", "kind", "stiffness", "trajectory"});
+      Attachment att;
+      att.vertices = a.at("vertices").indices(m);
+      if (att.vertices.empty()) a.at("vertices").fail("must list at least one vertex");
+      const std::string kind = a.optional("kind") ? a.at("kind").choice({"fixed", "handle"}) : "fixed";
+      att.kind = kind == "fixed" ? Attachment::Kind::Fixed : Attachment::Kind::Handle;
+      if (auto s = a.optional("stiffness")) att.stiffness = s->positive();
+      if (att.stiffness > kMaxStiffness) a.at("stiffness").fail("is unreasonably large");
+      if (att.kind == Attachment::Kind::Handle) {
+        att.trajectory = readTrajectory(a.at("trajectory").object());
+      } else if (a.has("trajectory")) {
+        a.at("trajectory").fail("only a 'handle' attachment moves; set \"kind\": \"handle\"");
+      }
+      cloth.attachments.push_back(std::move(att));
+    }
+  }
+  if (auto list = r.optional("forces")) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const JsonReader f = (*list)[i];
+      f.allowOnly({"vertices", "force"});
+      PointForce pf;
+      pf.vertices = f.at("vertices").indices(m);
+      pf.force = f.at("force").vec3();
+      cloth.forces.push_back(std::move(pf));
+    }
+  }
+  if (auto v = r.optional("initial_velocity")) cloth.initialVelocity = v->vec3();
+  if (auto sc = r.optional("self_collision")) {
+    sc->allowOnly({"radius", "friction"});
+    SelfCollision s;
+    s.radius = sc->at("radius").positive();
+    s.friction = sc->number("friction", s.friction, 0.0, 1e3);
+    cloth.selfCollision = s;
+  }
+  return cloth;
+}
+
+Obstacle readObstacle(const JsonReader& r, const std::string& directory) {
+  r.allowOnly({"plane", "sphere", "capsule", "box", "cylinder", "mesh", "friction"});
+  Obstacle o;
+  o.friction = r.number("friction", 0.0, 0.0, 1e3);
+  const std::string kind = r.oneOf({"plane", "sphere", "capsule", "box", "cylinder", "mesh"});
+  const JsonReader s = r.at(kind).object();
+  if (kind == "plane") {
+    s.allowOnly({"point", "normal"});
+    o.shape = Obstacle::Shape::Plane;
+    o.point = s.at("point").vec3();
+    o.normal = s.at("normal").unitVec3();
+  } else if (kind == "sphere") {
+    s.allowOnly({"center", "radius"});
+    o.shape = Obstacle::Shape::Sphere;
+    o.center = s.at("center").vec3();
+    o.radius = s.at("radius").positive();
+  } else if (kind == "capsule" || kind == "cylinder") {
+    s.allowOnly({"a", "b", "radius"});
+    o.shape = kind == "capsule" ? Obstacle::Shape::Capsule : Obstacle::Shape::Cylinder;
+    o.a = s.at("a").vec3();
+    o.b = s.at("b").vec3();
+    o.radius = s.at("radius").positive();
+    if ((o.b - o.a).norm() < 1e-12) s.at("b").fail("must differ from 'a'");
+  } else if (kind == "box") {
+    s.allowOnly({"center", "size", "rotate_deg"});
+    o.shape = Obstacle::Shape::Box;
+    o.center = s.at("center").vec3();
+    const JsonReader size = s.at("size");
+    if (size.size() != 3) size.fail("must be [x, y, z]");
+    o.halfExtents = Vec3(size[0].positive(), size[1].positive(), size[2].positive()) * 0.5;
+    if (auto rd = s.optional("rotate_deg")) {
+      RigidTransform t;
+      t.rotateDeg = rd->vec3();
+      o.rotation = t.rotation();
+    }
+  } else {
+    s.allowOnly({"file", "scale", "transform", "smooth_normals"});
+    o.shape = Obstacle::Shape::Mesh;
+    o.mesh = readMeshFile(s, directory, "file");
+    if (auto sn = s.optional("smooth_normals")) o.smoothNormals = sn->boolean();
+    const MeshReport report = checkMesh(o.mesh);
+    if (!report.nonFiniteVertices.empty() || !report.badIndexTriangles.empty())
+      s.fail("mesh has non-finite vertices or bad triangle indices");
+  }
+  return o;
+}
+
+Wind readWind(const JsonReader& r) {
+  r.allowOnly({"direction", "strength", "frequency", "phase", "model"});
+  Wind w;
+  w.direction = r.at("direction").vec3();
+  if (!(w.direction.norm() > 0.0)) r.at("direction").fail("must be a nonzero vector");
+  w.strength = r.at("strength").number(-1e6, 1e6);
+  w.frequency = r.number("frequency", 0.0, 0.0, 1e6);
+  w.phase = r.number("phase", 0.0, -1e6, 1e6);
+  if (auto m = r.optional("model")) w.constant = m->choice({"sinusoid", "constant"}) == "constant";
+  return w;
+}
+
+void readSolver(const JsonReader& r, SolverSettings& s) {
+  r.allowOnly({"pd_iterations", "pd_tolerance", "acceleration", "anderson_window", "backward"});
+  if (auto v = r.optional("pd_iterations")) s.pdIterations = v->integer(1, 1000000);
+  if (auto v = r.optional("pd_tolerance")) s.pdTolerance = v->positive();
+  if (auto v = r.optional("acceleration"))
+    s.acceleration = v->choice({"anderson", "none"}) == "none" ? Acceleration::None : Acceleration::Anderson;
+  if (auto v = r.optional("anderson_window")) s.andersonWindow = v->integer(1, 50);
+  if (auto b = r.optional("backward")) {
+    b->allowOnly({"tolerance", "max_iterations", "fallback"});
+    if (auto v = b->optional("tolerance")) s.backward.tolerance = v->positive();
+    if (auto v = b->optional("max_iterations")) s.backward.maxIterations = v->integer(1, 1000000);
+    if (auto v = b->optional("fallback")) s.backward.fallback = v->choice({"direct", "none"});
+  }
+}
+
+Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string& directory) {
+  r.allowOnly({"loss", "parameters"});
+  Task task;
+  const JsonReader loss = r.at("loss").object();
+  if (loss.value().empty()) loss.fail("needs at least one loss term");
+  loss.allowOnly({"trajectory", "final", "keypoints", "hemline"});
+  for (auto it = loss.value().begin(); it != loss.value().end(); ++it) {
+    const JsonReader term = loss.at(it.key()).object();
+    if (it.key() == "trajectory" || it.key() == "final") {
+      term.allowOnly({"target", "vertices", "weight"});
+      const JsonReader target = term.at("target");
+      target.string();
+      if (term.has("weight")) term.at("weight").positive();
+      if (term.has("vertices")) term.at("vertices").size();
+      (void)directory;  // targets may be produced later (e.g. by a run); checked when the loss is built
+    }
+  }
+  task.loss = loss.value();
+  if (auto params = r.optional("parameters")) {
+    for (std::size_t i = 0; i < params->size(); ++i) {
+      const JsonReader p = (*params)[i];
+      const std::string path = p.string();
+      const nlohmann::json* v = findJsonPath(doc, path);
+      if (!v) p.fail("parameter '" + path + "' names no value in the scene (write the value in the scene file)");
+      if (!v->is_number()) p.fail("parameter '" + path + "' is not a number in the scene");
+      task.parameters.push_back(path);
+    }
+  }
+  return task;
+}
+
+std::string locate(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, col = 1;
+  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') ++line, col = 1;
+    else ++col;
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(col);
+}
+
+}  // namespace
+
+std::string resolveScenePath(const std::string& directory, const std::string& path) {
+  const fs::path p(path);
+  if (p.is_absolute()) return path;
+  const fs::path local = fs::path(directory) / p;
+  if (fs::exists(local) || !fs::exists(p)) return local.lexically_normal().string();
+  return p.string();
+}
+
+Scene parseScene(const nlohmann::json& document, const std::string& file, const std::string& directory) {
+  const JsonReader root(document, file, "");
+  root.object();
+  root.allowOnly({"name", "description", "time", "gravity", "solver", "cloths", "obstacles", "wind", "task"});
+  Scene scene;
+  scene.file = file;
+  scene.directory = directory;
+  scene.document = document;
+  scene.name = root.optional("name") ? root.at("name").string() : fs::path(file).stem().string();
+  if (auto d = root.optional("description")) d->string();
+
+  const JsonReader time = root.at("time");
+  time.allowOnly({"dt", "steps"});
+  scene.time.dt = time.at("dt").positive();
+  if (scene.time.dt > 1.0) time.at("dt").fail("must be at most 1 s");
+  scene.time.steps = time.at("steps").integer(0, 10000000);
+
+  if (auto g = root.optional("gravity")) scene.gravity = g->vec3();
+  if (auto s = root.optional("solver")) readSolver(*s, scene.solver);
+
+  const JsonReader cloths = root.at("cloths");
+  if (cloths.size() == 0) cloths.fail("needs at least one cloth");
+  for (std::size_t i = 0; i < cloths.size(); ++i)
+    scene.cloths.push_back(readCloth(cloths[i].object(), directory, scene.warnings));
+
+  if (auto obs = root.optional("obstacles"))
+    for (std::size_t i = 0; i < obs->size(); ++i)
+      scene.obstacles.push_back(readObstacle((*obs)[i].object(), directory));
+  if (auto w = root.optional("wind")) scene.wind = readWind(w->object());
+  if (auto t = root.optional("task")) scene.task = readTask(t->object(), document, directory);
+  return scene;
+}
+
+Scene loadScene(const std::string& file, const std::vector<SceneOverride>& overrides) {
+  std::ifstream in(file);
+  if (!fs::is_regular_file(file) || !in) throw InputError(file, "<file>", "cannot open scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    std::string what = e.what();
+    const auto pos = what.find("syntax error");
+    throw InputError(file, "<json>", "invalid JSON at " + locate(text, e.byte > 0 ? e.byte - 1 : 0) +
+                                         (pos != std::string::npos ? ": " + what.substr(pos) : ""));
+  }
+  std::vector<std::string> created;
+  for (const SceneOverride& o : overrides) {
+    const bool existed = findJsonPath(doc, o.path) != nullptr;
+    const std::string err = setJsonPath(doc, o.path, parseOverrideValue(o.value));
+    if (!err.empty()) throw InputError(file, "--set " + o.path, err);
+    if (!existed) created.push_back(o.path);
+  }
+  const std::string directory = fs::path(file).parent_path().string();
+  try {
+    return parseScene(doc, file, directory.empty() ? "." : directory);
+  } catch (const InputError& e) {
+    // A key that only an override introduced is reported against the option that wrote it.
+    for (const std::string& p : created)
+      if (e.path() == p || e.path().rfind(p + ".", 0) == 0)
+        throw InputError(file, "--set " + p, e.reason() == "" ? "invalid" : e.reason());
+    throw;
+  }
+}
+
+}  // namespace weft
