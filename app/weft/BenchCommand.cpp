@@ -3,9 +3,15 @@
 
 namespace weft::cli {
 
+int forwardBenchmark(const CommandLine& cl, const std::string& outDir);
+
 int benchCommand(const std::vector<std::string>& args) {
-  CommandLine cl(args, {"--out"}, {"--quick"});
-  cl.fail("NAME", "no benchmark yet");
+  CommandLine cl(args, {"--out", "--scene", "--threads"}, {"--quick"});
+  if (cl.positional().size() != 1) cl.fail("NAME", "bench takes one benchmark name: forward");
+  const std::string name = cl.positional()[0];
+  const std::string out = cl.value("--out", "out/bench-" + name);
+  if (name == "forward") return forwardBenchmark(cl, out);
+  cl.fail("NAME", "unknown benchmark '" + name + "' (known: forward)");
 }
 
 }  // namespace weft::cli

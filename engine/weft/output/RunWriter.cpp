@@ -26,6 +26,8 @@ nlohmann::json summarize(const Scene& scene, const Trajectory& trajectory, const
   const int steps = trajectory.stepCount();
   nlohmann::json j;
   j["scene"] = scene.name;
+  j["scene_file"] = scene.file;
+  j["scene_directory"] = scene.directory;  // resolves relative paths in scene.json
   j["steps"] = steps;
   j["vertices"] = trajectory.nodeCount();
   j["dt"] = scene.time.dt;
@@ -70,6 +72,11 @@ void writeRun(const std::string& folder, const Scene& scene, const ClothModel& m
   for (std::size_t c = 0; c + 1 < model.triangleOffset.size(); ++c)
     groups.emplace_back("cloth" + std::to_string(c), model.triangleOffset[c]);
   writeObj(folder + "/rest.obj", model.rest, groups);
+
+  // The scene as simulated (overrides applied), so a run folder can be rendered or replayed alone.
+  std::ofstream sceneCopy(folder + "/scene.json");
+  sceneCopy << scene.document.dump(2) << "\n";
+  if (!sceneCopy) throw InputError(folder + "/scene.json", "output", "write failed");
 
   std::ofstream summary(folder + "/summary.json");
   summary << summarize(scene, trajectory, run).dump(2) << "\n";

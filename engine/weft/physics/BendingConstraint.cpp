@@ -4,6 +4,7 @@
 #include <weft/physics/ClothModel.h>
 #include <weft/scene/Scene.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace weft {
@@ -59,6 +60,7 @@ BendingConstraint::BendingConstraint(std::vector<Hinge> hinges, int nodes) : hin
   rows.reserve(4 * hinges_.size());
   for (std::size_t r = 0; r < hinges_.size(); ++r) {
     weights_[static_cast<int>(r)] = hinges_[r].weight;
+    allFlat_ = allFlat_ && hinges_[r].restNorm == 0.0;
     for (int k = 0; k < 4; ++k) rows.emplace_back(static_cast<int>(r), hinges_[r].nodes[k], hinges_[r].cot[k]);
   }
   setSelection(nodes, rows);
@@ -81,6 +83,51 @@ double BendingConstraint::project(const NodeMatrix& x, NodeMatrix& wp) const {
     wp.row(r) = h.weight * p.transpose();
   }
   return energy;
+}
+
+double BendingConstraint::energy(const NodeMatrix& x) const {
+  double energy = 0.0;
+  const int count = static_cast<int>(hinges_.size());
+#pragma omp parallel for schedule(static) reduction(+ : energy)
+  for (int r = 0; r < count; ++r) {
+    const Hinge& h = hinges_[r];
+    Vec3 e = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) e += h.cot[k] * x.row(h.nodes[k]).transpose();
+    const double excess = h.restNorm > 0.0 ? e.norm() - h.restNorm : e.norm();
+    energy += 0.5 * h.weight * excess * excess;
+  }
+  return energy;
+}
+
+void BendingConstraint::prepareDerivative(const NodeMatrix& x, bool definite) {
+  const int count = static_cast<int>(hinges_.size());
+  unit_.resize(count);
+  scale_.resize(count);
+  for (int r = 0; r < count; ++r) {
+    const Hinge& h = hinges_[r];
+    Vec3 e = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) e += h.cot[k] * x.row(h.nodes[k]).transpose();
+    const double n = e.norm();
+    if (h.restNorm == 0.0 || n == 0.0) {
+      unit_[r].setZero();
+      scale_[r] = 0.0;
+      continue;
+    }
+    unit_[r] = e / n;
+    // Hessian eigenvalue across u is 1 - |e_rest|/|e|: clamp the derivative to keep it >= 0.
+    scale_[r] = definite ? std::min(1.0, h.restNorm / n) : h.restNorm / n;
+  }
+}
+
+void BendingConstraint::applyDerivative(const NodeMatrix& dx, NodeMatrix& wp) const {
+  const int count = static_cast<int>(hinges_.size());
+  for (int r = 0; r < count; ++r) {
+    const Hinge& h = hinges_[r];
+    Vec3 de = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) de += h.cot[k] * dx.row(h.nodes[k]).transpose();
+    const Vec3 dp = scale_[r] * (de - unit_[r] * unit_[r].dot(de));
+    wp.row(r) = h.weight * dp.transpose();
+  }
 }
 
 BendingConstraint makeBendingConstraint(const Scene& scene, const ClothModel& model) {

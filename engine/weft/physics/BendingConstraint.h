@@ -26,10 +26,19 @@ class BendingConstraint final : public ProjectiveConstraint {
   BendingConstraint(std::vector<Hinge> hinges, int nodes);
   const char* name() const override { return "bending"; }
   double project(const NodeMatrix& x, NodeMatrix& weightedProjections) const override;
+  bool projectsToZero() const override { return allFlat_; }
+  double energy(const NodeMatrix& x) const override;
+  bool hasDerivative() const override { return !allFlat_; }
+  void prepareDerivative(const NodeMatrix& x, bool definite) override;
+  void applyDerivative(const NodeMatrix& dx, NodeMatrix& weightedRows) const override;
   const std::vector<Hinge>& hinges() const { return hinges_; }
 
  private:
   std::vector<Hinge> hinges_;
+  bool allFlat_ = true;
+  // Per hinge at the prepared state: dp = scale (I - u u^T) de, u = e/|e|, scale = |e_rest|/|e|.
+  std::vector<Vec3> unit_;
+  std::vector<double> scale_;
 };
 
 // Hinges of every interior manifold edge of the cloths with bend > 0.

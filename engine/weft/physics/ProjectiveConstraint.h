@@ -24,9 +24,24 @@ class ProjectiveConstraint {
   const Eigen::VectorXd& weights() const { return weights_; }
   // A^T (nodes x rows), unweighted, for gathering projections into the global right-hand side.
   const Eigen::SparseMatrix<double, Eigen::RowMajor>& selectionTransposed() const { return at_; }
+  // out += scale * A^T weightedProjections: the constraint's share of the global right-hand
+  // side (Eq. 7). Row-parallel, no allocation.
+  void gather(const NodeMatrix& weightedProjections, double scale, NodeMatrix& out) const;
   // sum_r w_r A_r^T A_r, one coordinate (nodes x nodes).
   Eigen::SparseMatrix<double> weightedGram() const;
 
+  // True when every projection is identically zero (e.g. bending of a flat rest mesh): the
+  // family then only shapes P and needs no local step and no gather.
+  virtual bool projectsToZero() const { return false; }
+  // The family's energy sum_r W_r(x) without writing projections (for projectsToZero families).
+  virtual double energy(const NodeMatrix& x) const;
+  // Derivative of the projections, dp_r/dx = D_r A_r (DiffCloth Sec. 4.1: the blocks of Delta P).
+  // prepareDerivative caches what D needs at x; with `definite` the derivative is clamped so
+  // that A^T W (A - D A) is positive semi-definite (a descent direction for Newton), without it
+  // it is exact (for the adjoint). applyDerivative writes w_r D_r(A_r dx) into row r.
+  virtual bool hasDerivative() const { return false; }
+  virtual void prepareDerivative(const NodeMatrix& /*x*/, bool /*definite*/) {}
+  virtual void applyDerivative(const NodeMatrix& /*dx*/, NodeMatrix& /*weightedRows*/) const {}
   // Called once per time step, before the iterations, with the end-of-step time.
   virtual void beginStep(double /*time*/) {}
   // Local step: writes w_r * p_r(x) into row r of `weightedProjections` (rows x 3) and returns

@@ -62,14 +62,20 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
   if (anyNodalForce) addForce(std::make_unique<NodalForces>(std::move(nodal)));
 
   const int m = model_.nodeCount();
+  inverseMass_ = model_.mass.cwiseInverse();
   x_ = model_.rest.vertices;
   v_.resize(m, 3);
   for (std::size_t c = 0; c < scene.cloths.size(); ++c)
     for (int i = model_.vertexOffset[c]; i < model_.vertexOffset[c + 1]; ++i)
       v_.row(i) = scene.cloths[c].initialVelocity.transpose();
-  for (auto* buf : {&force_, &y_, &massY_, &iterate_, &global_, &accelerated_, &change_, &rhs_})
+  for (auto* buf : {&warmStart_, &force_, &y_, &massY_, &iterate_, &global_, &accelerated_, &change_, &rhs_,
+                    &residualVector_, &direction_, &cgResidual_, &cgPreconditioned_, &cgSearch_, &cgProduct_})
     buf->setZero(m, 3);
-  for (const auto& c : constraints_) projections_.emplace_back(NodeMatrix::Zero(c->rowCount(), 3));
+  for (const auto& c : constraints_) {
+    projections_.emplace_back(NodeMatrix::Zero(c->rowCount(), 3));
+    derivativeRows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
+  }
+  totalMass_ = model_.mass.sum();
   if (scene.solver.acceleration == Acceleration::Anderson) anderson_.reset(3 * m, scene.solver.andersonWindow);
 
   const auto start = Clock::now();
@@ -94,16 +100,22 @@ void Simulator::assembleAndFactorize() {
   system_ = mass;
   for (const auto& c : constraints_) system_ += (h_ * h_) * c->weightedGram();
   system_.makeCompressed();
+  systemRows_ = system_;
   if (!cholesky_.factorize(system_))
     throw NumericalError(0, "solver", "system matrix P is not positive definite");
 }
 
 double Simulator::localStep(const NodeMatrix& x) {
   // Inertia term of g (DiffCloth Eq. 3): |x - y|^2_M / (2 h^2).
-  double energy = 0.5 / (h_ * h_) * (model_.mass.asDiagonal() * (x - y_)).cwiseProduct(x - y_).sum();
+  double energy = 0.0;
+  for (int c = 0; c < 3; ++c)
+    energy += model_.mass.dot((x.col(c) - y_.col(c)).cwiseAbs2());
+  energy *= 0.5 / (h_ * h_);
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
     const auto start = Clock::now();
-    energy += constraints_[c]->project(x, projections_[c]);
+    // A family whose projections are all zero only needs its energy (for the safeguard).
+    energy += constraints_[c]->projectsToZero() ? constraints_[c]->energy(x)
+                                                : constraints_[c]->project(x, projections_[c]);
     const double s = secondsSince(start);
     moduleSeconds_[constraintModule_[c]] += s;
     stats_.moduleSeconds[constraintModule_[c]] += s;
@@ -111,70 +123,91 @@ double Simulator::localStep(const NodeMatrix& x) {
   return energy;
 }
 
-const StepStats& Simulator::step() {
-  const double h2 = h_ * h_;
-  const double t1 = time_ + h_;
-  const int m = model_.nodeCount();
-  const SolverSettings& solver = scene_.solver;
-  stats_ = StepStats{};
-  stats_.step = step_ + 1;
-  stats_.time = t1;
-  stats_.moduleSeconds.assign(moduleNames_.size(), 0.0);
-  auto timed = [this](int module, auto&& fn) {
-    const auto start = Clock::now();
-    fn();
-    const double s = secondsSince(start);
-    moduleSeconds_[module] += s;
-    stats_.moduleSeconds[module] += s;
-  };
+template <class Fn>
+void Simulator::timed(int module, Fn&& fn) {
+  const auto start = Clock::now();
+  fn();
+  const double s = secondsSince(start);
+  moduleSeconds_[module] += s;
+  stats_.moduleSeconds[module] += s;
+}
 
-  // External forces at the end of the step (implicit Euler, Eqs. 1-2).
-  force_.setZero();
-  for (std::size_t f = 0; f < forces_.size(); ++f)
-    timed(forceModule_[f], [&] { forces_[f]->accumulate(t1, force_); });
-  for (std::size_t c = 0; c < constraints_.size(); ++c)
-    timed(constraintModule_[c], [&] { constraints_[c]->beginStep(t1); });
-
+void Simulator::globalStep() {
+  // Global step (DiffCloth Eq. 7): P x = M y + h^2 sum_i w_i A_i^T p_i, with the projections of
+  // the last local step.
   timed(solverModule_, [&] {
-    // y = x_n + h v_n + h^2 M^{-1} f_ext (Eq. 3)
-    y_ = x_ + h_ * v_ + h2 * (model_.mass.cwiseInverse().asDiagonal() * force_);
-    massY_ = model_.mass.asDiagonal() * y_;
-    iterate_ = y_;
-    if (solver.acceleration == Acceleration::Anderson) anderson_.restart();
+    rhs_ = massY_;
+    for (std::size_t c = 0; c < constraints_.size(); ++c)
+      if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
+    global_ = rhs_;
+    cholesky_.solveInPlace(global_);
+    change_ = global_ - iterate_;
   });
+  ++stats_.pdIterations;
+}
 
-  const double totalMass = model_.mass.sum();
+double Simulator::residualOf(const NodeMatrix& systemTimesChange) const {
+  // P (x_global - x_k) = -h^2 grad g(x_k): the imbalance of Eq. 3 at the iterate, as a
+  // mass-weighted RMS acceleration (m/s^2).
+  const double sum = (systemTimesChange.rowwise().squaredNorm().transpose().array() *
+                      inverseMass_.transpose().array()).sum();
+  return std::sqrt(sum / totalMass_) / (h_ * h_);
+}
+
+void Simulator::multiplySystem(const NodeMatrix& in, NodeMatrix& out) const {
+  const int m = static_cast<int>(systemRows_.rows());
+  const int* outer = systemRows_.outerIndexPtr();
+  const int* inner = systemRows_.innerIndexPtr();
+  const double* value = systemRows_.valuePtr();
+  const double *ix = in.col(0).data(), *iy = in.col(1).data(), *iz = in.col(2).data();
+  double *ox = out.col(0).data(), *oy = out.col(1).data(), *oz = out.col(2).data();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < m; ++i) {
+    double sx = 0.0, sy = 0.0, sz = 0.0;
+    for (int k = outer[i]; k < outer[i + 1]; ++k) {
+      const int j = inner[k];
+      sx += value[k] * ix[j], sy += value[k] * iy[j], sz += value[k] * iz[j];
+    }
+    ox[i] = sx, oy[i] = sy, oz[i] = sz;
+  }
+}
+
+void Simulator::multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out) {
+  // K = P - Delta P (Sec. 4.1) with Delta P = h^2 sum_i w_i A_i^T D_i A_i, D_i the projection
+  // derivative: K = h^2 x (Hessian of g).
+  multiplySystem(in, out);
+  for (std::size_t c = 0; c < constraints_.size(); ++c) {
+    if (!constraints_[c]->hasDerivative()) continue;
+    timed(constraintModule_[c], [&] {
+      constraints_[c]->applyDerivative(in, derivativeRows_[c]);
+      constraints_[c]->gather(derivativeRows_[c], -h_ * h_, out);
+    });
+  }
+}
+
+void Simulator::solveProjectiveDynamics() {
+  const SolverSettings& solver = scene_.solver;
   double previousEnergy = std::numeric_limits<double>::infinity();
   bool accelerated = false;
-  int k = 0;
-  for (; k < solver.pdIterations; ++k) {
+  while (stats_.pdIterations < solver.pdIterations) {
     double energy = localStep(iterate_);
-    if (accelerated && !(energy <= previousEnergy)) {
-      // Safeguard (Peng et al. 2018): the accelerated iterate raised the energy; take the plain
-      // PD iterate instead, which never does (it minimises the surrogate of Eq. 6).
+    // Safeguard (Peng et al. 2018): an accelerated iterate that raised the energy is replaced by
+    // the plain PD iterate, which never does (it minimises the surrogate of Eq. 6). The slack
+    // absorbs round-off once the energy has converged to its last digits.
+    if (accelerated && !(energy <= previousEnergy + 1e-13 * std::abs(previousEnergy))) {
       iterate_ = global_;
       anderson_.restart();
       energy = localStep(iterate_);
     }
     previousEnergy = energy;
-    double residual = 0.0;
+    globalStep();
     timed(solverModule_, [&] {
-      // Global step (Eq. 7): P x = M y + h^2 sum_i w_i A_i^T p_i.
-      rhs_ = massY_;
-      for (std::size_t c = 0; c < constraints_.size(); ++c)
-        rhs_.noalias() += h2 * (constraints_[c]->selectionTransposed() * projections_[c]);
-      global_ = rhs_;
-      cholesky_.solveInPlace(global_);
-      // Residual at the iterate: P (x_global - x_k) = -h^2 grad g(x_k), as accelerations.
-      change_ = global_ - iterate_;
-      rhs_.noalias() = system_ * change_;
-      residual = std::sqrt((rhs_.rowwise().squaredNorm().array() / model_.mass.array()).sum() / totalMass) / h2;
+      multiplySystem(change_, residualVector_);
+      stats_.residual = residualOf(residualVector_);
     });
-    stats_.residual = residual;
-    if (residual < solver.pdTolerance) {
+    if (stats_.residual < solver.pdTolerance) {
       stats_.converged = true;
-      ++k;
-      break;
+      return;
     }
     timed(solverModule_, [&] {
       if (solver.acceleration == Acceleration::Anderson) {
@@ -186,18 +219,137 @@ const StepStats& Simulator::step() {
       }
     });
   }
-  stats_.pdIterations = std::min(k, solver.pdIterations);
+}
 
-  // The plain global solution is the step's result (one PD iteration past the checked iterate).
+void Simulator::solveNewton() {
+  // Newton on g (Eq. 3) with conjugate gradients preconditioned by the prefactorised P. The
+  // Hessian is h^-2 (P - Delta P) with the exact projection derivative (the same Delta P the
+  // adjoint uses, Sec. 4.1). The first preconditioned residual is exactly the PD step
+  // x_global - x, so one CG iteration reproduces PD; further ones add the curvature PD leaves out
+  // (the soft out-of-plane modes where P overestimates the stiffness), and convergence becomes
+  // quadratic. Where the Hessian is indefinite (compressed triangles), CG stops at the negative
+  // curvature, and a step that does not decrease g falls back to the PD step, which always does.
+  const SolverSettings& solver = scene_.solver;
+  const double h2 = h_ * h_;
+  double energy = localStep(iterate_);
+  double forcing = 0.5, previousResidual = 0.0;
+  auto dot = [](const NodeMatrix& a, const NodeMatrix& b) { return (a.array() * b.array()).sum(); };
+  while (stats_.pdIterations < solver.pdIterations) {
+    globalStep();
+    timed(solverModule_, [&] {
+      multiplySystem(change_, residualVector_);  // r0 = b - P x = P (x_global - x)
+      stats_.residual = residualOf(residualVector_);
+    });
+    if (stats_.residual < solver.pdTolerance) {
+      stats_.converged = true;
+      return;
+    }
+    for (std::size_t c = 0; c < constraints_.size(); ++c)
+      if (constraints_[c]->hasDerivative())
+        timed(constraintModule_[c], [&] { constraints_[c]->prepareDerivative(iterate_, false); });
+
+    // PCG on K d = r0, preconditioner P^{-1}; z0 = P^{-1} r0 = change_ (no extra solve).
+    direction_.setZero();
+    cgResidual_ = residualVector_;
+    cgPreconditioned_ = change_;
+    cgSearch_ = change_;
+    double rz = dot(cgResidual_, cgPreconditioned_);
+    const double rz0 = rz;
+    // Inexact Newton: the CG tolerance follows the residual's decrease (Eisenstat-Walker choice 2),
+    // loose while far from the solution, tight once convergence is quadratic.
+    if (previousResidual > 0.0) {
+      const double ratio = stats_.residual / previousResidual;
+      const double safeguard = 0.9 * forcing * forcing;
+      forcing = std::max(0.9 * ratio * ratio, safeguard > 0.1 ? safeguard : 0.0);
+      forcing = std::min(0.5, std::max(forcing, 1e-6));
+    }
+    previousResidual = stats_.residual;
+    while (true) {
+      multiplyNewtonMatrix(cgSearch_, cgProduct_);
+      double curvature = 0.0, alpha = 0.0;
+      timed(solverModule_, [&] {
+        curvature = dot(cgSearch_, cgProduct_);
+        if (curvature > 0.0) {
+          alpha = rz / curvature;
+          direction_ += alpha * cgSearch_;
+          cgResidual_ -= alpha * cgProduct_;
+        }
+      });
+      if (!(curvature > 0.0) || stats_.pdIterations >= solver.pdIterations) break;
+      timed(solverModule_, [&] {
+        cgPreconditioned_ = cgResidual_;
+        cholesky_.solveInPlace(cgPreconditioned_);
+      });
+      ++stats_.pdIterations;
+      const double rzNew = dot(cgResidual_, cgPreconditioned_);
+      if (rzNew <= forcing * forcing * rz0) break;
+      timed(solverModule_, [&] { cgSearch_ = cgPreconditioned_ + (rzNew / rz) * cgSearch_; });
+      rz = rzNew;
+    }
+    if (direction_.isZero(0.0)) direction_ = change_;
+
+    // Backtracking line search on g (Armijo); the PD step is the fallback, since it always
+    // decreases g. grad g = -r0 / h^2.
+    const double slope = -dot(residualVector_, direction_) / h2;
+    double step = 1.0;
+    bool accepted = false;
+    for (int tries = 0; tries < 8 && !accepted; ++tries, step *= 0.5) {
+      accelerated_ = iterate_ + step * direction_;
+      const double trial = localStep(accelerated_);
+      if (trial <= energy + 1e-4 * step * slope + 1e-13 * std::abs(energy)) {
+        iterate_.swap(accelerated_);
+        energy = trial;
+        accepted = true;
+      }
+    }
+    if (!accepted) {
+      iterate_ = global_;
+      energy = localStep(iterate_);
+    }
+  }
+}
+
+const StepStats& Simulator::step() {
+  const double h2 = h_ * h_;
+  const double t1 = time_ + h_;
+  const SolverSettings& solver = scene_.solver;
+  stats_ = StepStats{};
+  stats_.step = step_ + 1;
+  stats_.time = t1;
+  stats_.moduleSeconds.assign(moduleNames_.size(), 0.0);
+
+  // External forces at the end of the step (implicit Euler, Eqs. 1-2).
+  force_.setZero();
+  for (std::size_t f = 0; f < forces_.size(); ++f)
+    timed(forceModule_[f], [&] { forces_[f]->accumulate(t1, force_); });
+  for (std::size_t c = 0; c < constraints_.size(); ++c)
+    timed(constraintModule_[c], [&] { constraints_[c]->beginStep(t1); });
+
+  timed(solverModule_, [&] {
+    // y = x_n + h v_n + h^2 M^{-1} f_ext (Eq. 3)
+    y_ = x_ + h_ * v_ + h2 * (inverseMass_.asDiagonal() * force_);
+    massY_ = model_.mass.asDiagonal() * y_;
+    // Warm start: the displacement the internal forces caused last step (x_n - y_{n-1}) changes
+    // slowly, and carries the slow, bending-like modes that PD is slowest to converge.
+    iterate_ = y_ + warmStart_;
+    if (solver.acceleration == Acceleration::Anderson) anderson_.restart();
+  });
+
+  if (solver.method == SolverMethod::Newton)
+    solveNewton();
+  else
+    solveProjectiveDynamics();
+
+  // The last global solution is the step's result (one PD iteration past the checked iterate).
   if (!global_.allFinite()) diagnoseNonFinite(x_);
   v_ = (global_ - x_) / h_;
   x_ = global_;
+  warmStart_ = x_ - y_;
   time_ = t1;
   ++step_;
   const double maxSpeed = std::sqrt(v_.rowwise().squaredNorm().maxCoeff());
   if (!(maxSpeed < kBlowUpSpeed))
     throw NumericalError(step_, "solver", "velocity " + std::to_string(maxSpeed) + " m/s: the integration blew up");
-  (void)m;
   return stats_;
 }
 

@@ -52,7 +52,15 @@ class Simulator {
 
  private:
   int addModule(const std::string& name);
-  double localStep(const NodeMatrix& x);  // fills projections_, returns energy g(x)
+  double localStep(const NodeMatrix& x);
+  template <class Fn>
+  void timed(int module, Fn&& fn);
+  void globalStep();
+  void solveProjectiveDynamics();
+  void solveNewton();
+  void multiplySystem(const NodeMatrix& in, NodeMatrix& out) const;  // one-coordinate P, 3 columns
+  void multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out);
+  double residualOf(const NodeMatrix& systemTimesChange) const;  // fills projections_, returns energy g(x)
   void assembleAndFactorize();
   void diagnoseNonFinite(const NodeMatrix& lastGood) const;
 
@@ -68,6 +76,8 @@ class Simulator {
   std::vector<double> moduleSeconds_;
 
   Eigen::SparseMatrix<double> system_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> systemRows_;  // the same, for row-parallel products
+  Eigen::VectorXd inverseMass_;
   SparseCholesky cholesky_;
   AndersonAccelerator anderson_;
 
@@ -77,8 +87,11 @@ class Simulator {
   StepStats stats_;
 
   // Work buffers, allocated once.
-  NodeMatrix force_, y_, massY_, iterate_, global_, accelerated_, change_, rhs_;
-  std::vector<NodeMatrix> projections_;
+  NodeMatrix warmStart_;  // x_n - y_{n-1}
+  NodeMatrix force_, y_, massY_, iterate_, global_, accelerated_, change_, rhs_, residualVector_;
+  NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
+  std::vector<NodeMatrix> projections_, derivativeRows_;
+  double totalMass_ = 0.0;
 };
 
 }  // namespace weft

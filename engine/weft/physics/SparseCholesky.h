@@ -1,11 +1,16 @@
 #pragma once
 // CHOLMOD Cholesky factorisation of the PD system matrix, factorised once and reused for
 // every global step until the matrix changes (DiffCloth Sec. 3.1: "P is a constant matrix that
-// can be prefactorized"). Solves use cholmod_solve2 with kept workspace: no allocation per solve.
+// can be prefactorized"). CHOLMOD orders and factorises; the factor is then kept as a simplicial
+// L L^T and the solves are our own loops over it with the three coordinates interleaved (for the
+// small, many-times-solved systems of cloth this is about twice as fast as cholmod_solve2).
+// No allocation per solve.
 
 #include <weft/core/Types.h>
 
 #include <Eigen/SparseCore>
+
+#include <vector>
 
 struct cholmod_common_struct;
 struct cholmod_factor_struct;
@@ -36,6 +41,13 @@ class SparseCholesky {
   cholmod_common_struct* common_;
   cholmod_factor_struct* factor_ = nullptr;
   cholmod_dense_struct *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;
+  template <int W>
+  void solveBlock(double* data);
+  const int* colStart_ = nullptr;
+  const int* rowIndex_ = nullptr;
+  const double* values_ = nullptr;
+  const int* perm_ = nullptr;
+  std::vector<double> work_;
   Eigen::SparseMatrix<double> lower_;  // kept: CHOLMOD views its arrays
   int size_ = 0;
   long long patternNonZeros_ = -1;

@@ -4,6 +4,8 @@
 #include <weft/scene/Scene.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 namespace weft {
@@ -42,7 +44,7 @@ Eigen::Matrix<double, 3, 2> StretchConstraint::project(const Eigen::Matrix<doubl
   const Eigen::Matrix2d s = t.transpose() * f;
   // Closed-form polar rotation of a 2x2 matrix: the angle maximising tr(R^T S).
   const double c = s(0, 0) + s(1, 1), d = s(1, 0) - s(0, 1);
-  const double n = std::hypot(c, d);
+  const double n = std::sqrt(c * c + d * d);
   Eigen::Matrix2d r;
   if (n > 0.0)
     r << c / n, -d / n, d / n, c / n;
@@ -84,22 +86,113 @@ StretchConstraint::StretchConstraint(const NodeMatrix& rest, const TriangleIndic
 }
 
 double StretchConstraint::project(const NodeMatrix& x, NodeMatrix& wp) const {
+  // Closed form of the projection above, without forming F or the frame as matrices. With
+  // e1 = x1 - x0, e2 = x2 - x0, column c of F is a_c e1 + b_c e2 (a_c = coeff(c,1),
+  // b_c = coeff(c,2)). In the current frame t1 = e1/|e1|, t2 = (e2 - (t1.e2) t1)/|...|, F = T S
+  // with S = [[a_c |e1| + b_c (t1.e2)], [b_c |u|]], so |F - T R|^2 = |S|^2 - 2 |(s00 + s11,
+  // s10 - s01)| + 2 (evaluated as |S - R|^2), and the projection is T R.
   double energy = 0.0;
   const int count = triangleCount();
+  const double* px = x.col(0).data();
+  const double* py = x.col(1).data();
+  const double* pz = x.col(2).data();
+  double* wx = wp.col(0).data();
+  double* wy = wp.col(1).data();
+  double* wz = wp.col(2).data();
 #pragma omp parallel for schedule(static) reduction(+ : energy)
+  for (int t = 0; t < count; ++t) {
+    const Eigen::Vector3i& n = nodes_[t];
+    const Vec3 x0(px[n[0]], py[n[0]], pz[n[0]]);
+    const Vec3 e1 = Vec3(px[n[1]], py[n[1]], pz[n[1]]) - x0;
+    const Vec3 e2 = Vec3(px[n[2]], py[n[2]], pz[n[2]]) - x0;
+    const Coefficients& c = coeff_[t];
+    const double w = weights_[2 * t];
+    const double l1 = e1.norm();
+    Eigen::Matrix<double, 3, 2> q;
+    double s00, s01, s10, s11;
+    if (l1 > 0.0) {
+      const Vec3 t1 = e1 / l1;
+      const double d = t1.dot(e2);
+      Vec3 u = e2 - d * t1;
+      const double lu = u.norm();
+      const Vec3 t2 = lu > 1e-12 * l1 ? Vec3(u / lu) : Vec3(t1.unitOrthogonal());
+      s00 = c(0, 1) * l1 + c(0, 2) * d;
+      s01 = c(1, 1) * l1 + c(1, 2) * d;
+      s10 = c(0, 2) * lu;
+      s11 = c(1, 2) * lu;
+      const double cs = s00 + s11, sn = s10 - s01;
+      const double norm = std::sqrt(cs * cs + sn * sn);
+      const double r00 = norm > 0.0 ? cs / norm : 1.0, r10 = norm > 0.0 ? sn / norm : 0.0;
+      // R = [[r00, -r10], [r10, r00]]; Q = T R.
+      q.col(0) = r00 * t1 + r10 * t2;
+      q.col(1) = -r10 * t1 + r00 * t2;
+      // |S - R|^2 term by term: the expanded |S|^2 - 2|.| + 2 cancels catastrophically near rest,
+      // and the Anderson safeguard compares energies that differ in the 12th digit.
+      const double d00 = s00 - r00, d01 = s01 + r10, d10 = s10 - r10, d11 = s11 - r00;
+      energy += 0.5 * w * (d00 * d00 + d01 * d01 + d10 * d10 + d11 * d11);
+    } else {  // collapsed edge: the general routine picks a frame
+      Eigen::Matrix<double, 3, 2> f;
+      for (int col = 0; col < 2; ++col) f.col(col) = c(col, 1) * e1 + c(col, 2) * e2;
+      q = project(f, x0, x0 + e1, x0 + e2);
+      energy += 0.5 * w * (f - q).squaredNorm();
+    }
+    const int r0 = 2 * t, r1 = 2 * t + 1;
+    wx[r0] = w * q(0, 0), wy[r0] = w * q(1, 0), wz[r0] = w * q(2, 0);
+    wx[r1] = w * q(0, 1), wy[r1] = w * q(1, 1), wz[r1] = w * q(2, 1);
+  }
+  return energy;
+}
+
+void StretchConstraint::prepareDerivative(const NodeMatrix& x, bool definite) {
+  const int count = triangleCount();
+  derivative_.resize(count);
+#pragma omp parallel for schedule(static)
   for (int t = 0; t < count; ++t) {
     const Eigen::Vector3i& n = nodes_[t];
     const Vec3 x0 = x.row(n[0]), x1 = x.row(n[1]), x2 = x.row(n[2]);
     const Coefficients& c = coeff_[t];
     Eigen::Matrix<double, 3, 2> f;
-    for (int col = 0; col < 2; ++col) f.col(col) = c(col, 0) * x0 + c(col, 1) * x1 + c(col, 2) * x2;
-    const Eigen::Matrix<double, 3, 2> q = project(f, x0, x1, x2);
-    const double w = weights_[2 * t];
-    energy += 0.5 * w * (f - q).squaredNorm();
-    wp.row(2 * t) = w * q.col(0).transpose();
-    wp.row(2 * t + 1) = w * q.col(1).transpose();
+    for (int col = 0; col < 2; ++col) f.col(col) = c(col, 1) * (x1 - x0) + c(col, 2) * (x2 - x0);
+    Derivative& d = derivative_[t];
+    d.q = project(f, x0, x1, x2);
+    d.n = d.q.col(0).cross(d.q.col(1));
+    // S = Q^T F is symmetric positive (semi-)definite: F = Q S is the polar decomposition.
+    Eigen::Matrix2d s2 = d.q.transpose() * f;
+    s2(0, 1) = s2(1, 0) = 0.5 * (s2(0, 1) + s2(1, 0));
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(s2);
+    const Eigen::Vector2d sigma = eig.eigenvalues().cwiseMax(1e-12);
+    const Eigen::Matrix2d v = eig.eigenvectors();
+    Eigen::Vector2d inv = sigma.cwiseInverse();
+    double rot = 2.0 / (sigma[0] + sigma[1]);
+    if (definite) {
+      // The Hessian of |F - Q(F)|^2 / 2 is I - dQ/dF with eigenvalues 1 - 2/(s1+s2) (in-plane
+      // rotation) and 1 - 1/s_i (out of plane); clamping dQ's to at most 1 keeps them >= 0.
+      inv = inv.cwiseMin(1.0);
+      rot = std::min(rot, 1.0);
+    }
+    const Eigen::Matrix2d b = v * inv.asDiagonal() * v.transpose();
+    d.rot = rot;
+    d.b00 = b(0, 0), d.b01 = b(0, 1), d.b11 = b(1, 1);
   }
-  return energy;
+}
+
+void StretchConstraint::applyDerivative(const NodeMatrix& dx, NodeMatrix& wp) const {
+  const int count = triangleCount();
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < count; ++t) {
+    const Eigen::Vector3i& n = nodes_[t];
+    const Coefficients& c = coeff_[t];
+    const Derivative& d = derivative_[t];
+    const Vec3 d0 = dx.row(n[0]), d1 = dx.row(n[1]) - d0.transpose(), d2 = dx.row(n[2]) - d0.transpose();
+    const Vec3 f0 = c(0, 1) * d1 + c(0, 2) * d2, f1 = c(1, 1) * d1 + c(1, 2) * d2;
+    // In-plane rotation: QJ = [q1, -q0].
+    const double omega = 0.5 * d.rot * (d.q.col(1).dot(f0) - d.q.col(0).dot(f1));
+    const double a0 = d.n.dot(f0), a1 = d.n.dot(f1);  // out-of-plane row n^T dF
+    const double o0 = a0 * d.b00 + a1 * d.b01, o1 = a0 * d.b01 + a1 * d.b11;
+    const double w = weights_[2 * t];
+    wp.row(2 * t) = w * (omega * d.q.col(1) + o0 * d.n).transpose();
+    wp.row(2 * t + 1) = w * (-omega * d.q.col(0) + o1 * d.n).transpose();
+  }
 }
 
 StretchConstraint makeStretchConstraint(const Scene& scene, const ClothModel& model) {

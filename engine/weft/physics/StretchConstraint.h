@@ -21,6 +21,9 @@ class StretchConstraint final : public ProjectiveConstraint {
   const char* name() const override { return "stretch"; }
   double project(const NodeMatrix& x, NodeMatrix& weightedProjections) const override;
   int triangleCount() const { return static_cast<int>(nodes_.size()); }
+  bool hasDerivative() const override { return true; }
+  void prepareDerivative(const NodeMatrix& x, bool definite) override;
+  void applyDerivative(const NodeMatrix& dx, NodeMatrix& weightedRows) const override;
 
   // Deformation gradient coefficients: F column c = sum_j coeff[t](c, j) x_{node j}.
   using Coefficients = Eigen::Matrix<double, 2, 3>;
@@ -32,6 +35,16 @@ class StretchConstraint final : public ProjectiveConstraint {
  private:
   std::vector<Eigen::Vector3i> nodes_;
   std::vector<Coefficients> coeff_;
+  // Per triangle at the prepared state: dQ(dF) = rot * QJ <QJ, dF>/2 + n (n^T dF) B, with Q the
+  // projection, n the unit normal, rot = 2/(s1+s2) and B = S^{-1} for S = Q^T F (clamped to
+  // min(1, .) when definite).
+  struct Derivative {
+    Eigen::Matrix<double, 3, 2> q;
+    Vec3 n;
+    double rot;
+    double b00, b01, b11;
+  };
+  std::vector<Derivative> derivative_;
 };
 
 // Builds the stretch constraint for every cloth of the scene with stretch > 0.

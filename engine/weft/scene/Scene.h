@@ -27,12 +27,16 @@ struct BackwardSettings {
 };
 
 enum class Acceleration { None, Anderson };
+// "newton": Newton with CG preconditioned by the prefactorised P (the default);
+// "pd": local-global PD iterations (with Anderson acceleration unless turned off).
+enum class SolverMethod { Newton, ProjectiveDynamics };
 
 struct SolverSettings {
-  int pdIterations = 100;
+  SolverMethod method = SolverMethod::Newton;
+  int pdIterations = 100;  // at most this many solves with P per step
   // Converged when the mass-weighted RMS imbalance of the implicit-Euler equations
   // (DiffCloth Eq. 3 gradient divided by nodal mass) falls below this, in m/s^2.
-  double pdTolerance = 1e-6;
+  double pdTolerance = 1e-4;
   Acceleration acceleration = Acceleration::Anderson;
   int andersonWindow = 5;
   BackwardSettings backward;

@@ -1,0 +1,39 @@
+#pragma once
+// A measured table as `weft bench` writes it: CSV (all columns), Markdown (for docs) and a PNG
+// plot drawn by gnuplot (Debian's gnuplot-nox) when it is installed.
+
+#include <string>
+#include <vector>
+
+namespace weft::cli {
+
+class BenchTable {
+ public:
+  explicit BenchTable(std::vector<std::string> columns) : columns_(std::move(columns)) {}
+  void add(std::vector<std::string> row) { rows_.push_back(std::move(row)); }
+  const std::vector<std::vector<std::string>>& rows() const { return rows_; }
+  void writeCsv(const std::string& path) const;
+  void writeMarkdown(const std::string& path, const std::string& title, const std::string& preamble) const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+// One plotted series: x/y columns of a CSV data block.
+struct PlotSeries {
+  std::string title;
+  std::vector<double> x, y;
+};
+
+// Writes `png` with gnuplot (log-log when asked). Returns false, with a reason, when gnuplot is
+// missing or fails; the CSV and Markdown are still written by the caller.
+bool plotSeries(const std::string& png, const std::string& title, const std::string& xLabel,
+                const std::string& yLabel, const std::vector<PlotSeries>& series, bool logX, bool logY,
+                std::string& reason);
+
+std::string formatNumber(double v, int precision = 4);
+// "Linux x86_64, 2 cores, <cpu model>" for the record of where a benchmark ran.
+std::string machineDescription();
+
+}  // namespace weft::cli
