@@ -12,7 +12,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 namespace weft {
@@ -24,7 +28,36 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
+// tinyobjloader reads an unparsable or missing coordinate ("abc", "nan", "v 1 2") as 0, which
+// would silently move a vertex; every `v` line is checked here first.
+void checkObjVertexLines(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
+    const auto comment = line.find('#');
+    if (comment != std::string::npos) line.erase(comment);
+    std::istringstream fields(line);
+    std::string tag, token;
+    if (!(fields >> tag) || tag != "v") continue;
+    int count = 0;
+    while (fields >> token) {
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0' || !std::isfinite(value))
+        throw InputError(path, "mesh",
+                         "line " + std::to_string(lineNumber) + ": vertex coordinate '" + token +
+                             "' is not a finite number");
+      ++count;
+    }
+    if (count < 3)
+      throw InputError(path, "mesh",
+                       "line " + std::to_string(lineNumber) +
+                           ": a vertex needs 3 coordinates, got " + std::to_string(count));
+  }
+}
+
 TriangleMesh readObj(const std::string& path) {
+  checkObjVertexLines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // we fan-triangulate ourselves so the vertex set is untouched
   config.vertex_color = false;
@@ -57,7 +90,21 @@ TriangleMesh readObj(const std::string& path) {
   return mesh;
 }
 
+// assimp 5.2 loops forever on a PLY file whose header has no `end_header` line (a truncated or
+// hand-edited file), so that case is rejected before assimp sees the file.
+void checkPlyHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line) || line.compare(0, 3, "ply") != 0) return;  // not PLY
+  while (std::getline(in, line)) {
+    const auto end = line.find_last_not_of(" \t\r");
+    if (end != std::string::npos && line.compare(0, end + 1, "end_header") == 0) return;
+  }
+  throw InputError(path, "mesh", "PLY header has no 'end_header' line (truncated file?)");
+}
+
 TriangleMesh readWithAssimp(const std::string& path) {
+  checkPlyHeader(path);
   Assimp::Importer importer;
   // No post-processing that welds, splits or reorders vertices.
   const aiScene* scene = importer.ReadFile(path, 0);

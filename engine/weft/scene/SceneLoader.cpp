@@ -373,6 +373,19 @@ Scene loadScene(const std::string& file, const std::vector<SceneOverride>& overr
     const auto pos = what.find("syntax error");
     throw InputError(file, "<json>", "invalid JSON at " + locate(text, e.byte > 0 ? e.byte - 1 : 0) +
                                          (pos != std::string::npos ? ": " + what.substr(pos) : ""));
+  } catch (const nlohmann::json::exception& e) {
+    // E.g. out_of_range 406, "number overflow parsing '1e999'": no byte offset is given, so the
+    // quoted token is looked up in the text to say where it is.
+    const std::string what = e.what();
+    const auto open = what.find('\''), close = what.rfind('\'');
+    const auto detail = what.find("] ");
+    std::string where;
+    if (open != std::string::npos && close > open) {
+      const auto at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) where = " at " + locate(text, at);
+    }
+    const std::string reason = detail != std::string::npos ? what.substr(detail + 2) : what;
+    throw InputError(file, "<json>", "invalid JSON" + where + ": " + reason);
   }
   std::vector<std::string> created;
   for (const SceneOverride& o : overrides) {

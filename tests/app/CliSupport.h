@@ -1,0 +1,88 @@
+#pragma once
+// Running the real `weft` binary and reading what it writes, independently of the engine's own
+// readers (the .npy header and CSV are parsed here from the bytes).
+
+#include <support/Process.h>
+#include <support/TempDir.h>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace weft::test {
+
+inline ProcessResult runWeft(const std::vector<std::string>& args,
+                             const std::string& workDir = "") {
+  std::vector<std::string> argv{WEFT_BINARY};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return runProcess(argv, workDir);
+}
+
+// Everything printed, for failure messages.
+inline std::string describe(const ProcessResult& r) {
+  return "exit " + std::to_string(r.exitCode) +
+         (r.signal ? " (signal " + std::to_string(r.signal) + ")" : "") + "\n--- stdout\n" + r.out +
+         "--- stderr\n" + r.err;
+}
+
+struct ParsedNpy {
+  int major = 0, minor = 0;
+  std::size_t dataOffset = 0;
+  std::string header;
+  std::vector<std::size_t> shape;
+  std::vector<double> data;
+};
+
+// Parses a format 1.x little-endian float64 .npy file, asserting on every structural rule.
+inline ParsedNpy parseNpy(const std::string& bytes) {
+  ParsedNpy npy;
+  EXPECT_GE(bytes.size(), 10u);
+  if (bytes.size() < 10) return npy;
+  EXPECT_EQ(bytes.substr(0, 6), "\x93NUMPY");
+  npy.major = bytes[6];
+  npy.minor = bytes[7];
+  const std::size_t length =
+      static_cast<unsigned char>(bytes[8]) | (static_cast<unsigned char>(bytes[9]) << 8);
+  npy.dataOffset = 10 + length;
+  EXPECT_LE(npy.dataOffset, bytes.size());
+  npy.header = bytes.substr(10, length);
+  EXPECT_NE(npy.header.find("'descr': '<f8'"), std::string::npos) << npy.header;
+  EXPECT_NE(npy.header.find("'fortran_order': False"), std::string::npos) << npy.header;
+  const auto open = npy.header.find("'shape': (");
+  const auto close = npy.header.find(')', open);
+  EXPECT_NE(open, std::string::npos) << npy.header;
+  if (open == std::string::npos || close == std::string::npos) return npy;
+  std::stringstream dims(npy.header.substr(open + 10, close - open - 10));
+  std::string item;
+  while (std::getline(dims, item, ','))
+    if (item.find_first_of("0123456789") != std::string::npos)
+      npy.shape.push_back(std::stoul(item));
+  std::size_t count = 1;
+  for (std::size_t d : npy.shape) count *= d;
+  EXPECT_EQ(bytes.size() - npy.dataOffset, count * sizeof(double)) << "payload size";
+  if (bytes.size() - npy.dataOffset != count * sizeof(double)) return npy;
+  npy.data.resize(count);
+  std::memcpy(npy.data.data(), bytes.data() + npy.dataOffset, count * sizeof(double));
+  return npy;
+}
+
+inline std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream s(text);
+  std::string line;
+  while (std::getline(s, line)) lines.push_back(line);
+  return lines;
+}
+
+inline std::vector<std::string> splitCommas(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream s(line);
+  std::string field;
+  while (std::getline(s, field, ',')) fields.push_back(field);
+  return fields;
+}
+
+}  // namespace weft::test

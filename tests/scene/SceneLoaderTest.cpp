@@ -1,0 +1,265 @@
+// The strict scene loader: defaults, effects present only when named, overrides by JSON path,
+// mesh files (scale before transform), repair of degenerate triangles, and errors that name
+// the JSON path. (Malformed scenes through the real binary are in tests/app.)
+
+#include <support/SceneBuilder.h>
+#include <support/TempDir.h>
+#include <weft/core/Error.h>
+#include <weft/mesh/GridMesh.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <gtest/gtest.h>
+
+namespace weft {
+namespace {
+
+using test::TempDir;
+
+// Expects `fn` to throw an InputError at `path` whose reason contains `phrase`.
+template <class Fn>
+void expectInputError(Fn&& fn, const std::string& path, const std::string& phrase) {
+  try {
+    fn();
+    ADD_FAILURE() << "no error; expected one at " << path;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.path(), path) << e.what();
+    EXPECT_NE(e.reason().find(phrase), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneLoader, MinimalSceneGetsDefaultsAndNoOptionalEffects) {
+  const nlohmann::json doc = {{"time", {{"dt", 0.02}, {"steps", 7}}},
+                              {"cloths",
+                               {{{"mesh", {{"grid", {{"size", {1, 2}}, {"resolution", {2, 3}}}}}},
+                                 {"material", {{"density", 0.3}, {"stretch", 50}}}}}}};
+  const Scene s = test::parse(doc, "some/dir/hanging.json");
+  EXPECT_EQ(s.name, "hanging");  // from the file name when the scene has none
+  EXPECT_EQ(s.time.dt, 0.02);
+  EXPECT_EQ(s.time.steps, 7);
+  EXPECT_FALSE(s.gravity.has_value());
+  EXPECT_FALSE(s.wind.has_value());
+  EXPECT_FALSE(s.task.has_value());
+  EXPECT_TRUE(s.obstacles.empty());
+  EXPECT_FALSE(s.hasSelfCollision());
+  ASSERT_EQ(s.cloths.size(), 1u);
+  EXPECT_EQ(s.cloths[0].material.bend, 0.0);
+  EXPECT_EQ(s.cloths[0].initialVelocity, Vec3::Zero());
+  EXPECT_TRUE(s.cloths[0].attachments.empty());
+  EXPECT_EQ(s.vertexCount(), 12);
+  const SolverSettings defaults;
+  EXPECT_EQ(s.solver.pdIterations, defaults.pdIterations);
+  EXPECT_EQ(s.solver.pdTolerance, defaults.pdTolerance);
+}
+
+TEST(SceneLoader, ReadsEveryEffectItNames) {
+  nlohmann::json doc = test::hangingClothScene(1.0, 4, 0.01, 10, 300.0, 0.002, 0.2);
+  doc["wind"] = {{"direction", {1, 0, 0.5}}, {"strength", 2.0}, {"frequency", 3.0}, {"phase", 0.5}};
+  doc["cloths"][0]["initial_velocity"] = {0.1, 0.2, 0.3};
+  doc["cloths"][0]["forces"] = {{{"vertices", {7, 8}}, {"force", {0, 0, 1.5}}}};
+  doc["cloths"][0]["attachments"].push_back(
+      {{"vertices", {24}},
+       {"kind", "handle"},
+       {"stiffness", 500.0},
+       {"trajectory",
+        {{"keyframes",
+          {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 1.0}, {"offset", {0, 0.5, 0}}}}}}}});
+  const Scene s = test::parse(doc);
+  ASSERT_TRUE(s.gravity.has_value());
+  EXPECT_EQ(*s.gravity, Vec3(0, -9.8, 0));
+  ASSERT_TRUE(s.wind.has_value());
+  EXPECT_EQ(s.wind->direction, Vec3(1, 0, 0.5));
+  EXPECT_EQ(s.wind->strength, 2.0);
+  EXPECT_EQ(s.wind->frequency, 3.0);
+  EXPECT_EQ(s.wind->phase, 0.5);
+  const Cloth& c = s.cloths[0];
+  EXPECT_EQ(c.material.density, 0.2);
+  EXPECT_EQ(c.material.stretch, 300.0);
+  EXPECT_EQ(c.material.bend, 0.002);
+  EXPECT_EQ(c.initialVelocity, Vec3(0.1, 0.2, 0.3));
+  ASSERT_EQ(c.forces.size(), 1u);
+  EXPECT_EQ(c.forces[0].vertices, (std::vector<int>{7, 8}));
+  ASSERT_EQ(c.attachments.size(), 2u);
+  EXPECT_EQ(c.attachments[0].kind, Attachment::Kind::Fixed);
+  EXPECT_EQ(c.attachments[0].vertices, (std::vector<int>{0, 4}));
+  EXPECT_EQ(c.attachments[1].kind, Attachment::Kind::Handle);
+  EXPECT_EQ(c.attachments[1].stiffness, 500.0);
+  EXPECT_EQ(c.attachments[1].trajectory.offset(0.5), Vec3(0, 0.25, 0));
+}
+
+TEST(SceneLoader, SeveralClothsKeepLocalIndicesAndSceneOrder) {
+  nlohmann::json doc = test::gridScene(1.0, 2, 0.01, 1);
+  nlohmann::json second = doc["cloths"][0];
+  second["mesh"]["grid"]["resolution"] = {3, 1};
+  second["mesh"]["transform"] = {{"translate", {0, 2, 0}}};
+  second["attachments"] = {{{"vertices", {7}}}};  // valid only in the second cloth (8 vertices)
+  doc["cloths"].push_back(second);
+  const Scene s = test::parse(doc);
+  ASSERT_EQ(s.cloths.size(), 2u);
+  EXPECT_EQ(s.cloths[0].mesh.vertexCount(), 9);
+  EXPECT_EQ(s.cloths[1].mesh.vertexCount(), 8);
+  EXPECT_EQ(s.vertexCount(), 17);
+  EXPECT_EQ(s.cloths[1].attachments[0].vertices, std::vector<int>{7});
+  EXPECT_DOUBLE_EQ(s.cloths[1].mesh.vertices(7, 1), 2.0);
+
+  doc["cloths"][0]["attachments"] = {{{"vertices", {9}}}};  // out of range for the first
+  expectInputError([&] { test::parse(doc); }, "cloths.0.attachments.0.vertices.0", "out of range");
+}
+
+TEST(SceneLoader, MeshFileIsScaledBeforeItIsTransformed) {
+  TempDir dir;
+  dir.write("tri.obj", "v 1 0 0\nv 2 0 0\nv 1 0 1\nf 1 3 2\n");
+  nlohmann::json doc = test::gridScene(1.0, 1, 0.01, 1);
+  doc["cloths"][0]["mesh"] = {
+      {"file", "tri.obj"},
+      {"scale", 2.0},
+      {"transform", {{"translate", {1, 0, 0}}, {"rotate_deg", {0, 0, 90}}}}};
+  const std::string file = test::writeScene(dir.file("scene.json"), doc);
+  const Scene s = loadScene(file);
+  const TriangleMesh& m = s.cloths[0].mesh;
+  ASSERT_EQ(m.vertexCount(), 3);
+  // (1,0,0) -> scale (2,0,0) -> rotate Z 90 (0,2,0) -> translate (1,2,0).
+  EXPECT_NEAR((m.vertices.row(0) - Eigen::RowVector3d(1, 2, 0)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((m.vertices.row(1) - Eigen::RowVector3d(1, 4, 0)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((m.vertices.row(2) - Eigen::RowVector3d(1, 2, 2)).norm(), 0.0, 1e-15);
+}
+
+TEST(SceneLoader, RelativeMeshPathsResolveAgainstTheSceneFolder) {
+  TempDir dir;
+  dir.write("meshes/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n");
+  nlohmann::json doc = test::gridScene(1.0, 1, 0.01, 1);
+  doc["cloths"][0]["mesh"] = {{"file", "../meshes/tri.obj"}};
+  const std::string file = dir.write("scenes/scene.json", doc.dump(2));
+  EXPECT_EQ(loadScene(file).cloths[0].mesh.vertexCount(), 3);
+}
+
+TEST(SceneLoader, RepairDropsDegenerateTrianglesWithAWarning) {
+  TempDir dir;
+  // Triangle 1 is collinear (vertices 0, 1, 4 on the X axis).
+  dir.write("mesh.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 2 0 0\nf 1 3 2\nf 1 2 5\nf 1 4 3\nf 2 3 5\n");
+  nlohmann::json doc = test::gridScene(1.0, 1, 0.01, 1);
+  doc["cloths"][0]["mesh"] = {{"file", "mesh.obj"}};
+  const std::string file = test::writeScene(dir.file("scene.json"), doc);
+  expectInputError([&] { loadScene(file); }, "cloths.0.mesh",
+                   "degenerate (zero-area) triangles 1 (1)");
+
+  doc["cloths"][0]["mesh"]["repair"] = true;
+  test::writeScene(file, doc);
+  const Scene s = loadScene(file);
+  EXPECT_EQ(s.cloths[0].mesh.vertexCount(), 5);  // order and count kept
+  EXPECT_EQ(s.cloths[0].mesh.triangleCount(), 3);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("dropped degenerate triangles 1 (1)"), std::string::npos)
+      << s.warnings[0];
+}
+
+TEST(SceneLoader, NonManifoldMeshLoadsWithAWarningNamingTheEdge) {
+  TempDir dir;
+  dir.write("fin.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.5 1 0.5\nf 1 3 2\nf 1 4 3\nf 1 3 5\n");
+  nlohmann::json doc = test::gridScene(1.0, 1, 0.01, 1);
+  doc["cloths"][0]["mesh"] = {{"file", "fin.obj"}};
+  const Scene s = loadScene(test::writeScene(dir.file("scene.json"), doc));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("non-manifold edges (vertex pairs 2 (0, 2))"), std::string::npos)
+      << s.warnings[0];
+}
+
+TEST(SceneLoader, OverridesSetScalarsAndVectorsByPath) {
+  TempDir dir;
+  nlohmann::json doc = test::hangingClothScene(1.0, 2, 0.01, 10, 100.0);
+  doc["wind"] = {{"direction", {1, 0, 0}}, {"strength", 1.0}};
+  const std::string file = test::writeScene(dir.file("scene.json"), doc);
+  const Scene s = loadScene(file, {{"time.dt", "0.005"},
+                                   {"gravity", "[0, 0, -1]"},
+                                   {"wind.direction", "0,1,0"},
+                                   {"cloths.0.material.stretch", "7.5"},
+                                   {"cloths.0.attachments.0.vertices.1", "1"},
+                                   {"wind.phase", "0.25"}});  // a key the file omits
+  EXPECT_EQ(s.time.dt, 0.005);
+  EXPECT_EQ(*s.gravity, Vec3(0, 0, -1));
+  EXPECT_EQ(s.wind->direction, Vec3(0, 1, 0));
+  EXPECT_EQ(s.cloths[0].material.stretch, 7.5);
+  EXPECT_EQ(s.cloths[0].attachments[0].vertices, (std::vector<int>{0, 1}));
+  EXPECT_EQ(s.wind->phase, 0.25);
+  // The document records the overrides, so a run folder's scene.json replays the same run.
+  EXPECT_EQ(s.document["time"]["dt"], 0.005);
+}
+
+TEST(SceneLoader, BadOverridesNameTheOption) {
+  TempDir dir;
+  const std::string file =
+      test::writeScene(dir.file("scene.json"), test::hangingClothScene(1.0, 2, 0.01, 10, 100.0));
+  expectInputError(
+      [&] {
+        loadScene(file, {{"cloths.0.materia.stretch", "1"}});
+      },
+      "--set cloths.0.materia.stretch", "unknown path");
+  expectInputError(
+      [&] {
+        loadScene(file, {{"cloths.3.material.stretch", "1"}});
+      },
+      "--set cloths.3.material.stretch", "unknown path");
+  expectInputError(
+      [&] {
+        loadScene(file, {{"cloths.0.material.stiffness", "1"}});
+      },
+      "--set cloths.0.material.stiffness", "unknown key");
+  expectInputError(
+      [&] {
+        loadScene(file, {{"time.dt", "fast"}});
+      },
+      "--set time.dt", "must be a number");
+  expectInputError(
+      [&] {
+        loadScene(file, {{"gravity", "[0, -9.8]"}});
+      },
+      "--set gravity", "must be an array of 3 values");
+  expectInputError(
+      [&] {
+        loadScene(file, {{"cloths.0.material", "5"}});
+      },
+      "--set cloths.0.material", "not a scalar or vector");
+  // A value of the right type is still validated like the file's own values.
+  expectInputError([&] { loadScene(file, {{"time.dt", "-1"}}); }, "time.dt", "must be > 0");
+}
+
+TEST(SceneLoader, ErrorsNameTheJsonPath) {
+  const nlohmann::json good = test::hangingClothScene(1.0, 2, 0.01, 10, 100.0);
+  auto with = [&](const std::string& pointer, const nlohmann::json& value) {
+    nlohmann::json d = good;
+    d[nlohmann::json::json_pointer(pointer)] = value;
+    return d;
+  };
+  expectInputError([&] { test::parse(with("/cloths/0/material/densty", 1)); },
+                   "cloths.0.material.densty", "unknown key");
+  expectInputError([&] { test::parse(with("/time/steps", 2.5)); }, "time.steps",
+                   "must be an integer");
+  expectInputError([&] { test::parse(with("/cloths/0/attachments/0/kind", "glued")); },
+                   "cloths.0.attachments.0.kind", "must be one of fixed, handle");
+  expectInputError([&] { test::parse(with("/solver/pd_tolerance", 0)); }, "solver.pd_tolerance",
+                   "must be > 0");
+  expectInputError(
+      [&] { test::parse(with("/cloths/0/mesh/grid/size", nlohmann::json::array({1.0}))); },
+      "cloths.0.mesh.grid.size", "must be [extent X, extent Z]");
+  expectInputError([&] { test::parse(with("/cloths", nlohmann::json::array())); }, "cloths",
+                   "needs at least one cloth");
+  nlohmann::json noTime = good;
+  noTime.erase("time");
+  expectInputError([&] { test::parse(noTime); }, "<root>", "missing required key 'time'");
+}
+
+TEST(SceneLoader, TaskParametersMustNameNumbersInTheScene) {
+  nlohmann::json doc = test::hangingClothScene(1.0, 2, 0.01, 10, 100.0);
+  doc["task"] = {{"loss", {{"trajectory", {{"target", "run/positions.npy"}}}}},
+                 {"parameters", {"cloths.0.material.stretch"}}};
+  EXPECT_EQ(test::parse(doc).task->parameters,
+            std::vector<std::string>{"cloths.0.material.stretch"});
+  doc["task"]["parameters"] = {"cloths.0.material.friction"};
+  expectInputError([&] { test::parse(doc); }, "task.parameters.0", "names no value");
+  doc["task"]["parameters"] = {"cloths.0.mesh"};
+  expectInputError([&] { test::parse(doc); }, "task.parameters.0", "is not a number");
+}
+
+}  // namespace
+}  // namespace weft
