@@ -4,11 +4,51 @@
 #include <weft/io/Npy.h>
 #include <weft/io/ObjWriter.h>
 
+#include <sys/resource.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <memory>
 
 namespace weft {
+
+double peakMemoryMegabytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
+}
+
+namespace {
+
+void writeContactArrays(const std::string& folder, const Trajectory& trajectory, double dt) {
+  // Per state and node, for the renderer and the editor: the branch (0 none, 1 take-off,
+  // 2 stick, 3 slip) and the total contact force (N, impulse / h). A node with several contacts
+  // shows its obstacle contact if it has one, else its strongest pair; state 0 has no contacts.
+  const std::size_t states = trajectory.positions.size(), nodes = static_cast<std::size_t>(trajectory.nodeCount());
+  std::vector<double> branches(states * nodes, 0.0), forces(states * nodes * 3, 0.0), strength(nodes);
+  for (std::size_t s = 1; s < states && s - 1 < trajectory.contacts.size(); ++s) {
+    std::fill(strength.begin(), strength.end(), -1.0);
+    for (const ContactPoint& p : trajectory.contacts[s - 1].points) {
+      for (int end = 0; end < (p.partner >= 0 ? 2 : 1); ++end) {
+        const std::size_t node = static_cast<std::size_t>(end == 0 ? p.node : p.partner);
+        const Vec3 force = (end == 0 ? 1.0 : -1.0) * p.impulse / dt;
+        for (int c = 0; c < 3; ++c) forces[(s * nodes + node) * 3 + c] += force[c];
+        // Obstacle contacts rank above every pair (strength offset by 1e9 N s; impulses of a
+        // simulation that has not blown up are far below).
+        const double rank = p.impulse.norm() + (p.obstacle >= 0 ? 1e9 : 0.0);
+        if (rank > strength[node]) {
+          strength[node] = rank;
+          branches[s * nodes + node] = static_cast<double>(p.branch);
+        }
+      }
+    }
+  }
+  writeNpy(folder + "/contact_branches.npy", {states, nodes}, branches.data());
+  writeNpy(folder + "/contact_forces.npy", {states, nodes, 3}, forces.data());
+}
+
+}  // namespace
 
 nlohmann::json summarize(const Scene& scene, const Trajectory& trajectory, const RunSummary& run) {
   nlohmann::json modules = nlohmann::json::object();
@@ -34,6 +74,7 @@ nlohmann::json summarize(const Scene& scene, const Trajectory& trajectory, const
   j["seconds"] = run.seconds;
   j["seconds_per_step"] = steps > 0 ? run.seconds / steps : 0.0;
   j["threads"] = run.threads;
+  j["peak_memory_mb"] = peakMemoryMegabytes();
   j["modules"] = modules;
   j["contacts"] = {{"takeoff", takeoff}, {"stick", stick}, {"slip", slip}};
   j["pd"] = {{"iterations_total", iterations},
@@ -56,17 +97,20 @@ void writeRun(const std::string& folder, const Scene& scene, const ClothModel& m
     const std::string path = folder + "/stats.csv";
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
     if (!f) throw InputError(path, "output", "cannot open for writing");
-    std::fprintf(f.get(), "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged");
+    std::fprintf(f.get(), "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged,"
+                          "contact_sweeps,contact_sweep_change");
     for (const std::string& name : run.moduleNames) std::fprintf(f.get(), ",seconds_%s", name.c_str());
     std::fprintf(f.get(), "\n");
     for (const StepStats& s : trajectory.steps) {
-      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d", s.step, s.time, s.takeoff, s.stick, s.slip,
-                   s.pdIterations, s.residual, s.converged ? 1 : 0);
+      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e", s.step, s.time, s.takeoff, s.stick, s.slip,
+                   s.pdIterations, s.residual, s.converged ? 1 : 0, s.contactSweeps, s.contactSweepChange);
       for (double sec : s.moduleSeconds) std::fprintf(f.get(), ",%.6e", sec);
       std::fprintf(f.get(), "\n");
     }
     if (std::ferror(f.get())) throw InputError(path, "output", "write failed");
   }
+
+  if (!trajectory.contacts.empty()) writeContactArrays(folder, trajectory, scene.time.dt);
 
   std::vector<std::pair<std::string, int>> groups;
   for (std::size_t c = 0; c + 1 < model.triangleOffset.size(); ++c)

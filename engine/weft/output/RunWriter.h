@@ -21,6 +21,8 @@ struct RunSummary {
   int threads = 1;
 };
 
+// Peak resident memory of this process so far (MB).
+double peakMemoryMegabytes();
 nlohmann::json summarize(const Scene& scene, const Trajectory& trajectory, const RunSummary& run);
 void writeRun(const std::string& folder, const Scene& scene, const ClothModel& model,
               const Trajectory& trajectory, const RunSummary& run);

@@ -27,11 +27,6 @@ constexpr double kBlowUpSpeed = 1e5;  // m/s
 }  // namespace
 
 Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel(scene)), h_(scene.time.dt) {
-  if (!scene.obstacles.empty())
-    throw InputError(scene.file, "obstacles", "obstacle contact is not available in this build yet");
-  if (scene.hasSelfCollision())
-    throw InputError(scene.file, "cloths.self_collision", "self-collision is not available in this build yet");
-
   solverModule_ = addModule("solver");
   // Constraint modules: only those with at least one instance.
   auto addConstraint = [this](std::unique_ptr<ProjectiveConstraint> c) {
@@ -61,6 +56,18 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
       }
   if (anyNodalForce) addForce(std::make_unique<NodalForces>(std::move(nodal)));
 
+  // Contact modules: only for scenes with obstacles or self-collision.
+  if (!scene.obstacles.empty() || scene.hasSelfCollision()) {
+    const auto start = Clock::now();
+    contact_ = std::make_unique<FrictionalContact>(scene, model_);
+    if (contact_->hasObstacles()) contactDetectionModule_ = addModule("contact_detection");
+    if (contact_->hasSelfCollision()) selfCollisionModule_ = addModule("self_collision");
+    contactSolveModule_ = addModule("contact_solve");
+    // Building the shapes (mesh BVHs) and the self-collision tables counts as detection.
+    moduleSeconds_[contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_] +=
+        secondsSince(start);
+  }
+
   const int m = model_.nodeCount();
   inverseMass_ = model_.mass.cwiseInverse();
   x_ = model_.rest.vertices;
@@ -75,6 +82,8 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
     projections_.emplace_back(NodeMatrix::Zero(c->rowCount(), 3));
     derivativeRows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
+  if (contact_)
+    for (auto* buf : {&freeMomentum_, &plainIterate_}) buf->setZero(m, 3);
   totalMass_ = model_.mass.sum();
   if (scene.solver.acceleration == Acceleration::Anderson) anderson_.reset(3 * m, scene.solver.andersonWindow);
 
@@ -309,6 +318,103 @@ void Simulator::solveNewton() {
   }
 }
 
+void Simulator::detectContacts(double t0, double t1) {
+  // The contact set and frames are found once per step from x_n and the predicted motion (the
+  // warm-started first iterate), and stay frozen during the iterations: the explicit J_n(x_n,
+  // v_n) of DiffCloth Eq. 9. plainIterate_ holds the predicted displacement meanwhile.
+  const int first = contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_;
+  timed(first, [&] {
+    contact_->beginStep(t0, t1);
+    plainIterate_ = iterate_ - x_;
+  });
+  if (contact_->hasObstacles())
+    timed(contactDetectionModule_, [&] { contact_->detectObstacles(x_, plainIterate_); });
+  if (contact_->hasSelfCollision())
+    timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, plainIterate_); });
+  timed(contactSolveModule_, [&] { contact_->prepareSolve(); });
+}
+
+void Simulator::contactGlobalStep() {
+  // Velocity-form global step with contact (DiffCloth Eqs. 10-12; notes Sec. 2.1). In positions,
+  // P v = b_hat + r with b_hat = (b - P x_n)/h is P x = b + h r.
+  timed(solverModule_, [&] {
+    rhs_ = massY_;
+    for (std::size_t c = 0; c < constraints_.size(); ++c)
+      if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
+  });
+  if (!contact_->empty()) {
+    timed(solverModule_, [&] {
+      // Free momentum f = b_hat - (P - M) v^k = M (x^k - x_n)/h + (b - P x^k)/h, which equals
+      // M v_n + h (f_ext + f_int(x^k)): the momentum each node would have without contact,
+      // predicted with the diagonal M as in Eq. 12.
+      multiplySystem(iterate_, freeMomentum_);
+      freeMomentum_ = (rhs_ - freeMomentum_ + model_.mass.asDiagonal() * (iterate_ - x_)) / h_;
+    });
+    timed(contactSolveModule_, [&] {
+      // Sweeps stop when no impulse changes by more than a tenth of what the PD tolerance allows
+      // over one step (as a velocity); see ContactSolver.h.
+      stats_.contactSweeps += contact_->solve(freeMomentum_, 0.1 * scene_.solver.pdTolerance * h_);
+      stats_.contactSweepChange = contact_->lastSweepChange();
+      contact_->addImpulses(h_, rhs_);
+    });
+  }
+  timed(solverModule_, [&] {
+    global_ = rhs_;
+    cholesky_.solveInPlace(global_);
+    change_ = global_ - iterate_;
+  });
+  ++stats_.pdIterations;
+}
+
+void Simulator::solveWithContact() {
+  // PD iterations with the contact solve in each global step (Ly et al. 2020, DiffCloth Eq. 12).
+  // Convergence test: the same mass-weighted RMS imbalance as without contact,
+  // |P (x^{k+1} - x^k)| / h^2 = |b(x^k) + h r(x^k) - P x^k| / h^2: the residual of the
+  // implicit-Euler equations with the contact force at the iterate. It vanishes only when the
+  // iterate and the contact impulses both stop changing, i.e. at a solution of Eq. 9.
+  //
+  // Anderson acceleration (solver.acceleration = "anderson") mixes the last iterates of the
+  // fixed-point map x -> G(x) (one such global step). The energy safeguard of the no-contact
+  // solver does not apply (friction dissipates, the law is non-smooth), so the safeguard is on
+  // the residual: an accelerated iterate whose residual exceeds the previous iterate's is
+  // replaced by the plain image of that previous iterate, and the history restarts.
+  const SolverSettings& solver = scene_.solver;
+  const bool anderson = solver.acceleration == Acceleration::Anderson;
+  double previousResidual = std::numeric_limits<double>::infinity();
+  bool accelerated = false;
+  while (stats_.pdIterations < solver.pdIterations) {
+    localStep(iterate_);
+    contactGlobalStep();
+    timed(solverModule_, [&] {
+      multiplySystem(change_, residualVector_);
+      stats_.residual = residualOf(residualVector_);
+    });
+    if (stats_.residual < solver.pdTolerance) {
+      stats_.converged = true;
+      return;
+    }
+    if (!anderson) {
+      timed(solverModule_, [&] { iterate_ = global_; });
+      continue;
+    }
+    if (accelerated && !(stats_.residual <= previousResidual)) {
+      timed(solverModule_, [&] {
+        iterate_ = plainIterate_;
+        anderson_.restart();
+      });
+      accelerated = false;
+      continue;
+    }
+    previousResidual = stats_.residual;
+    timed(solverModule_, [&] {
+      plainIterate_ = global_;
+      anderson_.next(iterate_.data(), global_.data(), accelerated_.data());
+      iterate_.swap(accelerated_);
+    });
+    accelerated = true;
+  }
+}
+
 const StepStats& Simulator::step() {
   const double h2 = h_ * h_;
   const double t1 = time_ + h_;
@@ -335,10 +441,19 @@ const StepStats& Simulator::step() {
     if (solver.acceleration == Acceleration::Anderson) anderson_.restart();
   });
 
-  if (solver.method == SolverMethod::Newton)
+  if (contact_) {
+    detectContacts(time_, t1);
+    solveWithContact();
+    timed(contactSolveModule_, [&] {
+      contact_->countBranches(stats_);
+      contact_->record(lastContacts_);
+      lastContacts_.sweeps = stats_.contactSweeps;
+    });
+  } else if (solver.method == SolverMethod::Newton) {
     solveNewton();
-  else
+  } else {
     solveProjectiveDynamics();
+  }
 
   // The last global solution is the step's result (one PD iteration past the checked iterate).
   if (!global_.allFinite()) diagnoseNonFinite(x_);
@@ -375,11 +490,13 @@ void Simulator::run(int steps, Trajectory& trajectory, const std::function<void(
   }
   trajectory.positions.reserve(trajectory.positions.size() + steps);
   trajectory.velocities.reserve(trajectory.velocities.size() + steps);
+  if (contact_) trajectory.contacts.reserve(trajectory.contacts.size() + steps);
   for (int s = 0; s < steps; ++s) {
     const StepStats& st = step();
     trajectory.positions.push_back(x_);
     trajectory.velocities.push_back(v_);
     trajectory.steps.push_back(st);
+    if (contact_) trajectory.contacts.push_back(lastContacts_);
     if (progress) progress(st);
   }
 }

@@ -1,7 +1,17 @@
 #pragma once
 // The forward simulator: Projective Dynamics cloth (DiffCloth Sec. 3.1) with the modules the
 // scene names and nothing else. Owns the prefactorised system matrix P (Eq. 7).
+//
+// Solvers. Without contact: Newton-PCG (default) or PD with Anderson acceleration, both
+// minimising the implicit-Euler energy g (Eq. 3). With contact (obstacles or self-collision):
+// the contact law makes the step non-smooth and friction makes it non-conservative, so there is
+// no energy to minimise or line-search; the step is then DiffCloth's velocity-form PD with the
+// contact solve inside every global step (Sec. 3.2, Eqs. 10-12, notes Sec. 2.1), whatever
+// solver.method says. solver.acceleration applies: "anderson" (default) mixes the iterates with
+// a residual-based safeguard, "none" runs plain PD. Both stop on the same residual as without
+// contact, which then includes the contact impulse (see solveWithContact).
 
+#include <weft/contact/FrictionalContact.h>
 #include <weft/core/Types.h>
 #include <weft/physics/AndersonAccelerator.h>
 #include <weft/physics/ClothModel.h>
@@ -47,6 +57,10 @@ class Simulator {
   const std::vector<double>& moduleSeconds() const { return moduleSeconds_; }
   const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const { return constraints_; }
   const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return forces_; }
+  // The scene's contact, or null when it has no obstacles and no self-collision.
+  const FrictionalContact* contact() const { return contact_.get(); }
+  // The contacts of the last step (empty before the first step or without contact).
+  const StepContacts& lastContacts() const { return lastContacts_; }
   // The one-coordinate system matrix M + h^2 sum_i w_i A_i^T A_i (P = this (x) I_3).
   const Eigen::SparseMatrix<double>& systemMatrix() const { return system_; }
 
@@ -58,6 +72,9 @@ class Simulator {
   void globalStep();
   void solveProjectiveDynamics();
   void solveNewton();
+  void detectContacts(double t0, double t1);
+  void contactGlobalStep();
+  void solveWithContact();
   void multiplySystem(const NodeMatrix& in, NodeMatrix& out) const;  // one-coordinate P, 3 columns
   void multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out);
   double residualOf(const NodeMatrix& systemTimesChange) const;  // fills projections_, returns energy g(x)
@@ -72,6 +89,9 @@ class Simulator {
   std::vector<std::unique_ptr<ExternalForce>> forces_;
   std::vector<int> forceModule_;
   int solverModule_ = -1;
+  std::unique_ptr<FrictionalContact> contact_;
+  int contactDetectionModule_ = -1, selfCollisionModule_ = -1, contactSolveModule_ = -1;
+  StepContacts lastContacts_;
   std::vector<std::string> moduleNames_;
   std::vector<double> moduleSeconds_;
 
@@ -90,6 +110,7 @@ class Simulator {
   NodeMatrix warmStart_;  // x_n - y_{n-1}
   NodeMatrix force_, y_, massY_, iterate_, global_, accelerated_, change_, rhs_, residualVector_;
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
+  NodeMatrix freeMomentum_, plainIterate_;  // contact scenes only
   std::vector<NodeMatrix> projections_, derivativeRows_;
   double totalMass_ = 0.0;
 };

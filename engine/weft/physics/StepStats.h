@@ -10,7 +10,13 @@ struct StepStats {
   int pdIterations = 0;
   double residual = 0.0;  // m/s^2, see SolverSettings::pdTolerance
   bool converged = false;
-  int takeoff = 0, stick = 0, slip = 0;  // contact nodes per Signorini-Coulomb branch
+  // Contacts (node-obstacle contacts and self-collision pairs) per Signorini-Coulomb branch, as
+  // the step's last contact solve left them.
+  int takeoff = 0, stick = 0, slip = 0;
+  // Contact solve (contact scenes only): Gauss-Seidel sweeps summed over the step's PD
+  // iterations, and the largest impulse change of the last sweep as a velocity (m/s).
+  int contactSweeps = 0;
+  double contactSweepChange = 0.0;
   std::vector<double> moduleSeconds;     // aligned with Simulator::moduleNames()
 };
 

@@ -2,6 +2,7 @@
 // The recorded forward run: the converged state of every step (what the backward pass needs to
 // rebuild each step's projections and contact branches) and the per-step statistics.
 
+#include <weft/contact/StepContacts.h>
 #include <weft/core/Types.h>
 #include <weft/physics/StepStats.h>
 
@@ -14,6 +15,9 @@ struct Trajectory {
   std::vector<NodeMatrix> positions;   // states 0..N
   std::vector<NodeMatrix> velocities;  // states 0..N
   std::vector<StepStats> steps;        // steps 1..N
+  // Steps 1..N: every contact with its branch, frame, impulse and velocity. Empty when the
+  // scene has no obstacles and no self-collision.
+  std::vector<StepContacts> contacts;
   std::vector<std::string> moduleNames;
 
   int stepCount() const { return static_cast<int>(steps.size()); }

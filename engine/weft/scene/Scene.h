@@ -88,6 +88,13 @@ struct Obstacle {
   TriangleMesh mesh;                      // mesh obstacle (transformed)
   bool smoothNormals = true;              // mesh obstacle
   double friction = 0.0;
+  // Contact skin (m): cloth nodes are kept this far outside the surface (extension of the spec,
+  // key "thickness").
+  double thickness = 1e-3;
+  // Kinematic motion (extension, key "motion", same form as a handle's "trajectory"): the shape
+  // above is the pose at offset zero; at time t a body point X is at motion->target(X, t), i.e.
+  // rotated about the rotation centre and then translated. Absent: the obstacle is static.
+  std::optional<HandleTrajectory> motion;
 };
 
 struct Wind {

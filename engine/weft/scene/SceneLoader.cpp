@@ -201,9 +201,12 @@ Cloth readCloth(const JsonReader& r, const std::string& directory, std::vector<s
 }
 
 Obstacle readObstacle(const JsonReader& r, const std::string& directory) {
-  r.allowOnly({"plane", "sphere", "capsule", "box", "cylinder", "mesh", "friction"});
+  r.allowOnly({"plane", "sphere", "capsule", "box", "cylinder", "mesh", "friction", "thickness", "motion"});
   Obstacle o;
   o.friction = r.number("friction", 0.0, 0.0, 1e3);
+  o.thickness = r.number("thickness", o.thickness, 0.0, 1.0);
+  // Kinematic motion: the same keyframes / Hermite spline / rotation as a handle trajectory.
+  if (auto m = r.optional("motion")) o.motion = readTrajectory(m->object());
   const std::string kind = r.oneOf({"plane", "sphere", "capsule", "box", "cylinder", "mesh"});
   const JsonReader s = r.at(kind).object();
   if (kind == "plane") {

@@ -1,0 +1,130 @@
+#include <weft/contact/ContactSolver.h>
+
+#include <weft/contact/SignoriniCoulomb.h>
+
+#include <algorithm>
+
+namespace weft {
+namespace {
+
+// Below this many independent updates a parallel region costs more than it saves.
+constexpr int kParallelMinimum = 512;
+
+}  // namespace
+
+void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleContacts,
+                                const std::vector<ContactConstraint>& pairs, const std::vector<int>& layerStart,
+                                const Eigen::VectorXd& mass) {
+  for (const Slot& s : slots_) slotOf_[s.node] = -1;
+  slots_.clear();
+  contacts_.clear();
+  groupStart_.clear();
+  auto slotFor = [&](int node) {
+    if (slotOf_[node] < 0) {
+      slotOf_[node] = static_cast<int>(slots_.size());
+      slots_.push_back(Slot{node, mass[node], Vec3::Zero(), Vec3::Zero()});
+    }
+    return slotOf_[node];
+  };
+  coupled_ = false;
+  for (std::size_t k = 0; k < obstacleContacts.size(); ++k) {
+    const ContactConstraint& c = obstacleContacts[k];
+    const bool sameNode = k > 0 && obstacleContacts[k - 1].node == c.node;
+    if (!sameNode) groupStart_.push_back(static_cast<int>(contacts_.size()));
+    coupled_ = coupled_ || sameNode;
+    contacts_.push_back(Contact{slotFor(c.node), -1, c.obstacle, c.normal, c.reference, c.friction, mass[c.node],
+                                Vec3::Zero(), ContactBranch::TakeOff});
+  }
+  groupStart_.push_back(static_cast<int>(contacts_.size()));
+  pairBegin_ = static_cast<int>(contacts_.size());
+  for (const ContactConstraint& c : pairs) {
+    const double ma = mass[c.node], mb = mass[c.partner];
+    contacts_.push_back(Contact{slotFor(c.node), slotFor(c.partner), -1, c.normal, c.reference, c.friction,
+                                ma * mb / (ma + mb), Vec3::Zero(), ContactBranch::TakeOff});
+  }
+  coupled_ = coupled_ || !pairs.empty();
+  layerStart_ = layerStart;
+}
+
+double ContactSolver::update(Contact& c) {
+  // Velocity of the contact without its own impulse (the other contacts' impulses included).
+  Slot& a = slots_[c.a];
+  Vec3 free = a.freeVelocity + (a.impulse - c.impulse) / a.mass;
+  if (c.b >= 0) {
+    const Slot& b = slots_[c.b];
+    free -= b.freeVelocity + (b.impulse + c.impulse) / b.mass;
+  }
+  free -= c.reference;
+  Vec3 change;
+  c.branch = solveSignoriniCoulomb(c.normal, c.friction, free, change);  // DiffCloth Eq. 8 / Ly et al.
+  const Vec3 impulse = c.effectiveMass * change;
+  const Vec3 delta = impulse - c.impulse;
+  c.impulse = impulse;
+  a.impulse += delta;
+  if (c.b >= 0) slots_[c.b].impulse -= delta;
+  return delta.norm() / c.effectiveMass;
+}
+
+int ContactSolver::solve(const NodeMatrix& freeMomentum, double tolerance, int maxSweeps) {
+  const int slotCount = static_cast<int>(slots_.size());
+#pragma omp parallel for schedule(static) if (slotCount > kParallelMinimum)
+  for (int s = 0; s < slotCount; ++s) slots_[s].freeVelocity = freeMomentum.row(slots_[s].node).transpose() / slots_[s].mass;
+
+  const int groups = static_cast<int>(groupStart_.size()) - 1;
+  int sweeps = 0;
+  while (true) {
+    double change = 0.0;
+    // Obstacle contacts: nodes are independent of each other.
+#pragma omp parallel for schedule(static) reduction(max : change) if (groups > kParallelMinimum)
+    for (int g = 0; g < groups; ++g)
+      for (int k = groupStart_[g]; k < groupStart_[g + 1]; ++k) change = std::max(change, update(contacts_[k]));
+    // Pairs, layer by layer: within a layer no node appears twice.
+    for (std::size_t l = 0; l + 1 < layerStart_.size(); ++l) {
+      const int begin = pairBegin_ + layerStart_[l], end = pairBegin_ + layerStart_[l + 1];
+#pragma omp parallel for schedule(static) reduction(max : change) if (end - begin > kParallelMinimum)
+      for (int k = begin; k < end; ++k) change = std::max(change, update(contacts_[k]));
+    }
+    ++sweeps;
+    lastChange_ = change;
+    if (!coupled_ || change <= tolerance || sweeps >= maxSweeps) break;
+  }
+  return sweeps;
+}
+
+void ContactSolver::addImpulses(double scale, NodeMatrix& rhs) const {
+  for (const Slot& s : slots_) rhs.row(s.node) += scale * s.impulse.transpose();
+}
+
+void ContactSolver::record(StepContacts& out) const {
+  out.points.clear();
+  out.points.reserve(contacts_.size());
+  for (const Contact& c : contacts_) {
+    const Slot& a = slots_[c.a];
+    ContactPoint p;
+    p.node = a.node;
+    p.partner = c.b >= 0 ? slots_[c.b].node : -1;
+    p.obstacle = c.obstacle;
+    p.branch = c.branch;
+    p.normal = c.normal;
+    p.impulse = c.impulse;
+    // The velocity with all impulses applied, the one Eq. 8 is checked against.
+    Vec3 u = a.freeVelocity + a.impulse / a.mass;
+    if (c.b >= 0) u -= slots_[c.b].freeVelocity + slots_[c.b].impulse / slots_[c.b].mass;
+    p.velocity = u - c.reference;
+    p.friction = c.friction;
+    p.effectiveMass = c.effectiveMass;
+    out.points.push_back(p);
+  }
+  out.sweepChange = lastChange_;
+  out.pairLayers = static_cast<int>(layerStart_.size()) - 1;
+}
+
+void ContactSolver::countBranches(StepStats& stats) const {
+  for (const Contact& c : contacts_) {
+    if (c.branch == ContactBranch::TakeOff) ++stats.takeoff;
+    else if (c.branch == ContactBranch::Stick) ++stats.stick;
+    else if (c.branch == ContactBranch::Slip) ++stats.slip;
+  }
+}
+
+}  // namespace weft

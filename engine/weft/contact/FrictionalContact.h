@@ -1,0 +1,69 @@
+#pragma once
+// The dry frictional contact of one scene (DiffCloth Sec. 3.2, Ly et al. 2020): its obstacles
+// (analytic or mesh, static or kinematic), node-node self-collision when a cloth asks for it,
+// and the per-node Signorini-Coulomb solve that the Simulator calls inside every PD iteration.
+// Built only for scenes with obstacles or self-collision.
+//
+// Per step (Simulator::step):
+//   beginStep             obstacles moved to the end-of-step pose
+//   detectObstacles       contact set and frozen frames (module "contact_detection")
+//   detectSelfCollisions  pairs and their Gauss-Seidel layers (module "self_collision")
+//   then per PD iteration solve(f) and addImpulses (module "contact_solve"),
+//   and finally record / countBranches.
+
+#include <weft/contact/ContactLayering.h>
+#include <weft/contact/ContactObstacle.h>
+#include <weft/contact/ContactSolver.h>
+#include <weft/contact/ObstacleContactDetector.h>
+#include <weft/contact/SelfCollisionDetector.h>
+#include <weft/physics/ClothModel.h>
+
+#include <memory>
+#include <vector>
+
+namespace weft {
+
+class FrictionalContact {
+ public:
+  FrictionalContact(const Scene& scene, const ClothModel& model);
+
+  bool hasObstacles() const { return !obstacles_.empty(); }
+  bool hasSelfCollision() const { return selfCollision_ != nullptr; }
+  const std::vector<ContactObstacle>& obstacles() const { return obstacles_; }
+  // Detection margin for obstacles (m): a quarter of the cloth's mean rest edge length.
+  double obstacleMargin() const { return detector_->margin(); }
+
+  void beginStep(double t0, double t1);
+  // x: state at the start of the step; displacement: the predicted motion over the step.
+  void detectObstacles(const NodeMatrix& x, const NodeMatrix& displacement);
+  void detectSelfCollisions(const NodeMatrix& x, const NodeMatrix& displacement);
+  // Hands the detected contacts to the solver (impulses start at zero).
+  void prepareSolve();
+  bool empty() const { return solver_.empty(); }
+
+  // One contact solve of a PD iteration (ContactSolver.h); returns the sweeps done.
+  int solve(const NodeMatrix& freeMomentum, double sweepTolerance);
+  void addImpulses(double scale, NodeMatrix& rhs) const { solver_.addImpulses(scale, rhs); }
+  double lastSweepChange() const { return solver_.lastChange(); }
+
+  void record(StepContacts& out) const { solver_.record(out); }
+  void countBranches(StepStats& stats) const { solver_.countBranches(stats); }
+  int obstacleContactCount() const { return static_cast<int>(obstacleContacts_.size()); }
+  int pairCount() const { return static_cast<int>(pairs_.size()); }
+
+  // Gauss-Seidel sweeps allowed per PD iteration when contacts are coupled.
+  static constexpr int kMaxSweeps = 16;
+
+ private:
+  const ClothModel& model_;
+  double h_ = 0.0;
+  std::vector<ContactObstacle> obstacles_;
+  std::unique_ptr<ObstacleContactDetector> detector_;
+  std::unique_ptr<SelfCollisionDetector> selfCollision_;
+  ContactLayering layering_;
+  ContactSolver solver_;
+  std::vector<ContactConstraint> obstacleContacts_, pairs_;
+  std::vector<int> obstacleNodes_, layerStart_;
+};
+
+}  // namespace weft

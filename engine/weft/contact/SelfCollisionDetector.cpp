@@ -1,0 +1,116 @@
+#include <weft/contact/SelfCollisionDetector.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace weft {
+
+SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothModel& model) : model_(model) {
+  const int m = model.nodeCount();
+  distance_.assign(m, 0.0);
+  friction_.assign(m, 0.0);
+  for (std::size_t c = 0; c < scene.cloths.size(); ++c) {
+    if (!scene.cloths[c].selfCollision) continue;
+    for (int i = model.vertexOffset[c]; i < model.vertexOffset[c + 1]; ++i) {
+      distance_[i] = scene.cloths[c].selfCollision->radius;
+      friction_[i] = scene.cloths[c].selfCollision->friction;
+      nodes_.push_back(i);
+    }
+  }
+  // One-ring neighbours (nodes sharing a triangle), as sorted CSR lists.
+  std::vector<std::pair<int, int>> links;
+  links.reserve(6 * model.rest.triangleCount());
+  for (int t = 0; t < model.rest.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l)
+        if (k != l) links.emplace_back(model.rest.triangles(t, k), model.rest.triangles(t, l));
+  std::sort(links.begin(), links.end());
+  links.erase(std::unique(links.begin(), links.end()), links.end());
+  neighbourStart_.assign(m + 1, 0);
+  for (const auto& l : links) ++neighbourStart_[l.first + 1];
+  std::partial_sum(neighbourStart_.begin(), neighbourStart_.end(), neighbourStart_.begin());
+  neighbours_.resize(links.size());
+  for (std::size_t k = 0; k < links.size(); ++k) neighbours_[k] = links[k].second;
+}
+
+bool SelfCollisionDetector::excluded(int a, int b) const {
+  if (std::binary_search(neighbours_.begin() + neighbourStart_[a], neighbours_.begin() + neighbourStart_[a + 1], b))
+    return true;
+  const double rest = (model_.rest.vertices.row(a) - model_.rest.vertices.row(b)).norm();
+  return rest < (1.0 + kMarginFraction) * collisionDistance(a, b);
+}
+
+void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,
+                                   std::vector<ContactConstraint>& out) {
+  const int n = static_cast<int>(nodes_.size());
+  lower_.resize(n);
+  upper_.resize(n);
+  // The pair test only sees relative motion, so the paths are swept in a frame moving with the
+  // nodes' mean displacement: a cloth sliding or falling as a whole then has small boxes.
+  Vec3 common = Vec3::Zero();
+  for (int k = 0; k < n; ++k) common += displacement.row(nodes_[k]).transpose();
+  if (n > 0) common /= n;
+  // Swept boxes, padded by half the detection distance: two paths closer than the distance at
+  // some tau are then inside both boxes at that tau.
+  double extent = 0.0, largestDistance = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : extent) reduction(max : largestDistance)
+  for (int k = 0; k < n; ++k) {
+    const int i = nodes_[k];
+    const Vec3 a = x.row(i), b = a + Vec3(displacement.row(i)) - common;
+    const double pad = 0.5 * (1.0 + kMarginFraction) * distance_[i];
+    lower_[k] = a.cwiseMin(b) - Vec3::Constant(pad);
+    upper_[k] = a.cwiseMax(b) + Vec3::Constant(pad);
+    extent += (upper_[k] - lower_[k]).maxCoeff();
+    largestDistance = std::max(largestDistance, (1.0 + kMarginFraction) * distance_[i]);
+  }
+  // Cells the size of a typical box: O(1) cells per box and O(1) boxes per cell.
+  const double cell = std::max(n > 0 ? extent / n : 0.0, largestDistance);
+  candidates_.clear();
+  if (n > 1) grid_.overlappingPairs(lower_, upper_, cell, candidates_);
+  lastCandidates_ = static_cast<int>(candidates_.size());
+
+  const int threads = omp_get_max_threads();
+  if (static_cast<int>(perThread_.size()) < threads) perThread_.resize(threads);
+  const int count = static_cast<int>(candidates_.size());
+  int used = 1;
+#pragma omp parallel
+  {
+    std::vector<ContactConstraint>& local = perThread_[omp_get_thread_num()];
+    local.clear();
+#pragma omp single
+    used = omp_get_num_threads();
+#pragma omp for schedule(static)
+    for (int p = 0; p < count; ++p) {
+      const int a = nodes_[candidates_[p].first], b = nodes_[candidates_[p].second];
+      const double distance = collisionDistance(a, b);
+      const Vec3 dx = x.row(a) - x.row(b);
+      const Vec3 dd = displacement.row(a) - displacement.row(b);
+      const double dd2 = dd.squaredNorm();
+      const double tau = dd2 > 0.0 ? std::clamp(-dx.dot(dd) / dd2, 0.0, 1.0) : 0.0;
+      if ((dx + tau * dd).norm() >= (1.0 + kMarginFraction) * distance) continue;
+      if (excluded(a, b)) continue;
+      ContactConstraint c;
+      c.node = a;
+      c.partner = b;
+      const double separation = dx.norm();
+      if (separation > 1e-12 * distance)
+        c.normal = dx / separation;
+      else if (dd2 > 0.0)
+        c.normal = -dd.normalized();  // coincident nodes: separate against their approach
+      else
+        c.normal = Vec3::UnitY();
+      c.friction = 0.5 * (friction_[a] + friction_[b]);
+      c.reference = -((separation - distance) / h) * c.normal;
+      local.push_back(c);
+    }
+  }
+  const std::size_t first = out.size();
+  for (int t = 0; t < used; ++t) out.insert(out.end(), perThread_[t].begin(), perThread_[t].end());
+  std::sort(out.begin() + first, out.end(), [](const ContactConstraint& p, const ContactConstraint& q) {
+    return p.node != q.node ? p.node < q.node : p.partner < q.partner;
+  });
+}
+
+}  // namespace weft
