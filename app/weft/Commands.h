@@ -9,5 +9,8 @@ namespace weft::cli {
 
 int simulateCommand(const std::vector<std::string>& args);
 int benchCommand(const std::vector<std::string>& args);
+int renderCommand(const std::vector<std::string>& args);
+// `weft bench render` (RenderBench.cpp).
+int renderBenchmark(const std::vector<std::string>& args);
 
 }  // namespace weft::cli

@@ -15,6 +15,9 @@ namespace {
 const char* kUsage =
     "usage: weft <verb> [arguments]\n"
     "  simulate SCENE [--steps N] [--out DIR] [--set PATH=VALUE ...] [--threads N] [--quiet]\n"
+    "  render SCENE|RUNDIR [--frames A:B:S] [--size WxH] [--camera front|side|top|auto]\n"
+    "         [--overlay contacts|strain|speed|none] [--wireframe] [--out DIR] [--video FILE.mp4]\n"
+    "         [--backend auto|osmesa|egl] [--set PATH=VALUE ...] [--quiet]\n"
     "  bench NAME [--out DIR] [--quick]        (NAME: forward)\n"
     "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";
 
@@ -30,6 +33,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   try {
     if (verb == "simulate") return weft::cli::simulateCommand(args);
+    if (verb == "render") return weft::cli::renderCommand(args);
     if (verb == "bench") return weft::cli::benchCommand(args);
     std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(), kUsage);
     return 2;

@@ -1,0 +1,21 @@
+#pragma once
+// Colour maps for per-vertex scalars, and the fixed colours of the contact branches.
+
+#include <weft/render/RenderScene.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace weft::render {
+
+// Colour at t in [0, 1] (clamped).
+Rgb colorMapColor(ColorMapKind map, float t);
+
+// `size` RGB8 samples from t = 0 to t = 1, for a GL texture.
+std::vector<std::uint8_t> colorMapTable(ColorMapKind map, int size = 256);
+
+// Exact, unlit colours of contact nodes: distinct in every channel combination so a test can
+// tell them apart pixel by pixel. None has no colour (such nodes are not drawn).
+Rgb branchColor(ContactBranch branch);
+
+}  // namespace weft::render
