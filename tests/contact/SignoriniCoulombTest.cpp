@@ -1,0 +1,81 @@
+// The local Signorini-Coulomb law of one contact (DiffCloth Eq. 8): for random normals,
+// friction coefficients and free velocities, the closed form returns a velocity change whose
+// impulse and resulting velocity satisfy the branch it claims, and the branch is the one the
+// free velocity calls for.
+
+#include "ContactTestSupport.h"
+
+#include <weft/contact/SignoriniCoulomb.h>
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace weft {
+namespace {
+
+ContactPoint solved(const Vec3& normal, double mu, const Vec3& free, double mass) {
+  Vec3 du;
+  ContactPoint p;
+  p.branch = solveSignoriniCoulomb(normal, mu, free, du);
+  p.normal = normal;
+  p.friction = mu;
+  p.effectiveMass = mass;
+  p.velocity = free + du;
+  p.impulse = mass * du;
+  return p;
+}
+
+TEST(SignoriniCoulomb, RandomInputsSatisfyTheClaimedBranch) {
+  std::mt19937 rng(1);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double frictions[] = {0.0, 0.1, 0.5, 1.0, 3.0, 100.0};
+  int count[4] = {0, 0, 0, 0};
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 n = Vec3(g(rng), g(rng), g(rng)).normalized();
+    const double mu = frictions[k % 6];
+    const Vec3 free = std::pow(10.0, 4.0 * u(rng) - 2.0) * Vec3(g(rng), g(rng), g(rng));
+    const double mass = std::pow(10.0, 3.0 * u(rng) - 5.0);
+    const ContactPoint p = solved(n, mu, free, mass);
+    ASSERT_EQ(test::branchViolation(p, 1e-12), "") << "k = " << k << ", mu = " << mu;
+    // The branch the free velocity calls for (Eq. 8): which one is unique.
+    const double fN = free.dot(n), fT = (free - fN * n).norm();
+    const ContactBranch expected = fN >= 0.0        ? ContactBranch::TakeOff
+                                   : fT <= mu * -fN ? ContactBranch::Stick
+                                                    : ContactBranch::Slip;
+    ASSERT_EQ(p.branch, expected) << "k = " << k;
+    ++count[static_cast<int>(p.branch)];
+  }
+  // All three branches were exercised.
+  EXPECT_GT(count[1], 1000);
+  EXPECT_GT(count[2], 1000);
+  EXPECT_GT(count[3], 1000);
+}
+
+TEST(SignoriniCoulomb, EdgeCases) {
+  const Vec3 n = Vec3::UnitY();
+  // Resting with no tangential motion and no friction: stick with zero friction force.
+  ContactPoint p = solved(n, 0.0, Vec3(0, -1, 0), 2.0);
+  EXPECT_EQ(p.branch, ContactBranch::Stick);
+  EXPECT_EQ(p.impulse, Vec3(0, 2, 0));
+  // Frictionless sliding: slip, normal velocity removed, tangential kept.
+  p = solved(n, 0.0, Vec3(3, -1, 0), 2.0);
+  EXPECT_EQ(p.branch, ContactBranch::Slip);
+  EXPECT_TRUE(p.velocity.isApprox(Vec3(3, 0, 0)));
+  // Exactly on the cone: stick (the test is <=).
+  p = solved(n, 0.5, Vec3(0.5, -1, 0), 1.0);
+  EXPECT_EQ(p.branch, ContactBranch::Stick);
+  // Grazing (u_N = 0): take-off, no force.
+  p = solved(n, 0.5, Vec3(1, 0, 0), 1.0);
+  EXPECT_EQ(p.branch, ContactBranch::TakeOff);
+  EXPECT_EQ(p.impulse, Vec3::Zero());
+  // Slip off the cone: friction takes mu |u_N| off the tangential speed.
+  p = solved(n, 0.5, Vec3(2, -1, 0), 1.0);
+  EXPECT_EQ(p.branch, ContactBranch::Slip);
+  EXPECT_TRUE(p.velocity.isApprox(Vec3(1.5, 0, 0)));
+  EXPECT_TRUE(p.impulse.isApprox(Vec3(-0.5, 1, 0)));
+}
+
+}  // namespace
+}  // namespace weft
