@@ -70,6 +70,8 @@ class Simulator {
   template <class Fn>
   void timed(int module, Fn&& fn);
   void globalStep();
+  // Measures the residual of the last global step; true (and stats_.converged) below tolerance.
+  bool checkConvergence();
   void solveProjectiveDynamics();
   void solveNewton();
   void detectContacts(double t0, double t1);
