@@ -18,7 +18,7 @@ const char* kUsage =
     "  render SCENE|RUNDIR [--frames A:B:S] [--size WxH] [--camera front|side|top|auto]\n"
     "         [--overlay contacts|strain|speed|none] [--wireframe] [--out DIR] [--video FILE.mp4]\n"
     "         [--backend auto|osmesa|egl] [--set PATH=VALUE ...] [--quiet]\n"
-    "  bench NAME [--out DIR] [--quick]        (NAME: forward)\n"
+    "  bench NAME [--out DIR] [--quick]        (NAME: forward, continuity, contact, render)\n"
     "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";
 
 }  // namespace

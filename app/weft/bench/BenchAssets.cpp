@@ -1,0 +1,13 @@
+#include "BenchAssets.h"
+
+#include <filesystem>
+
+namespace weft::cli {
+
+std::string assetFile(const std::string& relative) {
+  const std::string local = "assets/" + relative;
+  if (std::filesystem::exists(local)) return local;
+  return std::string(WEFT_ASSET_DIR) + "/" + relative;
+}
+
+}  // namespace weft::cli

@@ -1,0 +1,245 @@
+// `weft bench continuity`: DiffCloth's Fig. 2 experiment (Sec. 5.1). A cloth lies on a static
+// frictional sphere; the friction coefficient mu is swept from 0 to 0.35 and the speeds of a
+// corner node (A), an edge-centre node (B) and the centre node (C) are recorded at steps 50 and
+// 200. With the analytic sphere the curves should be continuous in mu: switching between the
+// take-off, stick and slip branches does not make the step jump. With a triangulated sphere
+// and flat face normals the contact frame jumps across triangle edges, and so do the curves;
+// smoothed (interpolated vertex) normals are the remedy the paper suggests.
+//
+// A curve sampled at spacing d has neighbour differences of about slope * d where it is
+// continuous, and a difference that does not shrink with d at a jump. The summary therefore
+// reports, per curve, the largest neighbour difference and its ratio to the median one.
+
+#include "../CommandLine.h"
+#include "../Commands.h"
+#include "BenchAssets.h"
+#include "BenchTable.h"
+#include "Icosphere.h"
+
+#include <weft/core/Error.h>
+#include <weft/io/StagedDirectory.h>
+#include <weft/physics/Simulator.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace weft::cli {
+namespace {
+
+enum class Surface { Analytic, FlatMesh, SmoothMesh };
+
+const char* surfaceName(Surface s) {
+  switch (s) {
+    case Surface::Analytic:
+      return "analytic";
+    case Surface::FlatMesh:
+      return "mesh_flat";
+    case Surface::SmoothMesh:
+      return "mesh_smooth";
+  }
+  return "?";
+}
+
+struct Probe {
+  const char* label;  // the paper's node names
+  int vertex;
+};
+
+// Speeds of the probes at each recorded step, and the contact branches at that step.
+struct Sample {
+  std::vector<std::vector<double>> speed;    // [recorded step][probe]
+  std::vector<std::array<int, 3>> branches;  // [recorded step] takeoff, stick, slip
+  // [recorded step] steps so far whose PD iterations stopped at the cap, not the tolerance
+  std::vector<int> unconverged;
+  int failedStep = 0;  // the step that threw a NumericalError, 0 if none
+};
+
+// Fig. 2's setting from the sphere scene: the scene's cloth and sphere, without self-collision
+// (the experiment isolates contact with the sphere), the cloth's lowest point lowered to 2 mm
+// above the top of the sphere so it starts in contact, keeping the scene's horizontal offset
+// (so that with little friction it slides off).
+Scene makeScene(const std::string& file, Surface surface, int subdivisions, double mu, int steps) {
+  Scene scene = loadScene(file, {{"time.steps", std::to_string(steps)}});
+  if (scene.cloths.size() != 1 || scene.obstacles.size() != 1 ||
+      scene.obstacles[0].shape != Obstacle::Shape::Sphere)
+    throw InputError(file, "obstacles",
+                     "the continuity benchmark needs one cloth and one sphere obstacle");
+  Obstacle& sphere = scene.obstacles[0];
+  sphere.friction = mu;
+  Cloth& cloth = scene.cloths[0];
+  cloth.selfCollision.reset();
+  const double top = sphere.center.y() + sphere.radius + sphere.thickness + 2e-3;
+  cloth.mesh.vertices.col(1).array() += top - cloth.mesh.vertices.col(1).minCoeff();
+  if (surface != Surface::Analytic) {
+    sphere.mesh = icosphere(sphere.center, sphere.radius, subdivisions);
+    sphere.shape = Obstacle::Shape::Mesh;
+    sphere.smoothNormals = surface == Surface::SmoothMesh;
+  }
+  return scene;
+}
+
+Sample simulate(const Scene& scene, const std::vector<Probe>& probes,
+                const std::vector<int>& recordAt) {
+  Sample sample;
+  Simulator sim(scene);
+  try {
+    int unconverged = 0;
+    for (int step = 1; step <= recordAt.back(); ++step) {
+      const StepStats& stats = sim.step();
+      unconverged += !stats.converged;
+      if (std::find(recordAt.begin(), recordAt.end(), step) == recordAt.end()) continue;
+      std::vector<double> row;
+      for (const Probe& p : probes) row.push_back(sim.velocities().row(p.vertex).norm());
+      sample.speed.push_back(row);
+      sample.branches.push_back({stats.takeoff, stats.stick, stats.slip});
+      sample.unconverged.push_back(unconverged);
+    }
+  } catch (const NumericalError& e) {
+    sample.failedStep = sim.stepIndex() + 1;
+    std::fprintf(stderr, "continuity: numerical failure: %s\n", e.what());
+    const std::vector<double> nan(probes.size(), std::numeric_limits<double>::quiet_NaN());
+    while (sample.speed.size() < recordAt.size()) {
+      sample.speed.push_back(nan);
+      sample.branches.push_back({0, 0, 0});
+      sample.unconverged.push_back(0);
+    }
+  }
+  return sample;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
+  const bool quick = cl.has("--quick");
+  const std::string file = cl.value("--scene", assetFile("scenes/sphere.json"));
+  const int threads = cl.integer("--threads", 1, 1, 1024);
+  omp_set_num_threads(threads);
+  StagedDirectory out(outDir);
+
+  // The paper sweeps mu over [0, 0.35] and reads steps 50 and 200; 29 samples (spacing 0.0125) keep
+  // the run under 10 minutes. Quick: 5 samples, steps 10 and 20 (enough to exercise every code path
+  // in a test).
+  const int samples = quick ? 5 : 29;
+  const std::vector<int> recordAt = quick ? std::vector<int>{10, 20} : std::vector<int>{50, 200};
+  const int subdivisions = 3;  // 1280 triangles, edges about as long as the cloth's
+  const std::vector<Surface> surfaces = {Surface::Analytic, Surface::FlatMesh, Surface::SmoothMesh};
+
+  const Scene probeScene = makeScene(file, Surface::Analytic, subdivisions, 0.0, recordAt.back());
+  // Grid vertex (i, j) is j * (n + 1) + i: corner, middle of the first row, centre.
+  const int vertices = probeScene.cloths[0].mesh.vertexCount();
+  const int side = static_cast<int>(std::lround(std::sqrt(double(vertices))));
+  if (side * side != vertices)
+    throw InputError(file, "cloths.0.mesh", "the continuity benchmark needs a square grid cloth");
+  const int n = side - 1;
+  const std::vector<Probe> probes = {
+      {"A_corner", 0}, {"B_edge", n / 2}, {"C_centre", (n / 2) * side + n / 2}};
+
+  BenchTable table({"surface", "mu", "step", "node", "vertex", "speed", "takeoff", "stick", "slip",
+                    "unconverged_steps", "failed_step"});
+  // curves[surface][recorded step][probe] = speeds over mu
+  std::vector<std::vector<std::vector<std::vector<double>>>> curves(
+      surfaces.size(), std::vector<std::vector<std::vector<double>>>(
+                           recordAt.size(), std::vector<std::vector<double>>(probes.size())));
+  std::vector<double> mus;
+  for (int k = 0; k < samples; ++k) mus.push_back(0.35 * k / (samples - 1));
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    for (double mu : mus) {
+      std::fprintf(stderr, "\rcontinuity: %s mu %.4f   ", surfaceName(surfaces[s]), mu);
+      const Sample sample = simulate(
+          makeScene(file, surfaces[s], subdivisions, mu, recordAt.back()), probes, recordAt);
+      for (std::size_t r = 0; r < recordAt.size(); ++r)
+        for (std::size_t p = 0; p < probes.size(); ++p) {
+          curves[s][r][p].push_back(sample.speed[r][p]);
+          table.add({surfaceName(surfaces[s]), formatNumber(mu, 6), std::to_string(recordAt[r]),
+                     probes[p].label, std::to_string(probes[p].vertex),
+                     formatNumber(sample.speed[r][p], 8), std::to_string(sample.branches[r][0]),
+                     std::to_string(sample.branches[r][1]), std::to_string(sample.branches[r][2]),
+                     std::to_string(sample.unconverged[r]), std::to_string(sample.failedStep)});
+        }
+    }
+  }
+  std::fprintf(stderr, "\n");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // Per curve: the largest difference between neighbouring mu samples, where it is, and its
+  // ratio to the median difference.
+  BenchTable summary(
+      {"surface", "step", "node", "max_jump", "at_mu", "median_jump", "jump_ratio", "speed_range"});
+  for (std::size_t s = 0; s < surfaces.size(); ++s)
+    for (std::size_t r = 0; r < recordAt.size(); ++r)
+      for (std::size_t p = 0; p < probes.size(); ++p) {
+        const std::vector<double>& c = curves[s][r][p];
+        std::vector<double> jumps;
+        double worst = 0.0, at = 0.0;
+        for (std::size_t k = 1; k < c.size(); ++k) {
+          const double d = std::abs(c[k] - c[k - 1]);
+          jumps.push_back(d);
+          if (!(d <= worst)) worst = d, at = 0.5 * (mus[k] + mus[k - 1]);
+        }
+        const double med = median(jumps);
+        const auto [lo, hi] = std::minmax_element(c.begin(), c.end());
+        summary.add({surfaceName(surfaces[s]), std::to_string(recordAt[r]), probes[p].label,
+                     formatNumber(worst, 4), formatNumber(at, 4), formatNumber(med, 4),
+                     formatNumber(med > 0 ? worst / med : 0.0, 3), formatNumber(*hi - *lo, 4)});
+      }
+
+  const std::string preamble =
+      "DiffCloth Fig. 2 (Sec. 5.1): cloth of " + file + " (" + std::to_string(n) + "x" +
+      std::to_string(n) +
+      " quads) starting 2 mm above the top of its sphere, without self-collision, h = " +
+      formatNumber(probeScene.time.dt, 4) + " s. Friction mu swept over [0, 0.35] in " +
+      std::to_string(samples) +
+      " samples; speeds (m/s) of the corner A, edge-centre B and centre C nodes at the listed "
+      "steps (unconverged_steps: steps so far whose PD iterations hit the cap). Surfaces: the "
+      "analytic sphere; an icosphere of " +
+      std::to_string(20 << (2 * subdivisions)) +
+      " triangles with flat face normals; the same with smoothed (interpolated vertex) normals. " +
+      std::to_string(threads) + " thread(s), " + formatNumber(seconds, 3) +
+      " s in all. Machine: " + machineDescription() + ".";
+  table.writeCsv(out.file("continuity.csv"));
+  summary.writeCsv(out.file("continuity_summary.csv"));
+  // The Markdown carries the per-curve summary; every sample is in continuity.csv.
+  summary.writeMarkdown(
+      out.file("continuity.md"), "Continuity of contact branches (weft bench continuity)",
+      preamble +
+          "\n\nPer curve, the largest speed difference between neighbouring mu samples "
+          "(max_jump, at_mu), the median one, and jump_ratio = max_jump / median_jump. A "
+          "continuous curve keeps the ratio moderate (kinks at branch switches included); a "
+          "discontinuity shows as a jump far above the median that does not shrink with the mu "
+          "spacing. Every sample: continuity.csv; plots: continuity_step*.png.");
+  for (std::size_t r = 0; r < recordAt.size(); ++r) {
+    std::vector<PlotSeries> plot;
+    for (std::size_t s = 0; s < surfaces.size(); ++s)
+      for (std::size_t p = 0; p < probes.size(); ++p)
+        plot.push_back(
+            {std::string(surfaceName(surfaces[s])) + " " + probes[p].label, mus, curves[s][r][p]});
+    std::string reason;
+    const std::string png = out.file("continuity_step" + std::to_string(recordAt[r]) + ".png");
+    if (!plotSeries(png, "Node speed at step " + std::to_string(recordAt[r]) + " vs friction", "mu",
+                    "speed (m/s)", plot, false, false, reason))
+      std::fprintf(stderr, "warning: %s\n", reason.c_str());
+  }
+  out.commit();
+  std::printf(
+      "bench continuity: %zu runs (%d mu samples x %zu surfaces) in %.1f s -> "
+      "%s/continuity.{csv,md}\n",
+      mus.size() * surfaces.size(), samples, surfaces.size(), seconds, outDir.c_str());
+  return 0;
+}
+
+}  // namespace weft::cli

@@ -1,0 +1,89 @@
+// The shipped scenes and the contact benchmarks, through the real binary: every
+// assets/scenes/*.json loads and simulates a couple of steps, and `weft bench continuity` and
+// `weft bench contact` produce their CSV in quick mode (what the README documents must run).
+
+#include "CliSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace weft {
+namespace {
+
+using test::describe;
+using test::readFile;
+using test::runWeft;
+using test::splitCommas;
+using test::splitLines;
+using test::TempDir;
+
+std::vector<std::string> sceneFiles() {
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(std::string(WEFT_ASSET_DIR) + "/scenes"))
+    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());  // a stable order for the failure messages
+  return files;
+}
+
+TEST(SceneAssets, EverySceneSimulatesTwoSteps) {
+  const std::vector<std::string> files = sceneFiles();
+  // The paper's scenes of issue 3 plus the default wind scene.
+  for (const char* name : {"wind", "slope", "sphere", "bowl", "crumple"})
+    EXPECT_TRUE(std::any_of(files.begin(), files.end(),
+                            [&](const std::string& f) { return fs::path(f).stem() == name; }))
+        << name << ".json is missing from assets/scenes";
+  TempDir dir;
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    const std::string out = dir.file(fs::path(file).stem().string());
+    const auto r =
+        runWeft({"simulate", file, "--steps", "2", "--out", out, "--quiet", "--threads", "1"});
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    EXPECT_TRUE(fs::exists(out + "/positions.npy"));
+    EXPECT_EQ(splitLines(readFile(out + "/stats.csv")).size(), 3u);  // header and two steps
+  }
+}
+
+// Header and data rows of a CSV a benchmark wrote.
+std::vector<std::vector<std::string>> readCsv(const std::string& path) {
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& line : splitLines(readFile(path))) rows.push_back(splitCommas(line));
+  return rows;
+}
+
+TEST(SceneAssets, ContinuityBenchQuickWritesCsv) {
+  TempDir dir;
+  const std::string out = dir.file("continuity");
+  const auto r = runWeft({"bench", "continuity", "--quick", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const auto rows = readCsv(out + "/continuity.csv");
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(rows[0][0], "surface");
+  // 5 mu samples x 3 surfaces x 2 steps x 3 nodes.
+  EXPECT_EQ(rows.size(), 1u + 5 * 3 * 2 * 3);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    EXPECT_EQ(rows[i].back(), "0") << "numerical failure in row " << i;
+  EXPECT_TRUE(fs::exists(out + "/continuity_summary.csv"));
+  EXPECT_TRUE(fs::exists(out + "/continuity.md"));
+}
+
+TEST(SceneAssets, ContactBenchQuickWritesCsv) {
+  TempDir dir;
+  const std::string out = dir.file("contact");
+  const auto r = runWeft({"bench", "contact", "--quick", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const auto rows = readCsv(out + "/contact.csv");
+  ASSERT_EQ(rows.size(), 1u + 3 * 2);  // three scenes at two resolutions
+  EXPECT_EQ(rows[0][0], "scene");
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].back(), "0") << "numerical failure in row " << i;
+    EXPECT_GT(std::stod(rows[i][4]), 0.0) << "ms_per_step";
+  }
+}
+
+}  // namespace
+}  // namespace weft
