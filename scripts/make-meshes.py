@@ -41,17 +41,7 @@ def revolve(profile, segments, phase_deg=0.0, scale_z=1.0):
             vertices.append((radius * math.cos(a), y, scale_z * radius * math.sin(a)))
         rings.append(ring)
     vertices.append((0.0, profile[-1][1], 0.0))
-    first, last = 0, len(vertices) - 1
-    triangles = []
-    for s in range(segments):
-        t = (s + 1) % segments
-        triangles.append((first, rings[0][t], rings[0][s]))
-        for r in range(len(rings) - 1):
-            a, b = rings[r], rings[r + 1]
-            triangles.append((a[s], a[t], b[t]))
-            triangles.append((a[s], b[t], b[s]))
-        triangles.append((last, rings[-1][s], rings[-1][t]))
-    return orient_outward(vertices, triangles)
+    return orient_outward(vertices, close_rings(rings, 0, len(vertices) - 1, segments))
 
 
 def sweep(centreline, half_widths, half_heights, segments, cap_rings):
@@ -94,7 +84,20 @@ def sweep(centreline, half_widths, half_heights, segments, cap_rings):
         along, shrink = reach * math.sin(angle), math.cos(angle)
         add_ring(y0 + along * ty, z0 + along * tz, normal, w * shrink, h * shrink)
     vertices.append((0.0, y0 + reach * ty, z0 + reach * tz))
-    first, last = 0, len(vertices) - 1
+    return orient_outward(vertices, close_rings(rings, 0, len(vertices) - 1, segments))
+
+
+def signed_volume(vertices, triangles):
+    total = 0.0
+    for a, b, c in triangles:
+        (ax, ay, az), (bx, by, bz), (cx, cy, cz) = vertices[a], vertices[b], vertices[c]
+        total += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
+    return total / 6.0
+
+
+def close_rings(rings, first, last, segments):
+    """Triangles of a closed body of revolution: a fan from vertex `first` to the first ring,
+    quads between neighbouring rings, and a fan from the last ring to vertex `last`."""
     triangles = []
     for s in range(segments):
         t = (s + 1) % segments
@@ -104,15 +107,7 @@ def sweep(centreline, half_widths, half_heights, segments, cap_rings):
             triangles.append((a[s], a[t], b[t]))
             triangles.append((a[s], b[t], b[s]))
         triangles.append((last, rings[-1][s], rings[-1][t]))
-    return orient_outward(vertices, triangles)
-
-
-def signed_volume(vertices, triangles):
-    total = 0.0
-    for a, b, c in triangles:
-        (ax, ay, az), (bx, by, bz), (cx, cy, cz) = vertices[a], vertices[b], vertices[c]
-        total += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
-    return total / 6.0
+    return triangles
 
 
 def orient_outward(vertices, triangles):

@@ -15,56 +15,44 @@ constexpr int kMaxPathSegments = 16;
 void ObstacleContactDetector::detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,
                                      std::vector<ContactConstraint>& out) {
   const int m = static_cast<int>(x.rows());
-  const int threads = omp_get_max_threads();
-  if (static_cast<int>(perThread_.size()) < threads) perThread_.resize(threads);
   const int obstacleCount = static_cast<int>(obstacles_.size());
-  int used = 1;
-#pragma omp parallel
-  {
-    std::vector<ContactConstraint>& local = perThread_[omp_get_thread_num()];
-    local.clear();
-#pragma omp single
-    used = omp_get_num_threads();
-    // Static schedule: thread t gets the t-th contiguous block of nodes, so concatenating the
-    // buffers in thread order keeps the contacts sorted by node.
-#pragma omp for schedule(static)
-    for (int i = 0; i < m; ++i) {
-      const Vec3 start = x.row(i);
-      const Vec3 path = displacement.row(i);
-      // Start, middle and end (DiffCloth); finer when the path is long against the margin, so a
-      // fast node cannot step over a thin part of an obstacle's contact zone.
-      const int segments =
-          std::clamp(static_cast<int>(std::ceil(path.norm() / margin_)), 2, kMaxPathSegments);
-      for (int o = 0; o < obstacleCount; ++o) {
-        const ContactObstacle& obstacle = obstacles_[o];
-        const double reach = obstacle.thickness() + margin_;
-        SurfaceSample s;
-        bool hit = false;
-        for (int k = 0; k <= segments && !hit; ++k)
-          hit = obstacle.sample(start + (double(k) / segments) * path, reach, s) && s.distance < reach;
-        if (!hit) continue;
-        ContactConstraint c;
-        c.node = i;
-        c.obstacle = o;
-        c.normal = s.normal;
-        c.friction = obstacle.friction();
-        // Gap of the node's start to the end-of-step tangent plane, less the skin (see
-        // ContactConstraint.h); the surface's own velocity enters tangentially only.
-        const double gap = s.normal.dot(start - s.point) - obstacle.thickness();
-        const Vec3 surface = obstacle.surfaceVelocity(s.point);
-        c.reference = surface - s.normal.dot(surface) * s.normal - (gap / h) * s.normal;
-        local.push_back(c);
-      }
-    }
-  }
   const std::size_t first = out.size();
-  for (int t = 0; t < used; ++t) out.insert(out.end(), perThread_[t].begin(), perThread_[t].end());
+  collector_.collect(m, out, [&](int i, std::vector<ContactConstraint>& local) {
+    const Vec3 start = x.row(i);
+    const Vec3 path = displacement.row(i);
+    // Start, middle and end (DiffCloth); finer when the path is long against the margin, so a
+    // fast node cannot step over a thin part of an obstacle's contact zone.
+    const int segments =
+        std::clamp(static_cast<int>(std::ceil(path.norm() / margin_)), 2, kMaxPathSegments);
+    for (int o = 0; o < obstacleCount; ++o) {
+      const ContactObstacle& obstacle = obstacles_[o];
+      const double reach = obstacle.thickness() + margin_;
+      SurfaceSample s;
+      bool hit = false;
+      for (int k = 0; k <= segments && !hit; ++k)
+        hit =
+            obstacle.sample(start + (double(k) / segments) * path, reach, s) && s.distance < reach;
+      if (!hit) continue;
+      ContactConstraint c;
+      c.node = i;
+      c.obstacle = o;
+      c.normal = s.normal;
+      c.friction = obstacle.friction();
+      // Gap of the node's start to the end-of-step tangent plane, less the skin (see
+      // ContactConstraint.h); the surface's own velocity enters tangentially only.
+      const double gap = s.normal.dot(start - s.point) - obstacle.thickness();
+      const Vec3 surface = obstacle.surfaceVelocity(s.point);
+      c.reference = surface - s.normal.dot(surface) * s.normal - (gap / h) * s.normal;
+      local.push_back(c);
+    }
+  });
   // The contacts are already in node order when the runtime hands out the static blocks in
   // thread order (as GCC's does); make the order independent of that.
   auto byNode = [](const ContactConstraint& a, const ContactConstraint& b) {
     return a.node != b.node ? a.node < b.node : a.obstacle < b.obstacle;
   };
-  if (!std::is_sorted(out.begin() + first, out.end(), byNode)) std::sort(out.begin() + first, out.end(), byNode);
+  if (!std::is_sorted(out.begin() + first, out.end(), byNode))
+    std::sort(out.begin() + first, out.end(), byNode);
 }
 
 }  // namespace weft

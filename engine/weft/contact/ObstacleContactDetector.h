@@ -6,6 +6,7 @@
 // node has at most one contact per obstacle, and may touch several obstacles.
 
 #include <weft/contact/ContactConstraint.h>
+#include <weft/contact/ParallelContactCollector.h>
 #include <weft/contact/ContactObstacle.h>
 
 #include <vector>
@@ -27,7 +28,7 @@ class ObstacleContactDetector {
  private:
   const std::vector<ContactObstacle>& obstacles_;
   double margin_;
-  std::vector<std::vector<ContactConstraint>> perThread_;
+  ParallelContactCollector collector_;
 };
 
 }  // namespace weft

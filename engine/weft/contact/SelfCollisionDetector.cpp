@@ -7,7 +7,8 @@
 
 namespace weft {
 
-SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothModel& model) : model_(model) {
+SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothModel& model)
+    : model_(model) {
   const int m = model.nodeCount();
   distance_.assign(m, 0.0);
   friction_.assign(m, 0.0);
@@ -36,7 +37,8 @@ SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothMode
 }
 
 bool SelfCollisionDetector::excluded(int a, int b) const {
-  if (std::binary_search(neighbours_.begin() + neighbourStart_[a], neighbours_.begin() + neighbourStart_[a + 1], b))
+  if (std::binary_search(neighbours_.begin() + neighbourStart_[a],
+                         neighbours_.begin() + neighbourStart_[a + 1], b))
     return true;
   const double rest = (model_.rest.vertices.row(a) - model_.rest.vertices.row(b)).norm();
   return rest < (1.0 + kMarginFraction) * collisionDistance(a, b);
@@ -71,46 +73,35 @@ void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displa
   if (n > 1) grid_.overlappingPairs(lower_, upper_, cell, candidates_);
   lastCandidates_ = static_cast<int>(candidates_.size());
 
-  const int threads = omp_get_max_threads();
-  if (static_cast<int>(perThread_.size()) < threads) perThread_.resize(threads);
   const int count = static_cast<int>(candidates_.size());
-  int used = 1;
-#pragma omp parallel
-  {
-    std::vector<ContactConstraint>& local = perThread_[omp_get_thread_num()];
-    local.clear();
-#pragma omp single
-    used = omp_get_num_threads();
-#pragma omp for schedule(static)
-    for (int p = 0; p < count; ++p) {
-      const int a = nodes_[candidates_[p].first], b = nodes_[candidates_[p].second];
-      const double distance = collisionDistance(a, b);
-      const Vec3 dx = x.row(a) - x.row(b);
-      const Vec3 dd = displacement.row(a) - displacement.row(b);
-      const double dd2 = dd.squaredNorm();
-      const double tau = dd2 > 0.0 ? std::clamp(-dx.dot(dd) / dd2, 0.0, 1.0) : 0.0;
-      if ((dx + tau * dd).norm() >= (1.0 + kMarginFraction) * distance) continue;
-      if (excluded(a, b)) continue;
-      ContactConstraint c;
-      c.node = a;
-      c.partner = b;
-      const double separation = dx.norm();
-      if (separation > 1e-12 * distance)
-        c.normal = dx / separation;
-      else if (dd2 > 0.0)
-        c.normal = -dd.normalized();  // coincident nodes: separate against their approach
-      else
-        c.normal = Vec3::UnitY();
-      c.friction = 0.5 * (friction_[a] + friction_[b]);
-      c.reference = -((separation - distance) / h) * c.normal;
-      local.push_back(c);
-    }
-  }
   const std::size_t first = out.size();
-  for (int t = 0; t < used; ++t) out.insert(out.end(), perThread_[t].begin(), perThread_[t].end());
-  std::sort(out.begin() + first, out.end(), [](const ContactConstraint& p, const ContactConstraint& q) {
-    return p.node != q.node ? p.node < q.node : p.partner < q.partner;
+  collector_.collect(count, out, [&](int p, std::vector<ContactConstraint>& local) {
+    const int a = nodes_[candidates_[p].first], b = nodes_[candidates_[p].second];
+    const double distance = collisionDistance(a, b);
+    const Vec3 dx = x.row(a) - x.row(b);
+    const Vec3 dd = displacement.row(a) - displacement.row(b);
+    const double dd2 = dd.squaredNorm();
+    const double tau = dd2 > 0.0 ? std::clamp(-dx.dot(dd) / dd2, 0.0, 1.0) : 0.0;
+    if ((dx + tau * dd).norm() >= (1.0 + kMarginFraction) * distance) return;
+    if (excluded(a, b)) return;
+    ContactConstraint c;
+    c.node = a;
+    c.partner = b;
+    const double separation = dx.norm();
+    if (separation > 1e-12 * distance)
+      c.normal = dx / separation;
+    else if (dd2 > 0.0)
+      c.normal = -dd.normalized();  // coincident nodes: separate against their approach
+    else
+      c.normal = Vec3::UnitY();
+    c.friction = 0.5 * (friction_[a] + friction_[b]);
+    c.reference = -((separation - distance) / h) * c.normal;
+    local.push_back(c);
   });
+  std::sort(out.begin() + first, out.end(),
+            [](const ContactConstraint& p, const ContactConstraint& q) {
+              return p.node != q.node ? p.node < q.node : p.partner < q.partner;
+            });
 }
 
 }  // namespace weft

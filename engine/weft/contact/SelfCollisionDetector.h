@@ -11,6 +11,7 @@
 // the node count.
 
 #include <weft/contact/ContactConstraint.h>
+#include <weft/contact/ParallelContactCollector.h>
 #include <weft/contact/SpatialHashGrid.h>
 #include <weft/physics/ClothModel.h>
 
@@ -43,7 +44,7 @@ class SelfCollisionDetector {
   SpatialHashGrid grid_;
   std::vector<Vec3> lower_, upper_;
   std::vector<std::pair<int, int>> candidates_;
-  std::vector<std::vector<ContactConstraint>> perThread_;
+  ParallelContactCollector collector_;
   int lastCandidates_ = 0;
 };
 
