@@ -5,6 +5,7 @@
 #include "CliSupport.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -45,6 +46,18 @@ TEST(SceneAssets, EverySceneSimulatesTwoSteps) {
     ASSERT_EQ(r.exitCode, 0) << describe(r);
     EXPECT_TRUE(fs::exists(out + "/positions.npy"));
     EXPECT_EQ(splitLines(readFile(out + "/stats.csv")).size(), 3u);  // header and two steps
+    // Exactly the contact modules the scene names are built (and the others are not).
+    const nlohmann::json scene = nlohmann::json::parse(readFile(file));
+    const nlohmann::json modules =
+        nlohmann::json::parse(readFile(out + "/summary.json"))["modules"];
+    bool selfCollision = false;
+    for (const auto& cloth : scene["cloths"])
+      selfCollision = selfCollision || cloth.contains("self_collision");
+    const bool obstacles = scene.contains("obstacles") && !scene["obstacles"].empty();
+    EXPECT_EQ(modules.contains("contact_detection"), obstacles);
+    EXPECT_EQ(modules.contains("self_collision"), selfCollision);
+    EXPECT_EQ(modules.contains("contact_solve"), obstacles || selfCollision);
+    EXPECT_EQ(modules.contains("wind"), scene.contains("wind"));
   }
 }
 

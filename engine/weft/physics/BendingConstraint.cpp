@@ -24,7 +24,8 @@ int oppositeVertex(const TriangleIndices& tris, int t, int a, int b) {
 
 }  // namespace
 
-std::vector<Hinge> buildHinges(const NodeMatrix& rest, const TriangleIndices& triangles, double stiffness) {
+std::vector<Hinge> buildHinges(const NodeMatrix& rest, const TriangleIndices& triangles,
+                               double stiffness) {
   TriangleMesh mesh;
   mesh.vertices = rest;
   mesh.triangles = triangles;
@@ -54,17 +55,30 @@ std::vector<Hinge> buildHinges(const NodeMatrix& rest, const TriangleIndices& tr
   return hinges;
 }
 
-BendingConstraint::BendingConstraint(std::vector<Hinge> hinges, int nodes) : hinges_(std::move(hinges)) {
+BendingConstraint::BendingConstraint(std::vector<Hinge> hinges, int nodes)
+    : hinges_(std::move(hinges)) {
   weights_.resize(static_cast<int>(hinges_.size()));
   std::vector<Eigen::Triplet<double>> rows;
   rows.reserve(4 * hinges_.size());
   for (std::size_t r = 0; r < hinges_.size(); ++r) {
     weights_[static_cast<int>(r)] = hinges_[r].weight;
     allFlat_ = allFlat_ && hinges_[r].restNorm == 0.0;
-    for (int k = 0; k < 4; ++k) rows.emplace_back(static_cast<int>(r), hinges_[r].nodes[k], hinges_[r].cot[k]);
+    for (int k = 0; k < 4; ++k)
+      rows.emplace_back(static_cast<int>(r), hinges_[r].nodes[k], hinges_[r].cot[k]);
   }
   setSelection(nodes, rows);
 }
+
+namespace {
+
+// The hinge's cotangent-weighted mean-curvature vector sum_k cot_k x_k (zero on a flat hinge).
+Vec3 curvature(const Hinge& h, const NodeMatrix& x) {
+  Vec3 e = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) e += h.cot[k] * x.row(h.nodes[k]).transpose();
+  return e;
+}
+
+}  // namespace
 
 double BendingConstraint::project(const NodeMatrix& x, NodeMatrix& wp) const {
   double energy = 0.0;
@@ -72,8 +86,7 @@ double BendingConstraint::project(const NodeMatrix& x, NodeMatrix& wp) const {
 #pragma omp parallel for schedule(static) reduction(+ : energy)
   for (int r = 0; r < count; ++r) {
     const Hinge& h = hinges_[r];
-    Vec3 e = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) e += h.cot[k] * x.row(h.nodes[k]).transpose();
+    const Vec3 e = curvature(h, x);
     Vec3 p = Vec3::Zero();
     if (h.restNorm > 0.0) {
       const double n = e.norm();
@@ -91,8 +104,7 @@ double BendingConstraint::energy(const NodeMatrix& x) const {
 #pragma omp parallel for schedule(static) reduction(+ : energy)
   for (int r = 0; r < count; ++r) {
     const Hinge& h = hinges_[r];
-    Vec3 e = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) e += h.cot[k] * x.row(h.nodes[k]).transpose();
+    const Vec3 e = curvature(h, x);
     const double excess = h.restNorm > 0.0 ? e.norm() - h.restNorm : e.norm();
     energy += 0.5 * h.weight * excess * excess;
   }
@@ -105,8 +117,7 @@ void BendingConstraint::prepareDerivative(const NodeMatrix& x, bool definite) {
   scale_.resize(count);
   for (int r = 0; r < count; ++r) {
     const Hinge& h = hinges_[r];
-    Vec3 e = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) e += h.cot[k] * x.row(h.nodes[k]).transpose();
+    const Vec3 e = curvature(h, x);
     const double n = e.norm();
     if (h.restNorm == 0.0 || n == 0.0) {
       unit_[r].setZero();
