@@ -5,6 +5,7 @@
 #include "Commands.h"
 #include "RenderJob.h"
 #include "RunFolder.h"
+#include "SceneOverrideOption.h"
 
 #include <weft/core/Error.h>
 #include <weft/io/StagedDirectory.h>
@@ -26,8 +27,6 @@ extern char** environ;
 namespace fs = std::filesystem;
 
 namespace weft::cli {
-
-std::vector<SceneOverride> parseOverrides(const CommandLine& cl);  // SimulateCommand.cpp
 
 namespace {
 

@@ -1,5 +1,6 @@
 #include "CommandLine.h"
 #include "Commands.h"
+#include "SceneOverrideOption.h"
 
 #include <weft/core/Error.h>
 #include <weft/io/StagedDirectory.h>
@@ -13,16 +14,6 @@
 #include <cstdio>
 
 namespace weft::cli {
-
-std::vector<SceneOverride> parseOverrides(const CommandLine& cl) {
-  std::vector<SceneOverride> overrides;
-  for (const std::string& s : cl.values("--set")) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || eq == 0) cl.fail("--set", "expects PATH=VALUE, got '" + s + "'");
-    overrides.push_back({s.substr(0, eq), s.substr(eq + 1)});
-  }
-  return overrides;
-}
 
 int applyThreads(const CommandLine& cl) {
   const int threads = cl.integer("--threads", 0, 0, 1024);
