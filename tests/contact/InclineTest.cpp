@@ -2,7 +2,7 @@
 // sticks when mu > tan(theta) and slides with acceleration g (sin theta - mu cos theta) when
 // mu < tan(theta). Every node is in one contact with the same frame, the ribbon moves rigidly,
 // and implicit Euler then gives v_n = n h a exactly, so the measured acceleration must match
-// Coulomb's law to the solver tolerance.
+// Coulomb's law to the solver tolerance. Both contact solvers (solver.contact) are checked.
 
 #include "ContactTestSupport.h"
 
@@ -22,14 +22,13 @@ void PrintTo(const InclineCase& c, std::ostream* os) { *os << c.name; }
 
 class Incline : public ::testing::TestWithParam<InclineCase> {};
 
-TEST_P(Incline, SticksOrSlidesAsCoulombSays) {
-  const InclineCase& c = GetParam();
+void checkIncline(const InclineCase& c, const char* contactMethod) {
   const double g = 9.8, theta = c.thetaDeg * M_PI / 180.0, h = 0.01, skin = 1e-3;
   const int steps = 40;
   nlohmann::json doc = test::clothScene(0.4, 8, Vec3(0, skin, 0), h);
   doc["cloths"][0]["mesh"]["grid"] = {{"size", {0.4, 0.1}}, {"resolution", {8, 2}}};
   doc["gravity"] = {g * std::sin(theta), -g * std::cos(theta), 0.0};
-  doc["solver"] = {{"pd_iterations", 200}, {"pd_tolerance", 1e-6}};
+  doc["solver"] = {{"pd_iterations", 200}, {"pd_tolerance", 1e-6}, {"contact", contactMethod}};
   test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, c.mu);
   doc["obstacles"][0]["thickness"] = skin;
   const test::ContactRun run = test::runScene(doc, steps);
@@ -41,7 +40,8 @@ TEST_P(Incline, SticksOrSlidesAsCoulombSays) {
     // Never into the plane, never lifted off it.
     ASSERT_NEAR(t.positions[n].col(1).minCoeff(), skin, 1e-9) << "step " << n;
     ASSERT_NEAR(t.positions[n].col(1).maxCoeff(), skin, 1e-9) << "step " << n;
-    for (const ContactPoint& p : t.contacts[n - 1].points) ASSERT_EQ(test::branchViolation(p, 1e-9), "");
+    for (const ContactPoint& p : t.contacts[n - 1].points)
+      ASSERT_EQ(test::branchViolation(p, 1e-9), "") << "step " << n << " node " << p.node << " " << branchName(p.branch);
   }
   const double expected = g * (std::sin(theta) - c.mu * std::cos(theta));
   const NodeMatrix& v = t.velocities.back();
@@ -61,6 +61,10 @@ TEST_P(Incline, SticksOrSlidesAsCoulombSays) {
                 0.01 * expected * h * h * steps * steps / 2);
   }
 }
+
+TEST_P(Incline, SticksOrSlidesAsCoulombSays) { checkIncline(GetParam(), "pd"); }
+// The same law through the experimental active-set Newton contact solve (ActiveContactSet.h).
+TEST_P(Incline, ActiveSetSticksOrSlidesAsCoulombSays) { checkIncline(GetParam(), "active_set"); }
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, Incline,

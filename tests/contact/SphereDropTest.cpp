@@ -44,7 +44,8 @@ TEST(SphereDrop, DISABLED_RestsOnTopWithoutPenetrationAndEveryContactObeysItsBra
     converged += t.steps[n - 1].converged;
     for (const ContactPoint& p : t.contacts[n - 1].points) {
       const std::string why = test::branchViolation(p, 1e-9);
-      ASSERT_EQ(why, "") << "step " << n << " node " << p.node;
+      ASSERT_EQ(why, "") << "step " << n << " node " << p.node << " " << branchName(p.branch) << " converged "
+                         << t.steps[n - 1].converged << " iterations " << t.steps[n - 1].pdIterations;
       ++contacts;
       active += p.branch != ContactBranch::TakeOff;
     }

@@ -8,9 +8,11 @@
 //   beginStep             obstacles moved to the end-of-step pose
 //   detectObstacles       contact set and frozen frames (module "contact_detection")
 //   detectSelfCollisions  pairs and their Gauss-Seidel layers (module "self_collision")
-//   then per PD iteration solve(f) and addImpulses (module "contact_solve"),
-//   and finally record / countBranches.
+//   then, with solver.contact = "pd", per PD iteration solve(f) and addImpulses (module
+//   "contact_solve") and finally record / countBranches; with "active_set", the Simulator drives
+//   activeSet() (ActiveContactSet.h) instead.
 
+#include <weft/contact/ActiveContactSet.h>
 #include <weft/contact/ContactLayering.h>
 #include <weft/contact/ContactObstacle.h>
 #include <weft/contact/ContactSolver.h>
@@ -37,8 +39,13 @@ class FrictionalContact {
   // x: state at the start of the step; displacement: the predicted motion over the step.
   void detectObstacles(const NodeMatrix& x, const NodeMatrix& displacement);
   void detectSelfCollisions(const NodeMatrix& x, const NodeMatrix& displacement);
-  // Hands the detected contacts to the solver (impulses start at zero).
+  // Hands the detected contacts to the per-node solver of solver.contact = "pd" (impulses start
+  // at zero).
   void prepareSolve();
+  // Hands the detected contacts to the active set of solver.contact = "active_set"; x0 is the
+  // start-of-step state and must stay unchanged during the step.
+  void prepareActiveSet(const NodeMatrix& x0) { activeSet_.reset(obstacleContacts_, pairs_, x0, model_.mass, h_); }
+  ActiveContactSet& activeSet() { return activeSet_; }
   bool empty() const { return solver_.empty(); }
 
   // One contact solve of a PD iteration (ContactSolver.h); returns the sweeps done.
@@ -62,6 +69,7 @@ class FrictionalContact {
   std::unique_ptr<SelfCollisionDetector> selfCollision_;
   ContactLayering layering_;
   ContactSolver solver_;
+  ActiveContactSet activeSet_;
   std::vector<ContactConstraint> obstacleContacts_, pairs_;
   std::vector<int> obstacleNodes_, layerStart_;
 };

@@ -83,7 +83,7 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
     derivativeRows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
   if (contact_)
-    for (auto* buf : {&freeMomentum_, &plainIterate_}) buf->setZero(m, 3);
+    for (auto* buf : {&freeMomentum_, &plainIterate_, &fullResidual_}) buf->setZero(m, 3);
   totalMass_ = model_.mass.sum();
   if (scene.solver.acceleration == Acceleration::Anderson) anderson_.reset(3 * m, scene.solver.andersonWindow);
 
@@ -148,6 +148,7 @@ void Simulator::globalStep() {
     rhs_ = massY_;
     for (std::size_t c = 0; c < constraints_.size(); ++c)
       if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
+    if (activeContacts_) activeContacts_->addFriction(h_, rhs_);  // slip friction as an impulse
     global_ = rhs_;
     cholesky_.solveInPlace(global_);
     change_ = global_ - iterate_;
@@ -198,6 +199,12 @@ bool Simulator::checkConvergence() {
   // P (x_global - x_k): the imbalance of the step's equations at the iterate (residualOf).
   timed(solverModule_, [&] {
     multiplySystem(change_, residualVector_);
+    if (activeContacts_) {
+      // With contact constraints only the imbalance in the free directions must vanish; the rest
+      // is the contact impulse (kept whole for the multipliers).
+      fullResidual_ = residualVector_;
+      activeContacts_->projectDirection(residualVector_);
+    }
     stats_.residual = residualOf(residualVector_);
   });
   stats_.converged = stats_.residual < scene_.solver.pdTolerance;
@@ -233,7 +240,7 @@ void Simulator::solveProjectiveDynamics() {
   }
 }
 
-void Simulator::solveNewton() {
+bool Simulator::iterateNewton() {
   // Newton on g (Eq. 3) with conjugate gradients preconditioned by the prefactorised P. The
   // Hessian is h^-2 (P - Delta P) with the exact projection derivative (the same Delta P the
   // adjoint uses, Sec. 4.1). The first preconditioned residual is exactly the PD step
@@ -241,19 +248,63 @@ void Simulator::solveNewton() {
   // (the soft out-of-plane modes where P overestimates the stiffness), and convergence becomes
   // quadratic. Where the Hessian is indefinite (compressed triangles), CG stops at the negative
   // curvature, and a step that does not decrease g falls back to the PD step, which always does.
+  //
+  // With contact constraints (activeContacts_), the same iteration runs in the subspace
+  // {C d = 0} (projected PCG: residual, preconditioned residual and products projected), on g
+  // plus the potential of the lagged slip friction; iterates stay feasible. The PD step is then
+  // not a fallback (it leaves the subspace): a step the line search rejects ends the iteration.
   const SolverSettings& solver = scene_.solver;
   const double h2 = h_ * h_;
-  double energy = localStep(iterate_);
+  ActiveContactSet* const contacts = activeContacts_;
+  auto energyAt = [&](const NodeMatrix& x) {
+    double e = localStep(x);
+    if (contacts) e += contacts->frictionPotential(x, h_);
+    return e;
+  };
+  double energy = energyAt(iterate_);
   double forcing = 0.5, previousResidual = 0.0;
   auto dot = [](const NodeMatrix& a, const NodeMatrix& b) { return (a.array() * b.array()).sum(); };
+  const double velocityTolerance = solver.pdTolerance * h_;
   while (stats_.pdIterations < solver.pdIterations) {
     globalStep();
-    if (checkConvergence()) return;  // also leaves r0 = b - P x = P (x_global - x) in residualVector_
+    const bool small = checkConvergence();  // also leaves r0 = b - P x = P (x_global - x) in residualVector_
+    if (contacts) {
+      // Branch update at every iterate (a primal-dual active-set strategy): the branches and the
+      // elastic solve converge together instead of one Newton solve per active set.
+      // The lagged slip friction is re-aimed once the elastic part has converged.
+      int changed = 0;
+      timed(contactSolveModule_, [&] {
+        changed = contacts->update(iterate_, fullResidual_, velocityTolerance, small);
+        if (changed > 0) contacts->projectPositions(iterate_);
+      });
+      ++stats_.contactSweeps;
+      if (changed > 0 || contacts->lastChange() > velocityTolerance) {
+        stats_.converged = false;
+        energy = energyAt(iterate_);
+        previousResidual = 0.0;
+        forcing = 0.5;
+        continue;
+      }
+    }
+    if (small) {
+      // A step whose contacts cycle ends here too; it counts as not converged.
+      if (contacts && contacts->blocked() > 0) stats_.converged = false;
+      return stats_.converged;
+    }
     for (std::size_t c = 0; c < constraints_.size(); ++c)
       if (constraints_[c]->hasDerivative())
         timed(constraintModule_[c], [&] { constraints_[c]->prepareDerivative(iterate_, false); });
 
     // PCG on K d = r0, preconditioner P^{-1}; z0 = P^{-1} r0 = change_ (no extra solve).
+    if (contacts) {
+      // z0 = Pi P^{-1} Pi r0, one more solve; change_ becomes the fallback direction.
+      timed(solverModule_, [&] {
+        change_ = residualVector_;
+        cholesky_.solveInPlace(change_);
+        contacts->projectDirection(change_);
+      });
+      ++stats_.pdIterations;
+    }
     direction_.setZero();
     cgResidual_ = residualVector_;
     cgPreconditioned_ = change_;
@@ -274,6 +325,7 @@ void Simulator::solveNewton() {
     previousResidual = stats_.residual;
     while (true) {
       multiplyNewtonMatrix(cgSearch_, cgProduct_);
+      if (contacts) timed(solverModule_, [&] { contacts->projectDirection(cgProduct_); });
       double curvature = 0.0, alpha = 0.0;
       timed(solverModule_, [&] {
         curvature = dot(cgSearch_, cgProduct_);
@@ -287,6 +339,7 @@ void Simulator::solveNewton() {
       timed(solverModule_, [&] {
         cgPreconditioned_ = cgResidual_;
         cholesky_.solveInPlace(cgPreconditioned_);
+        if (contacts) contacts->projectDirection(cgPreconditioned_);
       });
       ++stats_.pdIterations;
       const double rzNew = dot(cgResidual_, cgPreconditioned_);
@@ -303,7 +356,7 @@ void Simulator::solveNewton() {
     bool accepted = false;
     for (int tries = 0; tries < 8 && !accepted; ++tries, step *= 0.5) {
       accelerated_ = iterate_ + step * direction_;
-      const double trial = localStep(accelerated_);
+      const double trial = energyAt(accelerated_);
       if (trial <= energy + 1e-4 * step * slope + 1e-13 * std::abs(energy)) {
         iterate_.swap(accelerated_);
         energy = trial;
@@ -311,10 +364,31 @@ void Simulator::solveNewton() {
       }
     }
     if (!accepted) {
+      if (contacts) return false;
       iterate_ = global_;
       energy = localStep(iterate_);
     }
   }
+  return false;
+}
+
+void Simulator::solveNewtonWithContact() {
+  // Active-set Newton (ActiveContactSet.h). Convergence test of the contact solve: no branch
+  // change and no friction impulse change above pd_tolerance * h as a velocity (m/s), the
+  // velocity error the elastic tolerance allows over one step, together with the elastic
+  // residual below pd_tolerance.
+  ActiveContactSet& set = contact_->activeSet();
+  timed(contactSolveModule_, [&] {
+    set.guessBranches(iterate_);
+    set.projectPositions(iterate_);
+  });
+  activeContacts_ = &set;
+  iterateNewton();
+  activeContacts_ = nullptr;
+  timed(contactSolveModule_, [&] { set.refreshVelocities(iterate_); });
+  stats_.contactSweepChange = set.lastChange();
+  // The feasible iterate is the step's result (a PD solve past it would leave the constraints).
+  global_ = iterate_;
 }
 
 void Simulator::detectContacts(double t0, double t1) {
@@ -330,7 +404,10 @@ void Simulator::detectContacts(double t0, double t1) {
     timed(contactDetectionModule_, [&] { contact_->detectObstacles(x_, plainIterate_); });
   if (contact_->hasSelfCollision())
     timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, plainIterate_); });
-  timed(contactSolveModule_, [&] { contact_->prepareSolve(); });
+  timed(contactSolveModule_, [&] {
+    if (scene_.solver.contact == ContactMethod::ActiveSet) contact_->prepareActiveSet(x_);
+    else contact_->prepareSolve();
+  });
 }
 
 void Simulator::contactGlobalStep() {
@@ -435,10 +512,18 @@ const StepStats& Simulator::step() {
 
   if (contact_) {
     detectContacts(time_, t1);
-    solveWithContact();
+    const bool newton = solver.contact == ContactMethod::ActiveSet;
+    if (newton && !contact_->activeSet().empty()) solveNewtonWithContact();
+    else if (newton) solveNewton();
+    else solveWithContact();
     timed(contactSolveModule_, [&] {
-      contact_->countBranches(stats_);
-      contact_->record(lastContacts_);
+      if (newton) {
+        contact_->activeSet().countBranches(stats_);
+        contact_->activeSet().record(lastContacts_);
+      } else {
+        contact_->countBranches(stats_);
+        contact_->record(lastContacts_);
+      }
       lastContacts_.sweeps = stats_.contactSweeps;
     });
   } else if (solver.method == SolverMethod::Newton) {

@@ -2,14 +2,20 @@
 // The forward simulator: Projective Dynamics cloth (DiffCloth Sec. 3.1) with the modules the
 // scene names and nothing else. Owns the prefactorised system matrix P (Eq. 7).
 //
-// Solvers. Without contact: Newton-PCG (default) or PD with Anderson acceleration, both
-// minimising the implicit-Euler energy g (Eq. 3). With contact (obstacles or self-collision):
-// the contact law makes the step non-smooth and friction makes it non-conservative, so there is
-// no energy to minimise or line-search; the step is then DiffCloth's velocity-form PD with the
-// contact solve inside every global step (Sec. 3.2, Eqs. 10-12, notes Sec. 2.1), whatever
-// solver.method says. solver.acceleration applies: "anderson" (default) mixes the iterates with
-// a residual-based safeguard, "none" runs plain PD. Both stop on the same residual as without
-// contact, which then includes the contact impulse (see solveWithContact).
+// Solvers. Without contact (solver.method): Newton-PCG (default) or PD with Anderson
+// acceleration, both minimising the implicit-Euler energy g (Eq. 3).
+// With contact (obstacles or self-collision; solver.contact), both solve the Signorini-Coulomb
+// law of Eq. 8 for every detected contact:
+//  - "pd" (default): DiffCloth's velocity-form PD with the per-node contact solve inside every
+//    global step (Sec. 3.2, Eqs. 10-12, notes Sec. 2.1; ContactSolver.h). solver.acceleration
+//    applies: "anderson" (default) mixes the iterates with a residual-based safeguard, "none"
+//    runs plain PD. It stops on the same residual, which then includes the contact impulse (see
+//    solveWithContact); on stiff cloth it often reaches the iteration cap first.
+//  - "active_set" (experimental): Newton-PCG on g with the contacts as an active set of linear
+//    constraints (ActiveContactSet.h): feasible iterates, multipliers as contact impulses, branch
+//    updates by Eq. 8, slip friction lagged. No contact ends a step on the wrong side of its
+//    constraint, whatever the iteration count; the lagged friction and branch cycling still
+//    make many steps reach the iteration cap.
 
 #include <weft/contact/FrictionalContact.h>
 #include <weft/core/Types.h>
@@ -73,7 +79,11 @@ class Simulator {
   // Measures the residual of the last global step; true (and stats_.converged) below tolerance.
   bool checkConvergence();
   void solveProjectiveDynamics();
-  void solveNewton();
+  // Newton-PCG iterations until the residual is below tolerance (true) or the solve budget is
+  // spent. With activeContacts_ set, iterates stay on its constraints and its slip friction acts.
+  bool iterateNewton();
+  void solveNewton() { iterateNewton(); }
+  void solveNewtonWithContact();
   void detectContacts(double t0, double t1);
   void contactGlobalStep();
   void solveWithContact();
@@ -94,6 +104,7 @@ class Simulator {
   std::unique_ptr<FrictionalContact> contact_;
   int contactDetectionModule_ = -1, selfCollisionModule_ = -1, contactSolveModule_ = -1;
   StepContacts lastContacts_;
+  ActiveContactSet* activeContacts_ = nullptr;  // during a Newton step with contact
   std::vector<std::string> moduleNames_;
   std::vector<double> moduleSeconds_;
 
@@ -112,7 +123,7 @@ class Simulator {
   NodeMatrix warmStart_;  // x_n - y_{n-1}
   NodeMatrix force_, y_, massY_, iterate_, global_, accelerated_, change_, rhs_, residualVector_;
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
-  NodeMatrix freeMomentum_, plainIterate_;  // contact scenes only
+  NodeMatrix freeMomentum_, plainIterate_, fullResidual_;  // contact scenes only
   std::vector<NodeMatrix> projections_, derivativeRows_;
   double totalMass_ = 0.0;
 };

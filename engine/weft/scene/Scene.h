@@ -30,9 +30,14 @@ enum class Acceleration { None, Anderson };
 // "newton": Newton with CG preconditioned by the prefactorised P (the default);
 // "pd": local-global PD iterations (with Anderson acceleration unless turned off).
 enum class SolverMethod { Newton, ProjectiveDynamics };
+// Contact scenes (solver.contact): "pd" (default), DiffCloth's per-node Signorini-Coulomb solve
+// inside PD iterations (ContactSolver.h), whatever `method` says; "active_set" (experimental),
+// Newton-PCG with the contacts as an active set of constraints (ActiveContactSet.h).
+enum class ContactMethod { ProjectiveDynamics, ActiveSet };
 
 struct SolverSettings {
   SolverMethod method = SolverMethod::Newton;
+  ContactMethod contact = ContactMethod::ProjectiveDynamics;
   int pdIterations = 100;  // at most this many solves with P per step
   // Converged when the mass-weighted RMS imbalance of the implicit-Euler equations
   // (DiffCloth Eq. 3 gradient divided by nodal mass) falls below this, in m/s^2.

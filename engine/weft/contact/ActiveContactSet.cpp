@@ -1,0 +1,296 @@
+#include <weft/contact/ActiveContactSet.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace weft {
+namespace {
+
+// Tikhonov shift of C C^T (its diagonal is 1 or 2): keeps the factorisation defined when rows are
+// dependent (a node held by two sticking obstacles, a closed loop of sticking pairs). Dependent
+// rows may also have inconsistent targets (a loop of pairs each asking for its own gap), whose
+// least-squares part the shift amplifies by 1/shift and round-off by the condition number, also
+// about 1/shift: 1e-7 keeps that product near 1e-2 of the inconsistency, while a consistent
+// projection is exact to about 1e-7 before the refinement pass (project()).
+constexpr double kGramShift = 1e-7;
+// Branch switches of one contact in one step before it may no longer take off, and before it
+// keeps its branch.
+constexpr int kFlipsBeforeHolding = 4, kFlipsBeforeFreezing = 8;
+
+}  // namespace
+
+void ActiveContactSet::reset(const std::vector<ContactConstraint>& obstacleContacts,
+                             const std::vector<ContactConstraint>& pairs, const NodeMatrix& x0,
+                             const Eigen::VectorXd& mass, double h) {
+  x0_ = &x0;
+  h_ = h;
+  contacts_.clear();
+  rows_.clear();
+  lastChange_ = 0.0;
+  auto add = [&](const ContactConstraint& c, double effectiveMass) {
+    contacts_.push_back(Contact{c.node, c.partner, c.obstacle, c.normal, c.reference, c.friction, effectiveMass,
+                                ContactBranch::TakeOff, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), 0, false});
+  };
+  for (const ContactConstraint& c : obstacleContacts) add(c, mass[c.node]);
+  for (const ContactConstraint& c : pairs) add(c, mass[c.node] * mass[c.partner] / (mass[c.node] + mass[c.partner]));
+}
+
+Vec3 ActiveContactSet::relativeVelocity(const Contact& c, const NodeMatrix& x) const {
+  Vec3 u = (x.row(c.a) - x0_->row(c.a)).transpose() / h_;
+  if (c.b >= 0) u -= (x.row(c.b) - x0_->row(c.b)).transpose() / h_;
+  return u - c.reference;
+}
+
+void ActiveContactSet::guessBranches(const NodeMatrix& x) {
+  for (Contact& c : contacts_) {
+    c.velocity = relativeVelocity(c, x);
+    c.slipFriction.setZero();
+    c.impulse.setZero();
+    c.flips = 0;
+    c.branch = c.normal.dot(c.velocity) >= 0.0 ? ContactBranch::TakeOff
+               : c.friction > 0.0              ? ContactBranch::Stick
+                                               : ContactBranch::Slip;
+  }
+  buildRows();
+}
+
+void ActiveContactSet::buildRows() {
+  // Rows: dir . (x_a - x_b) = dir . (x0_a - x0_b + h reference), i.e. dir . u = 0.
+  rows_.clear();
+  for (int k = 0; k < static_cast<int>(contacts_.size()); ++k) {
+    const Contact& c = contacts_[k];
+    if (c.branch == ContactBranch::TakeOff) continue;
+    Vec3 start = x0_->row(c.a).transpose() + h_ * c.reference;
+    if (c.b >= 0) start -= x0_->row(c.b).transpose();
+    auto addRow = [&](const Vec3& dir) { rows_.push_back(Row{c.a, c.b, k, dir, dir.dot(start)}); };
+    if (c.branch == ContactBranch::Slip) {
+      addRow(c.normal);
+    } else {
+      for (int axis = 0; axis < 3; ++axis) addRow(Vec3::Unit(axis));
+    }
+  }
+  const int n = static_cast<int>(rows_.size());
+  rowValues_.resize(n);
+  lambda_.resize(n);
+  if (n == 0) return;
+
+  // C C^T: rows interact through the nodes they share. (node, row, sign) sorted by node.
+  struct Touch {
+    int node, row;
+    double sign;
+  };
+  std::vector<Touch> touches;
+  touches.reserve(2 * n);
+  for (int r = 0; r < n; ++r) {
+    touches.push_back(Touch{rows_[r].a, r, 1.0});
+    if (rows_[r].b >= 0) touches.push_back(Touch{rows_[r].b, r, -1.0});
+  }
+  std::sort(touches.begin(), touches.end(),
+            [](const Touch& p, const Touch& q) { return p.node != q.node ? p.node < q.node : p.row < q.row; });
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int r = 0; r < n; ++r) entries.emplace_back(r, r, kGramShift);
+  for (std::size_t begin = 0; begin < touches.size();) {
+    std::size_t end = begin;
+    while (end < touches.size() && touches[end].node == touches[begin].node) ++end;
+    for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t j = begin; j < end; ++j) {
+        const double value =
+            touches[i].sign * touches[j].sign * rows_[touches[i].row].dir.dot(rows_[touches[j].row].dir);
+        if (value != 0.0) entries.emplace_back(touches[i].row, touches[j].row, value);
+      }
+    begin = end;
+  }
+  gram_.resize(n, n);
+  gram_.setFromTriplets(entries.begin(), entries.end());
+  gramFactor_.compute(gram_);
+  if (gramFactor_.info() != Eigen::Success) throw std::runtime_error("contact constraint Gram matrix not factorised");
+}
+
+void ActiveContactSet::multipliers(const NodeMatrix& v, Eigen::VectorXd& lambda) const {
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const Row& row = rows_[r];
+    double value = row.dir.dot(v.row(row.a).transpose());
+    if (row.b >= 0) value -= row.dir.dot(v.row(row.b).transpose());
+    rowValues_[r] = value;
+  }
+  lambda = gramFactor_.solve(rowValues_);
+}
+
+void ActiveContactSet::project(NodeMatrix& v, bool affine) const {
+  // v <- v - C^T (C C^T)^-1 (C v - target), and once more for what the shift left.
+  for (int pass = 0; pass < 2; ++pass) {
+    multipliers(v, lambda_);
+    if (affine) {
+      for (std::size_t r = 0; r < rows_.size(); ++r) rowValues_[r] -= rows_[r].target;
+      lambda_ = gramFactor_.solve(rowValues_);
+    }
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+      const Row& row = rows_[r];
+      v.row(row.a) -= lambda_[r] * row.dir.transpose();
+      if (row.b >= 0) v.row(row.b) += lambda_[r] * row.dir.transpose();
+    }
+  }
+}
+
+void ActiveContactSet::projectDirection(NodeMatrix& d) const {
+  if (!rows_.empty()) project(d, false);
+}
+
+void ActiveContactSet::projectPositions(NodeMatrix& x) const {
+  if (!rows_.empty()) project(x, true);
+}
+
+void ActiveContactSet::refreshVelocities(const NodeMatrix& x) {
+  for (Contact& c : contacts_) c.velocity = relativeVelocity(c, x);
+}
+
+void ActiveContactSet::addFriction(double h, NodeMatrix& residual) const {
+  for (const Contact& c : contacts_) {
+    if (c.branch != ContactBranch::Slip) continue;
+    residual.row(c.a) += h * c.slipFriction.transpose();
+    if (c.b >= 0) residual.row(c.b) -= h * c.slipFriction.transpose();
+  }
+}
+
+double ActiveContactSet::frictionPotential(const NodeMatrix& x, double h) const {
+  double work = 0.0;
+  for (const Contact& c : contacts_) {
+    if (c.branch != ContactBranch::Slip) continue;
+    work += c.slipFriction.dot(x.row(c.a).transpose());
+    if (c.b >= 0) work -= c.slipFriction.dot(x.row(c.b).transpose());
+  }
+  return -work / h;
+}
+
+int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, double velocityTolerance,
+                             bool settled) {
+  // Multipliers: C^T lambda = -residual in the least-squares sense; h r = C^T lambda per contact.
+  if (!rows_.empty()) {
+    multipliers(residual, lambda_);
+    lambda_ = -lambda_;
+  }
+  for (Contact& c : contacts_) c.impulse.setZero();
+  for (std::size_t r = 0; r < rows_.size(); ++r)
+    contacts_[rows_[r].contact].impulse += (lambda_[r] / h_) * rows_[r].dir;
+
+  int changed = 0;
+  lastChange_ = 0.0;
+  blocked_ = 0;
+  for (Contact& c : contacts_) {
+    c.velocity = relativeVelocity(c, x);
+    const double impulseTolerance = c.effectiveMass * velocityTolerance;
+    const double normalImpulse = c.normal.dot(c.impulse);
+    const ContactBranch before = c.branch;
+    // Anti-cycling: a contact that keeps switching is first kept active (no more take-off), and
+    // finally frozen in its branch for the rest of the step.
+    // Releasing (stick -> take-off or slip, slip -> take-off or stick) is judged on a settled
+    // solve only, when the multipliers are the contact impulses; activating a contact that
+    // penetrates is judged at every iterate.
+    const bool mayRelease = settled && c.flips < kFlipsBeforeHolding, mayChange = c.flips < kFlipsBeforeFreezing;
+    switch (mayChange ? c.branch : ContactBranch::None) {
+      case ContactBranch::TakeOff:
+        if (c.normal.dot(c.velocity) < -velocityTolerance) {
+          c.branch = c.friction > 0.0 ? ContactBranch::Stick : ContactBranch::Slip;
+          c.slipFriction.setZero();
+          c.aimed = false;
+        }
+        break;
+      case ContactBranch::Stick: {
+        const Vec3 tangential = c.impulse - normalImpulse * c.normal;
+        // The tangential release comes first: a node held in all three directions may need a
+        // pulling normal impulse only because it is held tangentially; freed at once it would
+        // penetrate, and be caught again (a cycle). So a pulling node slides first (with no
+        // friction, the cone of a non-positive r_N being empty), and takes off from slip.
+        const double cone = c.friction * std::max(normalImpulse, 0.0);
+        if (tangential.norm() > cone + impulseTolerance && mayRelease) {
+          // The cone cannot hold it: slide against the direction the holding force pointed.
+          c.branch = ContactBranch::Slip;
+          c.slipFriction = (cone / tangential.norm()) * tangential;
+          c.aimed = false;
+        } else if (normalImpulse < -impulseTolerance && mayRelease) {
+          c.branch = ContactBranch::TakeOff;
+        }
+        break;
+      }
+      case ContactBranch::Slip: {
+        if (normalImpulse < -impulseTolerance && mayRelease) {
+          c.branch = ContactBranch::TakeOff;
+          c.slipFriction.setZero();
+          break;
+        }
+        // The slide and the friction are judged on a settled solve only: right after a stick ->
+        // slip switch the node has not moved yet.
+        if (!settled) break;
+        const Vec3 slide = c.velocity - c.normal.dot(c.velocity) * c.normal;
+        const double speed = slide.norm();
+        // The friction set at the stick -> slip switch only guesses the slide's direction (along
+        // the holding force); it is aimed against the measured slide first, and a slide that then
+        // turns along it has been reversed by it.
+        if (c.friction > 0.0 && (speed <= velocityTolerance || (c.aimed && slide.dot(c.slipFriction) > 0.0))) {
+          // Stopped, or pushed backwards by its own friction: the cone holds it.
+          c.branch = ContactBranch::Stick;
+          c.slipFriction.setZero();
+          break;
+        }
+        const Vec3 friction =
+            speed > 0.0 ? Vec3((-c.friction * std::max(normalImpulse, 0.0) / speed) * slide) : Vec3::Zero();
+        lastChange_ = std::max(lastChange_, (friction - c.slipFriction).norm() / c.effectiveMass);
+        c.slipFriction = friction;
+        c.aimed = true;
+        break;
+      }
+      default:
+        break;
+    }
+    if (c.branch != before) ++changed, ++c.flips;
+    else if (settled && (c.flips >= kFlipsBeforeHolding) && violatesLaw(c, velocityTolerance)) ++blocked_;
+    if (c.branch == ContactBranch::TakeOff) c.impulse.setZero();
+    if (c.branch == ContactBranch::Slip) c.impulse = normalImpulse * c.normal + c.slipFriction;
+  }
+  if (changed > 0) buildRows();
+  return changed;
+}
+
+bool ActiveContactSet::violatesLaw(const Contact& c, double velocityTolerance) const {
+  const double impulseTolerance = c.effectiveMass * velocityTolerance;
+  const double rN = c.normal.dot(c.impulse), uN = c.normal.dot(c.velocity);
+  const Vec3 rT = c.impulse - rN * c.normal, uT = c.velocity - uN * c.normal;
+  switch (c.branch) {
+    case ContactBranch::TakeOff: return uN < -velocityTolerance;
+    case ContactBranch::Stick: return rN < -impulseTolerance || rT.norm() > c.friction * rN + impulseTolerance;
+    case ContactBranch::Slip:
+      return rN < -impulseTolerance || (uT.norm() > velocityTolerance && uT.dot(c.slipFriction) > 0.0);
+    default: return false;
+  }
+}
+
+void ActiveContactSet::record(StepContacts& out) const {
+  out.points.clear();
+  out.points.reserve(contacts_.size());
+  for (const Contact& c : contacts_) {
+    ContactPoint p;
+    p.node = c.a;
+    p.partner = c.b;
+    p.obstacle = c.obstacle;
+    p.branch = c.branch;
+    p.normal = c.normal;
+    p.impulse = c.impulse;
+    p.velocity = c.velocity;
+    p.friction = c.friction;
+    p.effectiveMass = c.effectiveMass;
+    out.points.push_back(p);
+  }
+  out.sweepChange = lastChange_;
+  out.pairLayers = 0;
+}
+
+void ActiveContactSet::countBranches(StepStats& stats) const {
+  for (const Contact& c : contacts_) {
+    if (c.branch == ContactBranch::TakeOff) ++stats.takeoff;
+    else if (c.branch == ContactBranch::Stick) ++stats.stick;
+    else if (c.branch == ContactBranch::Slip) ++stats.slip;
+  }
+}
+
+}  // namespace weft
