@@ -10,6 +10,8 @@ namespace weft::cli {
 int simulateCommand(const std::vector<std::string>& args);
 int benchCommand(const std::vector<std::string>& args);
 int renderCommand(const std::vector<std::string>& args);
+// `weft gradcheck` (GradcheckCommand.cpp): adjoint vs finite-difference gradient of the task loss.
+int gradcheckCommand(const std::vector<std::string>& args);
 // `weft bench render` (RenderBench.cpp).
 int renderBenchmark(const std::vector<std::string>& args);
 

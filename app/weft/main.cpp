@@ -19,6 +19,8 @@ const char* kUsage =
     "         [--overlay contacts|strain|speed|none] [--wireframe] [--out DIR] [--video FILE.mp4]\n"
     "         [--backend auto|osmesa|egl] [--set PATH=VALUE ...] [--quiet]\n"
     "  bench NAME [--out DIR] [--quick]        (NAME: forward, continuity, contact, render)\n"
+    "  gradcheck SCENE [--param PATH ...] [--eps E] [--json] [--set PATH=VALUE ...]\n"
+    "         [--backward gmres|fixed_point|direct] [--forward-tolerance T] [--backward-tolerance T]\n"
     "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";
 
 }  // namespace
@@ -35,6 +37,7 @@ int main(int argc, char** argv) {
     if (verb == "simulate") return weft::cli::simulateCommand(args);
     if (verb == "render") return weft::cli::renderCommand(args);
     if (verb == "bench") return weft::cli::benchCommand(args);
+    if (verb == "gradcheck") return weft::cli::gradcheckCommand(args);
     std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(), kUsage);
     return 2;
   } catch (const weft::InputError& e) {

@@ -1,0 +1,136 @@
+#include <weft/diff/AdjointSystem.h>
+
+#include <weft/core/Error.h>
+#include <weft/physics/AttachmentConstraint.h>
+#include <weft/physics/BendingConstraint.h>
+#include <weft/physics/StretchConstraint.h>
+
+#include <algorithm>
+
+namespace weft {
+
+AdjointSystem::AdjointSystem(const Scene& scene) : model_(buildClothModel(scene)), h_(scene.time.dt) {
+  // The same families, in the same order, as the Simulator builds.
+  auto add = [this](std::unique_ptr<ProjectiveConstraint> c) {
+    if (c->rowCount() > 0) constraints_.push_back(std::move(c));
+  };
+  add(std::make_unique<StretchConstraint>(makeStretchConstraint(scene, model_)));
+  add(std::make_unique<BendingConstraint>(makeBendingConstraint(scene, model_)));
+  add(std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, false)));
+  add(std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, true)));
+
+  const int m = model_.nodeCount();
+  Eigen::SparseMatrix<double> mass(m, m);
+  std::vector<Eigen::Triplet<double>> diag;
+  for (int i = 0; i < m; ++i) diag.emplace_back(i, i, model_.mass[i]);
+  mass.setFromTriplets(diag.begin(), diag.end());
+  system_ = mass;
+  for (const auto& c : constraints_) {
+    system_ += (h_ * h_) * c->weightedGram();
+    anyDerivative_ = anyDerivative_ || c->hasDerivative();
+    rows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
+  }
+  system_.makeCompressed();
+  if (!cholesky_.factorize(system_)) throw NumericalError(0, "backward", "system matrix P is not positive definite");
+  buildColouring();
+}
+
+AdjointSystem::~AdjointSystem() = default;
+
+void AdjointSystem::buildColouring() {
+  // Adjacency from the selection patterns: two nodes are coupled (in P and Delta P) when they
+  // appear in one constraint row. Pattern values are replaced by 1 so nothing cancels.
+  const int m = model_.nodeCount();
+  std::vector<std::vector<int>> adjacency(m);
+  for (int i = 0; i < m; ++i) adjacency[i].push_back(i);
+  for (const auto& c : constraints_) {
+    if (!c->hasDerivative()) continue;
+    const Eigen::SparseMatrix<double> rowsByNode = c->selectionTransposed().transpose();  // rows x nodes
+    Eigen::SparseMatrix<double, Eigen::RowMajor> byRow = rowsByNode;
+    for (int r = 0; r < byRow.outerSize(); ++r) {
+      std::vector<int> nodes;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(byRow, r); it; ++it) nodes.push_back(it.col());
+      for (int a : nodes)
+        for (int b : nodes) adjacency[a].push_back(b);
+    }
+  }
+  for (auto& list : adjacency) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  neighbours_ = adjacency;
+  // Greedy distance-2 colouring: a node's colour differs from every node within two hops.
+  std::vector<int> colour(m, -1);
+  std::vector<int> mark;
+  for (int i = 0; i < m; ++i) {
+    for (int j : adjacency[i])
+      for (int k : adjacency[j])
+        if (colour[k] >= 0) {
+          if (static_cast<int>(mark.size()) <= colour[k]) mark.resize(colour[k] + 1, -1);
+          mark[colour[k]] = i;
+        }
+    int c = 0;
+    while (c < static_cast<int>(mark.size()) && mark[c] == i) ++c;
+    colour[i] = c;
+    if (static_cast<int>(colourNodes_.size()) <= c) colourNodes_.resize(c + 1);
+    colourNodes_[c].push_back(i);
+  }
+}
+
+void AdjointSystem::prepare(const NodeMatrix& x) {
+  for (auto& c : constraints_)
+    if (c->hasDerivative()) c->prepareDerivative(x, false);  // exact derivative (Eq. 18), not clamped
+}
+
+void AdjointSystem::multiplyP(const NodeMatrix& in, NodeMatrix& out) const { out = system_ * in; }
+
+void AdjointSystem::multiplyDeltaP(const NodeMatrix& in, NodeMatrix& out) const {
+  // Delta P in = h^2 sum_i A_i^T w_i D_i A_i in (Eq. 19), with applyDerivative giving w_i D_i A_i in.
+  out.setZero(in.rows(), 3);
+  for (std::size_t c = 0; c < constraints_.size(); ++c) {
+    if (!constraints_[c]->hasDerivative()) continue;
+    constraints_[c]->applyDerivative(in, rows_[c]);
+    constraints_[c]->gather(rows_[c], h_ * h_, out);
+  }
+}
+
+void AdjointSystem::multiplyK(const NodeMatrix& in, NodeMatrix& out) const {
+  multiplyP(in, out);
+  for (std::size_t c = 0; c < constraints_.size(); ++c) {
+    if (!constraints_[c]->hasDerivative()) continue;
+    constraints_[c]->applyDerivative(in, rows_[c]);
+    constraints_[c]->gather(rows_[c], -h_ * h_, out);
+  }
+}
+
+void AdjointSystem::solveP(NodeMatrix& inOut) { cholesky_.solveInPlace(inOut); }
+
+Eigen::SparseMatrix<double> AdjointSystem::assembleK() const {
+  const int m = nodeCount();
+  std::vector<Eigen::Triplet<double>> entries;
+  // Block diagonal P (x) I_3.
+  for (int k = 0; k < system_.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(system_, k); it; ++it)
+      for (int d = 0; d < 3; ++d) entries.emplace_back(d * m + it.row(), d * m + it.col(), it.value());
+  if (anyDerivative_) {
+    NodeMatrix probe(m, 3), image(m, 3);
+    for (const std::vector<int>& nodes : colourNodes_) {
+      for (int d = 0; d < 3; ++d) {
+        probe.setZero();
+        for (int i : nodes) probe(i, d) = 1.0;
+        multiplyDeltaP(probe, image);
+        // Column (d, i) of Delta P lives on i's neighbours, which see no other node of this colour.
+        for (int i : nodes)
+          for (int j : neighbours_[i])
+            for (int e = 0; e < 3; ++e)
+              if (image(j, e) != 0.0) entries.emplace_back(e * m + j, d * m + i, -image(j, e));
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> k(3 * m, 3 * m);
+  k.setFromTriplets(entries.begin(), entries.end());
+  k.makeCompressed();
+  return k;
+}
+
+}  // namespace weft

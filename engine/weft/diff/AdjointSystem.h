@@ -1,0 +1,70 @@
+#pragma once
+// The linear system of one backward step without contact (DiffCloth Eq. 19):
+//
+//   K z = g,   K = P - Delta P,   Delta P = h^2 sum_i w_i A_i^T (dp_i/dx)|_{x_{n+1}},
+//
+// with P = M + h^2 sum_i w_i A_i^T A_i the prefactorised PD matrix (Eq. 7, one coordinate,
+// times I_3) and Delta P the exact projection derivatives at the recorded end-of-step state
+// x_{n+1}. K is h^2 times the Hessian of the implicit-Euler energy (Eq. 3), hence symmetric;
+// it is indefinite where the cloth is compressed (buckling modes).
+//
+// The constraints are built here from the scene with the same make* functions as the Simulator
+// (the Simulator is not touched), so P and Delta P are exactly the forward's. Vectors are m x 3
+// NodeMatrix blocks; the flat 3m ordering used by the assembled matrix is the NodeMatrix's
+// column-major storage (index = coordinate * m + node).
+
+#include <weft/core/Types.h>
+#include <weft/physics/ClothModel.h>
+#include <weft/physics/ProjectiveConstraint.h>
+#include <weft/physics/SparseCholesky.h>
+#include <weft/scene/Scene.h>
+
+#include <Eigen/SparseCore>
+
+#include <memory>
+#include <vector>
+
+namespace weft {
+
+class AdjointSystem {
+ public:
+  // Builds the constraints and factorises P. Throws NumericalError if P is not positive definite.
+  explicit AdjointSystem(const Scene& scene);
+  ~AdjointSystem();
+
+  const ClothModel& model() const { return model_; }
+  double dt() const { return h_; }
+  int nodeCount() const { return model_.nodeCount(); }
+  const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const { return constraints_; }
+  const Eigen::SparseMatrix<double>& systemMatrix() const { return system_; }  // P, one coordinate
+
+  // Evaluates the projection derivatives (Delta P) at x (the recorded x_{n+1}).
+  void prepare(const NodeMatrix& x);
+  bool hasDeltaP() const { return anyDerivative_; }
+
+  void multiplyP(const NodeMatrix& in, NodeMatrix& out) const;       // out = P in
+  void multiplyDeltaP(const NodeMatrix& in, NodeMatrix& out) const;  // out = Delta P in
+  void multiplyK(const NodeMatrix& in, NodeMatrix& out) const;       // out = (P - Delta P) in
+  void solveP(NodeMatrix& inOut);                                    // inOut = P^{-1} inOut (CHOLMOD factor)
+  // K assembled as a 3m x 3m sparse matrix (flat index = coordinate * m + node), Delta P found by
+  // coloured probing (Curtis-Powell-Reid): nodes of one colour share no constraint row, so one
+  // product per colour and coordinate recovers all their columns.
+  Eigen::SparseMatrix<double> assembleK() const;
+  int probeColours() const { return static_cast<int>(colourNodes_.size()); }
+
+ private:
+  void buildColouring();
+
+  ClothModel model_;
+  double h_;
+  std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
+  Eigen::SparseMatrix<double> system_;
+  SparseCholesky cholesky_;
+  bool anyDerivative_ = false;
+  mutable std::vector<NodeMatrix> rows_;  // per-constraint derivative rows (work buffers)
+  // Node adjacency (nodes sharing a constraint row, self included) and its distance-2 colouring.
+  std::vector<std::vector<int>> neighbours_;
+  std::vector<std::vector<int>> colourNodes_;
+};
+
+}  // namespace weft

@@ -1,0 +1,32 @@
+#include <weft/diff/ForwardPass.h>
+
+#include <weft/physics/Simulator.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <algorithm>
+
+namespace weft {
+
+ForwardPass runForwardPass(const Scene& scene) {
+  ForwardPass pass;
+  Simulator sim(scene);
+  sim.run(scene.time.steps, pass.trajectory);
+  for (const StepStats& s : pass.trajectory.steps) {
+    if (!s.converged) ++pass.unconvergedSteps;
+    pass.maxResidual = std::max(pass.maxResidual, s.residual);
+    pass.solves += s.pdIterations;
+  }
+  return pass;
+}
+
+Scene withTightForwardSolver(const Scene& scene, double tolerance, int maxSolves) {
+  nlohmann::json doc = scene.document;
+  nlohmann::json& solver = doc["solver"];
+  if (!solver.is_object()) solver = nlohmann::json::object();
+  solver["method"] = "newton";
+  solver["pd_tolerance"] = tolerance;
+  solver["pd_iterations"] = maxSolves;
+  return parseScene(doc, scene.file, scene.directory);
+}
+
+}  // namespace weft

@@ -1,0 +1,35 @@
+#pragma once
+// Restarted GMRES on K z = g, right-preconditioned by the prefactorised P: it builds a Krylov
+// space of K P^{-1} (one back-substitution with P's CHOLMOD factor and one product with K per
+// iteration) and minimises the true residual |g - K z| over it. This goes beyond DiffCloth
+// (its Sec. 7 names the fixed-point iteration's divergence as a limitation): GMRES converges
+// whenever K is non-singular, whatever the spectral radius of P^{-1} Delta P.
+//
+// Why GMRES and not MINRES: without contact K = P - Delta P is symmetric (indefinite on
+// compressed cloth), where preconditioned MINRES would be cheaper per iteration; but contact adds
+// Delta R (Eq. 29), which is not symmetric (slip blocks), and the same solver must then work on
+// P - Delta P - Delta R. Right preconditioning keeps the monitored residual the true one, so the
+// tolerance means the same as for the other two solvers.
+
+#include <weft/diff/AdjointLinearSolver.h>
+
+#include <vector>
+
+namespace weft {
+
+class GmresSolver final : public AdjointLinearSolver {
+ public:
+  GmresSolver(double tolerance, int maxIterations, int restart = 50)
+      : tolerance_(tolerance), maxIterations_(maxIterations), restart_(restart) {}
+  const char* name() const override { return "gmres"; }
+  LinearSolveResult solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) override;
+
+ private:
+  double tolerance_;
+  int maxIterations_;
+  int restart_;
+  std::vector<NodeMatrix> basis_, preconditioned_;  // V_j and P^{-1} V_j
+  NodeMatrix residual_, work_;
+};
+
+}  // namespace weft

@@ -1,0 +1,68 @@
+#include <weft/diff/GradientCheck.h>
+
+#include <weft/diff/Backpropagation.h>
+#include <weft/diff/ForwardPass.h>
+#include <weft/diff/TaskLoss.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace weft {
+
+double relativeError(double a, double b) {
+  const double scale = std::max(std::abs(a), std::abs(b));
+  return scale > 0.0 ? std::abs(a - b) / scale : 0.0;
+}
+
+double GradientCheckReport::maxRelativeError() const {
+  double worst = 0.0;
+  for (const auto& e : entries) worst = std::max(worst, e.relativeError);
+  return worst;
+}
+
+GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parameters,
+                                  const GradientCheckOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  requireContactFree(input);
+  const Scene scene = withTightForwardSolver(input, options.forwardTolerance);
+  const TaskLoss loss(scene);
+  BackwardSettings backward = scene.solver.backward;
+  if (options.backwardMethod) backward.method = *options.backwardMethod;
+  backward.tolerance = options.backwardTolerance;
+
+  GradientCheckReport report;
+  report.backwardMethod = backward.method;
+  const ForwardPass base = runForwardPass(scene);
+  ++report.forwardRuns;
+  report.unconvergedSteps += base.unconvergedSteps;
+  const GradientResult adjoint = backpropagate(scene, base.trajectory, loss, parameters, backward);
+  report.loss = adjoint.loss;
+  report.backward = adjoint.solver;
+
+  const Eigen::VectorXd values = parameters.values(scene);
+  for (int k = 0; k < parameters.size(); ++k) {
+    GradientCheckEntry e;
+    e.param = parameters[k].path;
+    e.value = values[k];
+    e.step = values[k] != 0.0 ? options.eps * std::abs(values[k]) : options.eps;
+    double side[2];
+    for (int s = 0; s < 2; ++s) {
+      Eigen::VectorXd shifted = values;
+      shifted[k] += s == 0 ? e.step : -e.step;
+      const Scene perturbed = parameters.withValues(scene, shifted);
+      const ForwardPass run = runForwardPass(perturbed);
+      ++report.forwardRuns;
+      report.unconvergedSteps += run.unconvergedSteps;
+      side[s] = loss.value(run.trajectory);
+    }
+    e.finiteDifference = (side[0] - side[1]) / (2.0 * e.step);
+    e.adjoint = adjoint.gradient[k];
+    e.relativeError = relativeError(e.adjoint, e.finiteDifference);
+    report.entries.push_back(e);
+  }
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace weft

@@ -1,0 +1,40 @@
+#pragma once
+// The parameters a gradient is taken with respect to, in a fixed order: from `--param` options
+// or from the scene's task.parameters. Setting values edits the scene's JSON document and runs
+// it through the strict loader again (parseScene), so a value out of range (a negative density,
+// a zero wind direction) is the same InputError a scene file would give.
+
+#include <weft/diff/SceneParameter.h>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace weft {
+
+class ParameterSet {
+ public:
+  ParameterSet() = default;
+  // Resolves explicit paths (reported as "--param <path>" on error).
+  static ParameterSet fromPaths(const Scene& scene, const std::vector<std::string>& paths);
+  // Resolves the scene's task.parameters (reported as "task.parameters.<i>").
+  static ParameterSet fromTask(const Scene& scene);
+
+  int size() const { return static_cast<int>(parameters_.size()); }
+  bool empty() const { return parameters_.empty(); }
+  const SceneParameter& operator[](int i) const { return parameters_[i]; }
+  const std::vector<SceneParameter>& parameters() const { return parameters_; }
+
+  Eigen::VectorXd values(const Scene& scene) const;
+  // A new validated scene: `scene`'s document with the parameters set to `values`.
+  Scene withValues(const Scene& scene, const Eigen::VectorXd& values) const;
+
+ private:
+  std::vector<SceneParameter> parameters_;
+};
+
+// A new validated scene with one JSON path set to a value (the building block of withValues).
+Scene withDocumentValue(const Scene& scene, const std::string& path, const nlohmann::json& value);
+
+}  // namespace weft

@@ -1,0 +1,90 @@
+#include <weft/diff/SceneParameter.h>
+
+#include <weft/core/Error.h>
+#include <weft/scene/JsonPath.h>
+
+#include <cstdlib>
+
+namespace weft {
+namespace {
+
+bool parseIndex(const std::string& s, int& out) {
+  if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+  out = std::atoi(s.c_str());
+  return true;
+}
+
+const char* kSupported =
+    "differentiable parameters are cloths.K.material.{stretch,bend,density}, "
+    "cloths.K.initial_velocity.i, cloths.K.forces.J.force.i, wind.{strength,frequency,phase}, "
+    "wind.direction.i, gravity.i";
+
+}  // namespace
+
+SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path, const std::string& where) {
+  auto fail = [&](const std::string& what) { throw InputError(scene.file, where, what); };
+  const nlohmann::json* value = findJsonPath(scene.document, path);
+  if (!value) fail("parameter '" + path + "' names no value in the scene (write the value in the scene file)");
+  if (!value->is_number()) fail("parameter '" + path + "' is not a number in the scene");
+
+  SceneParameter p;
+  p.path = path;
+  const std::vector<std::string> parts = splitJsonPath(path);
+  const std::size_t n = parts.size();
+  auto component = [&](const std::string& s) {
+    int c = -1;
+    if (!parseIndex(s, c) || c > 2) fail("parameter '" + path + "': component must be 0, 1 or 2");
+    return c;
+  };
+  if (n >= 3 && parts[0] == "cloths") {
+    if (!parseIndex(parts[1], p.cloth) || p.cloth >= static_cast<int>(scene.cloths.size()))
+      fail("parameter '" + path + "': no such cloth");
+    if (n == 4 && parts[2] == "material") {
+      if (parts[3] == "stretch") p.kind = SceneParameter::Kind::Stretch;
+      else if (parts[3] == "bend") p.kind = SceneParameter::Kind::Bend;
+      else if (parts[3] == "density") p.kind = SceneParameter::Kind::Density;
+      else fail("parameter '" + path + "' is not differentiable; " + kSupported);
+      return p;
+    }
+    if (n == 4 && parts[2] == "initial_velocity") {
+      p.kind = SceneParameter::Kind::InitialVelocity;
+      p.component = component(parts[3]);
+      return p;
+    }
+    if (n == 6 && parts[2] == "forces" && parts[4] == "force") {
+      p.kind = SceneParameter::Kind::NodalForce;
+      if (!parseIndex(parts[3], p.index)) fail("parameter '" + path + "': no such force");
+      p.component = component(parts[5]);
+      return p;
+    }
+  } else if (n >= 2 && parts[0] == "wind" && scene.wind) {
+    if (n == 2 && parts[1] == "strength") p.kind = SceneParameter::Kind::WindStrength;
+    else if (n == 2 && parts[1] == "frequency") p.kind = SceneParameter::Kind::WindFrequency;
+    else if (n == 2 && parts[1] == "phase") p.kind = SceneParameter::Kind::WindPhase;
+    else if (n == 3 && parts[1] == "direction") {
+      p.kind = SceneParameter::Kind::WindDirection;
+      p.component = component(parts[2]);
+    } else {
+      fail("parameter '" + path + "' is not differentiable; " + kSupported);
+    }
+    if (scene.wind->constant &&
+        (p.kind == SceneParameter::Kind::WindFrequency || p.kind == SceneParameter::Kind::WindPhase))
+      fail("parameter '" + path + "' has no effect: the wind model is \"constant\"");
+    return p;
+  } else if (n == 2 && parts[0] == "gravity" && scene.gravity) {
+    p.kind = SceneParameter::Kind::Gravity;
+    p.component = component(parts[1]);
+    return p;
+  }
+  fail("parameter '" + path + "' is not differentiable; " + kSupported);
+  return p;  // not reached
+}
+
+double parameterValue(const Scene& scene, const SceneParameter& parameter) {
+  const nlohmann::json* v = findJsonPath(scene.document, parameter.path);
+  if (!v || !v->is_number())
+    throw InputError(scene.file, parameter.path, "parameter names no number in the scene");
+  return v->get<double>();
+}
+
+}  // namespace weft

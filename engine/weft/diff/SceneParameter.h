@@ -1,0 +1,51 @@
+#pragma once
+// One differentiable scene parameter, addressed by its JSON path in the scene document (the same
+// paths `--set` and `task.parameters` use), e.g. "cloths.0.material.stretch" or
+// "wind.direction.2". Resolving a path checks that the adjoint knows how the parameter enters
+// the step equations (ParameterPartials), so an unsupported path is an input error before any
+// simulation runs.
+
+#include <weft/scene/Scene.h>
+
+#include <limits>
+#include <string>
+
+namespace weft {
+
+struct SceneParameter {
+  enum class Kind {
+    Stretch,          // cloths.K.material.stretch: scales the cloth's stretch weights
+    Bend,             // cloths.K.material.bend: scales the cloth's bending weights
+    Density,          // cloths.K.material.density: scales mass, inertia and gravity
+    InitialVelocity,  // cloths.K.initial_velocity.i: enters v_0
+    NodalForce,       // cloths.K.forces.J.force.i: constant f_ext on the listed vertices
+    WindStrength,     // wind.strength
+    WindDirection,    // wind.direction.i
+    WindFrequency,    // wind.frequency
+    WindPhase,        // wind.phase
+    Gravity,          // gravity.i
+  };
+  std::string path;
+  Kind kind = Kind::Stretch;
+  int cloth = -1;      // cloth index, for per-cloth parameters
+  int index = -1;      // force index (NodalForce)
+  int component = -1;  // vector component 0..2 (InitialVelocity, NodalForce, WindDirection, Gravity)
+
+  // Where the bounds and the optional log scale of an optimisation will live (set by `weft
+  // optimize` from the task; unused by the gradient itself). With logScale the optimiser works
+  // on log(value) and the chain rule multiplies the gradient by the value.
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
+  bool logScale = false;
+};
+
+// Resolves `path` against the validated scene. Throws InputError(scene.file, where, ...) when
+// the path names no number in the scene or a value the adjoint cannot differentiate yet.
+// `where` is what the message names: the option ("--param <path>") or the JSON path of the
+// task entry ("task.parameters.1").
+SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path, const std::string& where);
+
+// The parameter's current value, read from the scene document.
+double parameterValue(const Scene& scene, const SceneParameter& parameter);
+
+}  // namespace weft

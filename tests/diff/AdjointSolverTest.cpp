@@ -1,0 +1,218 @@
+// The three adjoint linear solvers (fixed point, GMRES, direct LU) on the same steps: the same
+// solution and the same gradient; the assembled K agrees with its matrix-free product; and a
+// case built so that the fixed-point iteration diverges (stiff cloth under compression, where
+// rho(P^{-1} Delta P) > 1) is detected and still yields the correct gradient.
+
+#include <diff/DiffTestSupport.h>
+
+#include <support/SceneBuilder.h>
+#include <weft/core/Error.h>
+#include <weft/diff/AdjointSolver.h>
+#include <weft/diff/AdjointSystem.h>
+#include <weft/diff/Backpropagation.h>
+#include <weft/diff/DirectLuSolver.h>
+#include <weft/diff/FixedPointSolver.h>
+#include <weft/diff/ForwardPass.h>
+#include <weft/diff/GmresSolver.h>
+#include <weft/diff/GradientCheck.h>
+#include <weft/io/Npy.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+
+namespace weft {
+namespace {
+
+using test::TempDir;
+
+NodeMatrix randomBlock(int m, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  NodeMatrix b(m, 3);
+  for (int i = 0; i < m; ++i)
+    for (int c = 0; c < 3; ++c) b(i, c) = n(gen);
+  return b;
+}
+
+TEST(AdjointSystem, AssembledMatrixMatchesTheProductAndIsSymmetric) {
+  const Scene scene = withTightForwardSolver(test::parse(test::windClothScene(6, 15)), 1e-8);
+  const ForwardPass pass = runForwardPass(scene);
+  AdjointSystem system(scene);
+  system.prepare(pass.trajectory.positions.back());
+  ASSERT_TRUE(system.hasDeltaP());
+  const Eigen::SparseMatrix<double> k = system.assembleK();
+  const int m = system.nodeCount();
+  const NodeMatrix x = randomBlock(m, 1);
+  NodeMatrix kx(m, 3);
+  system.multiplyK(x, kx);
+  const Eigen::Map<const Eigen::VectorXd> flat(x.data(), 3 * m);
+  const Eigen::VectorXd assembled = k * flat;
+  const Eigen::Map<const Eigen::VectorXd> product(kx.data(), 3 * m);
+  EXPECT_LT((assembled - product).norm(), 1e-12 * product.norm());
+  const Eigen::SparseMatrix<double> kt = k.transpose();
+  EXPECT_LT((k - kt).norm(), 1e-10 * k.norm());
+  EXPECT_LE(system.probeColours(), 40);
+}
+
+// The spectral radius of P^{-1} Delta P at the system's prepared state (power iteration; the
+// matrix is similar to the symmetric P^{-1/2} Delta P P^{-1/2}, so this converges to |lambda|max).
+double fixedPointSpectralRadius(AdjointSystem& system) {
+  NodeMatrix u = randomBlock(system.nodeCount(), 3), w;
+  double rho = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    u /= u.norm();
+    system.multiplyDeltaP(u, w);
+    system.solveP(w);
+    rho = w.norm();
+    u.swap(w);
+  }
+  return rho;
+}
+
+TEST(AdjointSolvers, AllThreeGiveTheSameSolution) {
+  const Scene scene = withTightForwardSolver(test::parse(test::softWindClothScene(6, 15)), 1e-8);
+  const ForwardPass pass = runForwardPass(scene);
+  AdjointSystem system(scene);
+  system.prepare(pass.trajectory.positions.back());
+  EXPECT_LT(fixedPointSpectralRadius(system), 1.0);
+  const NodeMatrix g = randomBlock(system.nodeCount(), 2);
+  FixedPointSolver fixedPoint(1e-12, 500);
+  GmresSolver gmres(1e-12, 500);
+  DirectLuSolver direct;
+  NodeMatrix a, b, c;
+  const LinearSolveResult ra = fixedPoint.solve(system, g, a);
+  const LinearSolveResult rb = gmres.solve(system, g, b);
+  const LinearSolveResult rc = direct.solve(system, g, c);
+  ASSERT_TRUE(ra.converged);
+  ASSERT_TRUE(rb.converged);
+  ASSERT_TRUE(rc.converged);
+  EXPECT_LT(ra.residual, 1e-12);
+  EXPECT_LT(rb.residual, 1e-12);
+  EXPECT_LT(rc.residual, 1e-12);
+  EXPECT_LT((a - c).norm(), 1e-9 * c.norm());
+  EXPECT_LT((b - c).norm(), 1e-9 * c.norm());
+  EXPECT_LT(rb.iterations, ra.iterations + 1);
+}
+
+TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
+  TempDir dir;
+  const Scene scene = withTightForwardSolver(
+      test::withTrajectoryTask(dir, test::softWindClothScene(6, 25),
+                               {"cloths.0.material.stretch", "wind.strength", "cloths.0.material.density"}),
+      1e-8);
+  const ForwardPass pass = runForwardPass(scene);
+  const TaskLoss loss(scene);
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  std::vector<Eigen::VectorXd> gradients;
+  for (const char* method : {"direct", "fixed_point", "gmres"}) {
+    BackwardSettings settings = scene.solver.backward;
+    settings.method = method;
+    settings.tolerance = 1e-9;
+    settings.maxIterations = 1000;
+    const GradientResult r = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+    EXPECT_EQ(r.solver.fallbacks, 0) << method;
+    EXPECT_EQ(r.solver.solves, scene.time.steps) << method;
+    std::printf("%-11s %d steps, %lld iterations (max %d per step), %d fallbacks, %.4f s\n", method,
+                r.solver.solves, r.solver.iterations, r.solver.maxIterations, r.solver.fallbacks, r.solver.seconds);
+    gradients.push_back(r.gradient);
+  }
+  for (int k = 0; k < parameters.size(); ++k) {
+    SCOPED_TRACE(parameters[k].path);
+    EXPECT_LT(relativeError(gradients[1][k], gradients[0][k]), 1e-8);
+    EXPECT_LT(relativeError(gradients[2][k], gradients[0][k]), 1e-8);
+  }
+}
+
+// A flat cloth squeezed in its own plane (no gravity; left column fixed, right column a handle
+// moving 0.1 m towards it in 0.1 s; wind along the squeeze): the triangles are compressed, so
+// the out-of-plane derivative of the stretch projection, 1/sigma, exceeds 1 and rho(P^{-1}
+// Delta P) grows to about 1.4 (measured): Eq. 20 diverges along the out-of-plane (buckling)
+// modes. The forward stays exactly planar, hence smooth, and K stays non-singular (indefinite).
+// The loss asks for an out-of-plane final shape, so that the adjoint right-hand side excites
+// those modes.
+nlohmann::json squeezedClothScene() {
+  nlohmann::json doc = test::gridScene(0.3, 5, 0.01, 10, 1000.0, 0.0, 0.1);
+  const nlohmann::json keyframes = nlohmann::json::array(
+      {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}}, {{"time", 0.1}, {"offset", {-0.1, 0.0, 0.0}}}});
+  nlohmann::json fixed = {{"vertices", {0, 6, 12, 18, 24, 30}}, {"kind", "fixed"}};
+  nlohmann::json handle = {
+      {"vertices", {5, 11, 17, 23, 29, 35}}, {"kind", "handle"}, {"trajectory", {{"keyframes", keyframes}}}};
+  doc["cloths"][0]["attachments"] = nlohmann::json::array({fixed, handle});
+  doc["wind"] = {{"direction", {1.0, 0.0, 0.0}}, {"strength", 0.5}, {"frequency", 1.0}, {"phase", 0.0}};
+  return doc;
+}
+
+TEST(AdjointSolvers, DivergingFixedPointIsDetectedAndFallsBack) {
+  TempDir dir;
+  nlohmann::json doc = squeezedClothScene();
+  {
+    // Target: the final state of the run, lifted out of plane by 1 cm.
+    const ForwardPass run = runForwardPass(withTightForwardSolver(test::parse(doc), 1e-8));
+    NodeMatrix target = run.trajectory.positions.back();
+    target.col(1).array() += 0.01;
+    target.col(0).array() += 0.005;  // and shifted in plane, so that every parameter matters
+    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = target;
+    writeNpy(dir.file("lifted.npy"), {static_cast<std::size_t>(rows.rows()), 3}, rows.data());
+  }
+  test::addTask(doc, "final", dir.file("lifted.npy"),
+                {"wind.strength", "wind.phase", "cloths.0.material.stretch"});
+  const Scene scene = withTightForwardSolver(test::parse(doc), 1e-8);
+  const ForwardPass pass = runForwardPass(scene);
+  ASSERT_EQ(pass.unconvergedSteps, 0);
+
+  // The spectral radius of P^{-1} Delta P at the last state exceeds 1.
+  AdjointSystem system(scene);
+  system.prepare(pass.trajectory.positions.back());
+  const double rho = fixedPointSpectralRadius(system);
+  EXPECT_GT(rho, 1.1);
+  std::printf("rho(P^-1 Delta P) at the last state: %.4f\n", rho);
+
+  const TaskLoss loss(scene);
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  BackwardSettings settings = scene.solver.backward;
+  settings.tolerance = 1e-10;
+  settings.maxIterations = 200;
+  settings.method = "direct";
+  const GradientResult reference = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  settings.method = "fixed_point";
+  const GradientResult fixedPoint = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  EXPECT_GT(fixedPoint.solver.notConverged, 0);
+  EXPECT_GT(fixedPoint.solver.diverged, 0);
+  EXPECT_EQ(fixedPoint.solver.fallbacks, fixedPoint.solver.notConverged);
+  settings.method = "gmres";
+  const GradientResult gmres = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  std::printf("fixed point: %d of %d steps not converged (%d diverged), %d fallbacks; gmres: %lld iterations, "
+              "max %d per step, %d fallbacks\n", fixedPoint.solver.notConverged, fixedPoint.solver.solves,
+              fixedPoint.solver.diverged, fixedPoint.solver.fallbacks, gmres.solver.iterations,
+              gmres.solver.maxIterations, gmres.solver.fallbacks);
+  EXPECT_EQ(gmres.solver.fallbacks, 0);
+  for (int k = 0; k < parameters.size(); ++k) {
+    SCOPED_TRACE(parameters[k].path);
+    EXPECT_LT(relativeError(fixedPoint.gradient[k], reference.gradient[k]), 1e-7);
+    EXPECT_LT(relativeError(gmres.gradient[k], reference.gradient[k]), 1e-7);
+  }
+  // And that gradient is the true one.
+  GradientCheckOptions options;
+  options.backwardMethod = "fixed_point";  // falls back on the diverging steps
+  const GradientCheckReport report = checkGradient(scene, parameters, options);
+  EXPECT_GT(report.backward.fallbacks, 0);
+  for (const GradientCheckEntry& e : report.entries) {
+    SCOPED_TRACE(e.param);
+    EXPECT_LT(e.relativeError, 1e-4) << "adjoint " << e.adjoint << " fd " << e.finiteDifference;
+  }
+
+  // Without a fallback the diverging method is a numerical failure naming the backward module.
+  settings.method = "fixed_point";
+  settings.fallback = "none";
+  try {
+    backpropagate(scene, pass.trajectory, loss, parameters, settings);
+    FAIL() << "expected a NumericalError";
+  } catch (const NumericalError& e) {
+    EXPECT_EQ(e.module(), "backward");
+  }
+}
+
+}  // namespace
+}  // namespace weft

@@ -1,0 +1,55 @@
+#include <diff/DiffTestSupport.h>
+
+#include <support/SceneBuilder.h>
+#include <weft/diff/ForwardPass.h>
+#include <weft/io/Npy.h>
+
+namespace weft::test {
+
+nlohmann::json windClothScene(int quads, int steps) {
+  nlohmann::json doc = hangingClothScene(0.4, quads, 0.01, steps, 300.0, 0.001, 0.1);
+  doc["wind"] = {{"direction", {0.2, 0.0, 1.0}}, {"strength", 1.5}, {"frequency", 2.0}, {"phase", 0.3}};
+  nlohmann::json& cloth = doc["cloths"][0];
+  const int bottomMiddle = quads * (quads + 1) + quads / 2;
+  cloth["forces"] = nlohmann::json::array({{{"vertices", {bottomMiddle}}, {"force", {0.0, 0.0, 0.002}}}});
+  cloth["initial_velocity"] = {0.0, 0.0, 0.1};
+  return doc;
+}
+
+std::string writeTargetTrajectory(const nlohmann::json& document, const std::string& path) {
+  const Scene scene = withTightForwardSolver(parse(document), 1e-8);
+  const ForwardPass pass = runForwardPass(scene);
+  const std::vector<double> flat = pass.trajectory.flattenedPositions();
+  writeNpy(path, {pass.trajectory.positions.size(), static_cast<std::size_t>(pass.trajectory.nodeCount()), 3},
+           flat.data());
+  return path;
+}
+
+void addTask(nlohmann::json& document, const std::string& kind, const std::string& target,
+             const std::vector<std::string>& parameters) {
+  document["task"] = {{"loss", {{kind, {{"target", target}}}}}, {"parameters", parameters}};
+}
+
+nlohmann::json softWindClothScene(int quads, int steps) {
+  nlohmann::json doc = windClothScene(quads, steps);
+  doc["cloths"][0]["material"]["stretch"] = 30.0;
+  doc["cloths"][0]["material"]["density"] = 1.0;
+  return doc;
+}
+
+Scene withTrajectoryTask(const TempDir& dir, const nlohmann::json& document,
+                         const std::vector<std::string>& parameters) {
+  nlohmann::json doc = document;
+  nlohmann::json targetDoc = doc;
+  targetDoc["cloths"][0]["material"]["stretch"] = doc["cloths"][0]["material"]["stretch"].get<double>() * 5.0 / 6.0;
+  targetDoc["wind"]["strength"] = 2.0;
+  const std::string target = writeTargetTrajectory(targetDoc, dir.file("target.npy"));
+  addTask(doc, "trajectory", target, parameters);
+  return parse(doc);
+}
+
+Scene windTaskScene(const TempDir& dir, const std::vector<std::string>& parameters, int steps) {
+  return withTrajectoryTask(dir, windClothScene(6, steps), parameters);
+}
+
+}  // namespace weft::test

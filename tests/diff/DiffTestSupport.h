@@ -1,0 +1,41 @@
+#pragma once
+// Scenes for the gradient tests: a small cloth hanging in wind (6 x 6 quads, a few tens of
+// steps) with every kind of differentiable parameter present, and targets for its task loss
+// simulated from the same scene with other parameter values.
+
+#include <support/TempDir.h>
+#include <weft/scene/Scene.h>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace weft::test {
+
+// The hanging cloth in a sinusoidal wind, with a constant nodal force on a bottom vertex and an
+// initial velocity; no task yet. 0.4 m, `quads` x `quads`, dt 0.01.
+nlohmann::json windClothScene(int quads = 6, int steps = 25);
+
+// Simulates `document` (tightly converged) and writes its positions ([states, vertices, 3]) as
+// .npy to `path`. Returns the path.
+std::string writeTargetTrajectory(const nlohmann::json& document, const std::string& path);
+
+// Adds task {loss: {<kind>: {target}}, parameters} to the document.
+void addTask(nlohmann::json& document, const std::string& kind, const std::string& target,
+             const std::vector<std::string>& parameters);
+
+// The same cloth made soft and heavy (stretch 30 N/m, density 1 kg/m^2): h^2 k is below the nodal
+// mass, so rho(P^{-1} Delta P) < 1 and DiffCloth's fixed-point iteration converges. On the stiff
+// scene above it does not (compressed triangles make rho > 1; see AdjointSolverTest).
+nlohmann::json softWindClothScene(int quads = 6, int steps = 25);
+
+// `document` with a trajectory task whose target (the same scene with 5/6 of its stretch
+// stiffness and wind strength 2.0) is written into `dir`.
+Scene withTrajectoryTask(const TempDir& dir, const nlohmann::json& document,
+                         const std::vector<std::string>& parameters);
+
+// The wind scene with that task: what most adjoint tests differentiate.
+Scene windTaskScene(const TempDir& dir, const std::vector<std::string>& parameters, int steps = 25);
+
+}  // namespace weft::test
