@@ -16,21 +16,35 @@ namespace {
 constexpr double kGramShift = 1e-7;
 // Branch switches of one contact in one step before it may no longer take off, and before it
 // keeps its branch.
+// Smallest floor eps of |u_T| in the friction Hessian (m/s). The friction's stiffness
+// mu r_N / |u_T| near rest is what Newton has to resolve; below about a millimetre per second it
+// dwarfs the cloth's and the solve stalls. A settled slide slower than eps becomes stick.
+constexpr double kMinimumSmoothing = 1e-3;
 constexpr int kFlipsBeforeHolding = 4, kFlipsBeforeFreezing = 8;
 
 }  // namespace
 
 void ActiveContactSet::reset(const std::vector<ContactConstraint>& obstacleContacts,
                              const std::vector<ContactConstraint>& pairs, const NodeMatrix& x0,
-                             const Eigen::VectorXd& mass, double h) {
+                             const Eigen::VectorXd& mass, double h, double velocityTolerance) {
   x0_ = &x0;
   h_ = h;
+  smoothing_ = std::max(velocityTolerance, kMinimumSmoothing);
+  // Remember how the last step left each node's obstacle contact, for guessBranches.
+  if (previous_.size() != static_cast<std::size_t>(x0.rows())) previous_.assign(x0.rows(), Previous{});
+  for (int node : rememberedNodes_) previous_[node] = Previous{};
+  rememberedNodes_.clear();
+  for (const Contact& c : contacts_)
+    if (c.b < 0 && c.branch != ContactBranch::TakeOff && previous_[c.a].branch == ContactBranch::None) {
+      previous_[c.a] = Previous{c.branch, c.slipLimit};
+      rememberedNodes_.push_back(c.a);
+    }
   contacts_.clear();
   rows_.clear();
   lastChange_ = 0.0;
   auto add = [&](const ContactConstraint& c, double effectiveMass) {
     contacts_.push_back(Contact{c.node, c.partner, c.obstacle, c.normal, c.reference, c.friction, effectiveMass,
-                                ContactBranch::TakeOff, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), 0, false});
+                                ContactBranch::TakeOff, Vec3::Zero(), 0.0, Vec3::Zero(), 0, Vec3::Zero(), 0.0});
   };
   for (const ContactConstraint& c : obstacleContacts) add(c, mass[c.node]);
   for (const ContactConstraint& c : pairs) add(c, mass[c.node] * mass[c.partner] / (mass[c.node] + mass[c.partner]));
@@ -45,12 +59,18 @@ Vec3 ActiveContactSet::relativeVelocity(const Contact& c, const NodeMatrix& x) c
 void ActiveContactSet::guessBranches(const NodeMatrix& x) {
   for (Contact& c : contacts_) {
     c.velocity = relativeVelocity(c, x);
-    c.slipFriction.setZero();
+    c.slipLimit = 0.0;
     c.impulse.setZero();
     c.flips = 0;
     c.branch = c.normal.dot(c.velocity) >= 0.0 ? ContactBranch::TakeOff
                : c.friction > 0.0              ? ContactBranch::Stick
                                                : ContactBranch::Slip;
+    // A node that rested or slid on an obstacle last step most likely still does: start from
+    // that branch (and friction) instead of stick, which saves a release round per step.
+    if (c.branch != ContactBranch::TakeOff && c.b < 0 && previous_[c.a].branch != ContactBranch::None) {
+      c.branch = previous_[c.a].branch;
+      c.slipLimit = previous_[c.a].slipLimit;
+    }
   }
   buildRows();
 }
@@ -145,22 +165,58 @@ void ActiveContactSet::refreshVelocities(const NodeMatrix& x) {
   for (Contact& c : contacts_) c.velocity = relativeVelocity(c, x);
 }
 
-void ActiveContactSet::addFriction(double h, NodeMatrix& residual) const {
+Vec3 ActiveContactSet::slide(const Contact& c, const NodeMatrix& x) const {
+  const Vec3 u = relativeVelocity(c, x);
+  return u - c.normal.dot(u) * c.normal;
+}
+
+Vec3 ActiveContactSet::frictionImpulse(const Contact& c, const NodeMatrix& x) const {
+  // Coulomb's -mu r_N u_T / |u_T| exactly (the gradient of the convex potential mu r_N |u_T|,
+  // frictionPotential); at u_T = 0 the zero subgradient.
+  const Vec3 uT = slide(c, x);
+  const double speed = uT.norm();
+  return speed > 0.0 ? Vec3((-c.slipLimit / speed) * uT) : Vec3::Zero();
+}
+
+void ActiveContactSet::addFriction(const NodeMatrix& x, double h, NodeMatrix& residual) const {
   for (const Contact& c : contacts_) {
-    if (c.branch != ContactBranch::Slip) continue;
-    residual.row(c.a) += h * c.slipFriction.transpose();
-    if (c.b >= 0) residual.row(c.b) -= h * c.slipFriction.transpose();
+    if (c.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
+    const Vec3 f = h * frictionImpulse(c, x);
+    residual.row(c.a) += f.transpose();
+    if (c.b >= 0) residual.row(c.b) -= f.transpose();
   }
 }
 
-double ActiveContactSet::frictionPotential(const NodeMatrix& x, double h) const {
-  double work = 0.0;
-  for (const Contact& c : contacts_) {
-    if (c.branch != ContactBranch::Slip) continue;
-    work += c.slipFriction.dot(x.row(c.a).transpose());
-    if (c.b >= 0) work -= c.slipFriction.dot(x.row(c.b).transpose());
+double ActiveContactSet::frictionPotential(const NodeMatrix& x) const {
+  // Phi = sum mu r_N |u_T|: its gradient in x_a is mu r_N u_T / (|u_T| h) = -friction / h.
+  double phi = 0.0;
+  for (const Contact& c : contacts_)
+    if (c.branch == ContactBranch::Slip && c.slipLimit > 0.0) phi += c.slipLimit * slide(c, x).norm();
+  return phi;
+}
+
+void ActiveContactSet::prepareFrictionHessian(const NodeMatrix& x) {
+  for (Contact& c : contacts_) {
+    if (c.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
+    c.hessianSlide = slide(c, x);
+    c.hessianNorm = std::max(c.hessianSlide.norm(), smoothing_);
   }
-  return -work / h;
+}
+
+void ActiveContactSet::addFrictionHessian(const NodeMatrix& d, NodeMatrix& out) const {
+  // h^2 Hessian of Phi on (d_a - d_b): mu r_N / |u_T| (T - u_T u_T^T / |u_T|^2), T the tangent
+  // projector, with |u_T| floored at eps in both places (near rest the true curvature is
+  // unbounded); positive semi-definite, so CG stays valid.
+  for (const Contact& c : contacts_) {
+    if (c.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
+    Vec3 rel = d.row(c.a).transpose();
+    if (c.b >= 0) rel -= d.row(c.b).transpose();
+    const Vec3 tangential = rel - c.normal.dot(rel) * c.normal;
+    const Vec3 f = (c.slipLimit / c.hessianNorm) *
+                   (tangential - (c.hessianSlide.dot(tangential) / (c.hessianNorm * c.hessianNorm)) * c.hessianSlide);
+    out.row(c.a) += f.transpose();
+    if (c.b >= 0) out.row(c.b) -= f.transpose();
+  }
 }
 
 int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, double velocityTolerance,
@@ -192,8 +248,7 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, do
       case ContactBranch::TakeOff:
         if (c.normal.dot(c.velocity) < -velocityTolerance) {
           c.branch = c.friction > 0.0 ? ContactBranch::Stick : ContactBranch::Slip;
-          c.slipFriction.setZero();
-          c.aimed = false;
+          c.slipLimit = 0.0;
         }
         break;
       case ContactBranch::Stick: {
@@ -206,8 +261,7 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, do
         if (tangential.norm() > cone + impulseTolerance && mayRelease) {
           // The cone cannot hold it: slide against the direction the holding force pointed.
           c.branch = ContactBranch::Slip;
-          c.slipFriction = (cone / tangential.norm()) * tangential;
-          c.aimed = false;
+          c.slipLimit = cone;
         } else if (normalImpulse < -impulseTolerance && mayRelease) {
           c.branch = ContactBranch::TakeOff;
         }
@@ -216,28 +270,23 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, do
       case ContactBranch::Slip: {
         if (normalImpulse < -impulseTolerance && mayRelease) {
           c.branch = ContactBranch::TakeOff;
-          c.slipFriction.setZero();
+          c.slipLimit = 0.0;
           break;
         }
-        // The slide and the friction are judged on a settled solve only: right after a stick ->
-        // slip switch the node has not moved yet.
+        // The slide and the friction's size are judged on a settled solve only: right after a
+        // stick -> slip switch the node has not moved yet. The friction's direction needs no
+        // judging: it follows the slide inside the Newton solve (frictionImpulse).
         if (!settled) break;
-        const Vec3 slide = c.velocity - c.normal.dot(c.velocity) * c.normal;
-        const double speed = slide.norm();
-        // The friction set at the stick -> slip switch only guesses the slide's direction (along
-        // the holding force); it is aimed against the measured slide first, and a slide that then
-        // turns along it has been reversed by it.
-        if (c.friction > 0.0 && (speed <= velocityTolerance || (c.aimed && slide.dot(c.slipFriction) > 0.0))) {
-          // Stopped, or pushed backwards by its own friction: the cone holds it.
+        const double speed = slide(c, x).norm();
+        if (c.friction > 0.0 && speed <= smoothing_) {
+          // Stopped: the cone holds it (if not, the stick check releases it again).
           c.branch = ContactBranch::Stick;
-          c.slipFriction.setZero();
+          c.slipLimit = 0.0;
           break;
         }
-        const Vec3 friction =
-            speed > 0.0 ? Vec3((-c.friction * std::max(normalImpulse, 0.0) / speed) * slide) : Vec3::Zero();
-        lastChange_ = std::max(lastChange_, (friction - c.slipFriction).norm() / c.effectiveMass);
-        c.slipFriction = friction;
-        c.aimed = true;
+        const double limit = c.friction * std::max(normalImpulse, 0.0);
+        lastChange_ = std::max(lastChange_, std::abs(limit - c.slipLimit) / c.effectiveMass);
+        c.slipLimit = limit;
         break;
       }
       default:
@@ -246,7 +295,7 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, do
     if (c.branch != before) ++changed, ++c.flips;
     else if (settled && (c.flips >= kFlipsBeforeHolding) && violatesLaw(c, velocityTolerance)) ++blocked_;
     if (c.branch == ContactBranch::TakeOff) c.impulse.setZero();
-    if (c.branch == ContactBranch::Slip) c.impulse = normalImpulse * c.normal + c.slipFriction;
+    if (c.branch == ContactBranch::Slip) c.impulse = normalImpulse * c.normal + frictionImpulse(c, x);
   }
   if (changed > 0) buildRows();
   return changed;
@@ -255,12 +304,12 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, do
 bool ActiveContactSet::violatesLaw(const Contact& c, double velocityTolerance) const {
   const double impulseTolerance = c.effectiveMass * velocityTolerance;
   const double rN = c.normal.dot(c.impulse), uN = c.normal.dot(c.velocity);
-  const Vec3 rT = c.impulse - rN * c.normal, uT = c.velocity - uN * c.normal;
+  const Vec3 rT = c.impulse - rN * c.normal;
   switch (c.branch) {
     case ContactBranch::TakeOff: return uN < -velocityTolerance;
     case ContactBranch::Stick: return rN < -impulseTolerance || rT.norm() > c.friction * rN + impulseTolerance;
     case ContactBranch::Slip:
-      return rN < -impulseTolerance || (uT.norm() > velocityTolerance && uT.dot(c.slipFriction) > 0.0);
+      return rN < -impulseTolerance || std::abs(rT.norm() - c.friction * std::max(rN, 0.0)) > impulseTolerance;
     default: return false;
   }
 }

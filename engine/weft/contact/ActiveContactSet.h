@@ -12,7 +12,7 @@
 //   stick     u = 0, three rows          (r = multiplier / h)
 //   slip      u_N = 0, one row           (r = multiplier n / h + friction on the cone)
 // In positions, each row is dir . (x_a - x_b) = target, i.e. C x = c. Between branch updates the
-// step is an equality-constrained minimisation of g (Eq. 3) plus the work of the (lagged) slip
+// step is an equality-constrained minimisation of g (Eq. 3) plus the potential of the slip
 // friction; Newton-PCG keeps its iterates feasible by projecting positions onto {C x = c} and
 // directions onto {C d = 0} with the orthogonal projector I - C^T (C C^T)^-1 C (one sparse LDLT
 // of the small C C^T per active set). The multipliers of the converged solve are the contact
@@ -22,8 +22,9 @@
 //   stick with |r_T| > mu r_N                    -> slip, friction mu r_N along r_T's direction
 //   slip with r_N < 0                            -> take-off
 //   slip with u_T stopped or along the friction  -> stick
-//   slip otherwise: friction re-aimed at -mu r_N u_T / |u_T| (lagged, so the law holds once the
-//   friction stops changing).
+//   slip otherwise: friction -mu r_N u_T / |u_T|, implicit in u_T (the gradient of the convex
+//   potential mu r_N |u_T|, whose Hessian, floored near rest, Newton uses) and lagged in r_N,
+//   updated on settled solves.
 // The step is done when no branch changes and the friction changed by less than the tolerance.
 // Positions are always feasible for the current branches, so whatever the iteration count, no
 // contact ends the step on the wrong side of its constraint.
@@ -44,11 +45,12 @@ class ActiveContactSet {
   // The step's contacts (obstacle contacts, then pairs) with the start-of-step positions x0,
   // which must stay alive and unchanged during the step.
   void reset(const std::vector<ContactConstraint>& obstacleContacts, const std::vector<ContactConstraint>& pairs,
-             const NodeMatrix& x0, const Eigen::VectorXd& mass, double h);
+             const NodeMatrix& x0, const Eigen::VectorXd& mass, double h, double velocityTolerance);
   bool empty() const { return contacts_.empty(); }
 
   // First branches from a predicted end-of-step position: contacts it would violate start in
-  // stick (slip when mu = 0), the others in take-off. Rebuilds the rows.
+  // the branch their node's obstacle contact ended the last step in, else in stick (slip when
+  // mu = 0); the others in take-off. Rebuilds the rows.
   void guessBranches(const NodeMatrix& x);
   bool hasRows() const { return !rows_.empty(); }
 
@@ -58,11 +60,14 @@ class ActiveContactSet {
   void projectDirection(NodeMatrix& d) const;
   // The recorded velocities u from the final positions.
   void refreshVelocities(const NodeMatrix& x);
-  // residual += h * (slip friction impulses): the friction as an external impulse.
-  void addFriction(double h, NodeMatrix& residual) const;
-  // The potential of the (constant) friction impulses F: -F . x / h, to add to g (Eq. 3) in the
-  // Newton line search.
-  double frictionPotential(const NodeMatrix& x, double h) const;
+  // Slip friction at positions x (impulse -mu r_N u_T / |u_T| with r_N lagged):
+  // residual += h * friction impulses.
+  void addFriction(const NodeMatrix& x, double h, NodeMatrix& residual) const;
+  // Its potential, sum mu r_N |u_T| (convex in x), to add to g (Eq. 3) in the line search.
+  double frictionPotential(const NodeMatrix& x) const;
+  // Its Hessian (times h^2, the scale of the Newton matrix P - Delta P) at x, applied: out += H d.
+  void prepareFrictionHessian(const NodeMatrix& x);
+  void addFrictionHessian(const NodeMatrix& d, NodeMatrix& out) const;
 
   // Branch update at the end of a converged solve. `residual` = b(x) + h F - P x (the momentum
   // imbalance including friction, kg m); the rows' multipliers are the least-squares solution of
@@ -87,10 +92,11 @@ class ActiveContactSet {
     double friction, effectiveMass;
     ContactBranch branch;
     Vec3 impulse;          // on node a (N s), friction included
-    Vec3 slipFriction;     // the applied (lagged) friction impulse on node a, slip only
+    double slipLimit;      // slip: mu r_N, the friction impulse's size (lagged)
     Vec3 velocity;         // u at the last update (m/s)
     int flips;             // branch switches this step
-    bool aimed;            // slip: the friction has been aimed against a measured slide
+    Vec3 hessianSlide;     // slip: u_T and max(|u_T|, eps) where the friction Hessian was prepared
+    double hessianNorm;
   };
   struct Row {
     int a, b, contact;
@@ -98,15 +104,24 @@ class ActiveContactSet {
     double target;
   };
   Vec3 relativeVelocity(const Contact& c, const NodeMatrix& x) const;
+  Vec3 slide(const Contact& c, const NodeMatrix& x) const;  // tangential part of u
+  Vec3 frictionImpulse(const Contact& c, const NodeMatrix& x) const;
   bool violatesLaw(const Contact& c, double velocityTolerance) const;
   void buildRows();
   void multipliers(const NodeMatrix& v, Eigen::VectorXd& lambda) const;  // (C C^T)^-1 C v
   void project(NodeMatrix& v, bool affine) const;  // onto {C v = c} (affine) or {C v = 0}
 
   std::vector<Contact> contacts_;
+  struct Previous {  // a node's obstacle contact at the end of the last step
+    ContactBranch branch = ContactBranch::None;
+    double slipLimit = 0.0;
+  };
+  std::vector<Previous> previous_;  // per node
+  std::vector<int> rememberedNodes_;
   std::vector<Row> rows_;
   const NodeMatrix* x0_ = nullptr;  // start-of-step positions (the Simulator's state)
   double h_ = 0.0;
+  double smoothing_ = 0.0;  // eps (m/s): floor of |u_T| in the friction Hessian, and stick speed
   double lastChange_ = 0.0;
   int blocked_ = 0;
   Eigen::SparseMatrix<double> gram_;  // C C^T

@@ -44,7 +44,9 @@ class FrictionalContact {
   void prepareSolve();
   // Hands the detected contacts to the active set of solver.contact = "active_set"; x0 is the
   // start-of-step state and must stay unchanged during the step.
-  void prepareActiveSet(const NodeMatrix& x0) { activeSet_.reset(obstacleContacts_, pairs_, x0, model_.mass, h_); }
+  void prepareActiveSet(const NodeMatrix& x0, double velocityTolerance) {
+    activeSet_.reset(obstacleContacts_, pairs_, x0, model_.mass, h_, velocityTolerance);
+  }
   ActiveContactSet& activeSet() { return activeSet_; }
   bool empty() const { return solver_.empty(); }
 

@@ -148,7 +148,7 @@ void Simulator::globalStep() {
     rhs_ = massY_;
     for (std::size_t c = 0; c < constraints_.size(); ++c)
       if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
-    if (activeContacts_) activeContacts_->addFriction(h_, rhs_);  // slip friction as an impulse
+    if (activeContacts_) activeContacts_->addFriction(iterate_, h_, rhs_);  // slip friction as an impulse
     global_ = rhs_;
     cholesky_.solveInPlace(global_);
     change_ = global_ - iterate_;
@@ -193,6 +193,7 @@ void Simulator::multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out) {
       constraints_[c]->gather(derivativeRows_[c], -h_ * h_, out);
     });
   }
+  if (activeContacts_) timed(contactSolveModule_, [&] { activeContacts_->addFrictionHessian(in, out); });
 }
 
 bool Simulator::checkConvergence() {
@@ -258,7 +259,7 @@ bool Simulator::iterateNewton() {
   ActiveContactSet* const contacts = activeContacts_;
   auto energyAt = [&](const NodeMatrix& x) {
     double e = localStep(x);
-    if (contacts) e += contacts->frictionPotential(x, h_);
+    if (contacts) e += contacts->frictionPotential(x);
     return e;
   };
   double energy = energyAt(iterate_);
@@ -294,6 +295,7 @@ bool Simulator::iterateNewton() {
     for (std::size_t c = 0; c < constraints_.size(); ++c)
       if (constraints_[c]->hasDerivative())
         timed(constraintModule_[c], [&] { constraints_[c]->prepareDerivative(iterate_, false); });
+    if (contacts) timed(contactSolveModule_, [&] { contacts->prepareFrictionHessian(iterate_); });
 
     // PCG on K d = r0, preconditioner P^{-1}; z0 = P^{-1} r0 = change_ (no extra solve).
     if (contacts) {
@@ -405,7 +407,7 @@ void Simulator::detectContacts(double t0, double t1) {
   if (contact_->hasSelfCollision())
     timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, plainIterate_); });
   timed(contactSolveModule_, [&] {
-    if (scene_.solver.contact == ContactMethod::ActiveSet) contact_->prepareActiveSet(x_);
+    if (scene_.solver.contact == ContactMethod::ActiveSet) contact_->prepareActiveSet(x_, scene_.solver.pdTolerance * h_);
     else contact_->prepareSolve();
   });
 }
