@@ -1,0 +1,736 @@
+#include "EditorApp.h"
+
+#include "EditorGl.h"
+#include "ViewportTarget.h"
+
+#include <weft/render/RenderError.h>
+#include <weft/render/Renderer.h>
+
+#include <imgui.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+namespace weft::editor {
+namespace {
+
+constexpr float kPanelWidth = 380.0f;
+constexpr float kTimelineHeight = 150.0f;
+constexpr ImGuiWindowFlags kFixedWindow = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                          ImGuiWindowFlags_NoCollapse |
+                                          ImGuiWindowFlags_NoBringToFrontOnFocus;
+const ImVec4 kErrorColour(0.95f, 0.35f, 0.30f, 1.0f);
+const ImVec4 kWarningColour(0.95f, 0.75f, 0.25f, 1.0f);
+const ImVec4 kOkColour(0.45f, 0.85f, 0.45f, 1.0f);
+
+double numberAt(const EditorDocument& doc, const std::string& path, double fallback) {
+  const nlohmann::json* v = doc.find(path);
+  return v && v->is_number() ? v->get<double>() : fallback;
+}
+
+bool keyChord(bool ctrl, bool shift, int key) {
+  const ImGuiIO& io = ImGui::GetIO();
+  return io.KeyCtrl == ctrl && io.KeyShift == shift && ImGui::IsKeyPressed(key, false);
+}
+
+// GLFW's key codes for letters are their upper-case ASCII codes; ImGui 1.86 indexes
+// io.KeysDown by the platform's codes.
+constexpr int kKeyN = 'N', kKeyO = 'O', kKeyS = 'S', kKeyQ = 'Q', kKeyF = 'F';
+
+}  // namespace
+
+EditorApp::EditorApp(EditorSession& session, render::RenderContext& context)
+    : session_(session), context_(context) {
+  context_.makeCurrent();
+  loadEditorGl(context_);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // fixed layout; nothing written next to the working directory
+  ImGui::StyleColorsDark();
+  if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
+    throw render::ContextError("Dear ImGui's OpenGL3 backend could not start");
+  viewport_ = std::make_unique<ViewportTarget>(context_, 640, 480);
+  renderer_ = std::make_unique<render::Renderer>(*viewport_);
+  style_.legend = true;
+}
+
+EditorApp::~EditorApp() {
+  context_.makeCurrent();
+  renderer_.reset();
+  viewport_.reset();
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext();
+}
+
+void EditorApp::report(const std::string& text, bool error) {
+  message_ = text;
+  messageIsError_ = error;
+}
+
+void EditorApp::frame() {
+  context_.makeCurrent();
+  ImGuiIO& io = ImGui::GetIO();
+  session_.tick(io.DeltaTime);
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui::NewFrame();
+
+  handleShortcuts();
+  drawMenuBar();
+  const float top = ImGui::GetFrameHeight();  // below the main menu bar
+  const float width = io.DisplaySize.x, height = io.DisplaySize.y;
+  drawScenePanel(top, height - top);
+  drawViewport(kPanelWidth, top, width - kPanelWidth, height - top - kTimelineHeight);
+  drawTimeline(kPanelWidth, height - kTimelineHeight, width - kPanelWidth, kTimelineHeight);
+  drawFileDialog();
+  drawClosePrompt();
+
+  ImGui::Render();
+  const WeftEditorGl& gl = weftEditorGl;
+  context_.makeCurrent();
+  gl.BindFramebuffer(GL_FRAMEBUFFER, context_.framebuffer());
+  gl.Viewport(0, 0, context_.width(), context_.height());
+  gl.ClearColor(0.10f, 0.10f, 0.12f, 1.0f);
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void EditorApp::handleShortcuts() {
+  ImGuiIO& io = ImGui::GetIO();
+  if (keyChord(true, false, kKeyN)) {
+    session_.newDocument();
+    report("new document", false);
+  }
+  if (keyChord(true, false, kKeyO)) fileDialog_ = FileDialog::Open;
+  if (keyChord(true, false, kKeyS)) doSave();
+  if (keyChord(true, true, kKeyS)) fileDialog_ = FileDialog::SaveAs;
+  if (keyChord(true, false, kKeyQ)) requestClose();
+  if (io.WantTextInput) return;  // typing into a field: no single-key shortcuts, no undo
+  if (keyChord(true, false, ImGui::GetKeyIndex(ImGuiKey_Z))) doUndo();
+  if (keyChord(true, true, ImGui::GetKeyIndex(ImGuiKey_Z)) ||
+      keyChord(true, false, ImGui::GetKeyIndex(ImGuiKey_Y)))
+    doRedo();
+  const int available = session_.availableFrames();
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Space))) session_.playback().toggle();
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_RightArrow))) session_.playback().step(1, available);
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) session_.playback().step(-1, available);
+  if (keyChord(false, false, kKeyF))
+    session_.frameCamera(float(viewportWidth_) / float(std::max(viewportHeight_, 1)));
+}
+
+void EditorApp::doOpen(const std::string& file) {
+  try {
+    session_.open(file);
+    session_.frameCamera(float(viewportWidth_) / float(std::max(viewportHeight_, 1)));
+    report("opened " + file, false);
+  } catch (const std::exception& e) {
+    report(e.what(), true);
+  }
+}
+
+void EditorApp::doSave() {
+  if (session_.document().file().empty()) {
+    fileDialog_ = FileDialog::SaveAs;
+    return;
+  }
+  try {
+    session_.save();
+    report("saved " + session_.document().file(), false);
+  } catch (const std::exception& e) {
+    report(e.what(), true);
+  }
+}
+
+void EditorApp::doSaveAs(const std::string& file) {
+  try {
+    session_.saveAs(file);
+    report("saved " + file, false);
+  } catch (const std::exception& e) {
+    report(e.what(), true);
+  }
+}
+
+void EditorApp::doUndo() {
+  const std::string label = session_.document().undoLabel();
+  if (session_.document().undo()) report("undid: " + label, false);
+}
+
+void EditorApp::doRedo() {
+  const std::string label = session_.document().redoLabel();
+  if (session_.document().redo()) report("redid: " + label, false);
+}
+
+void EditorApp::requestClose() {
+  if (session_.document().dirty())
+    closePrompt_ = true;
+  else
+    closeConfirmed_ = true;
+}
+
+void EditorApp::drawMenuBar() {
+  if (!ImGui::BeginMainMenuBar()) return;
+  EditorDocument& doc = session_.document();
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("New", "Ctrl+N")) {
+      session_.newDocument();
+      report("new document", false);
+    }
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) fileDialog_ = FileDialog::Open;
+    if (ImGui::BeginMenu("Open Recent", !session_.recent().files().empty())) {
+      for (const std::string& f : session_.recent().files())
+        if (ImGui::MenuItem(f.c_str())) doOpen(f);
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Save", "Ctrl+S")) doSave();
+    if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) fileDialog_ = FileDialog::SaveAs;
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) requestClose();
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Edit")) {
+    const std::string undo = doc.canUndo() ? "Undo " + doc.undoLabel() : "Undo";
+    const std::string redo = doc.canRedo() ? "Redo " + doc.redoLabel() : "Redo";
+    if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, doc.canUndo())) doUndo();
+    if (ImGui::MenuItem(redo.c_str(), "Ctrl+Y", false, doc.canRedo())) doRedo();
+    ImGui::Separator();
+    if (ImGui::MenuItem("Clear selection", nullptr, false, !session_.selection().empty()))
+      session_.selection().clear();
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    const float aspect = float(viewportWidth_) / float(std::max(viewportHeight_, 1));
+    if (ImGui::MenuItem("Frame scene", "F")) session_.frameCamera(aspect);
+    if (ImGui::MenuItem("Front")) session_.frameCamera(aspect, render::NamedView::Front);
+    if (ImGui::MenuItem("Side")) session_.frameCamera(aspect, render::NamedView::Side);
+    if (ImGui::MenuItem("Top")) session_.frameCamera(aspect, render::NamedView::Top);
+    ImGui::Separator();
+    ImGui::MenuItem("Wireframe", nullptr, &style_.wireframe);
+    ImGui::MenuItem("Contact branch colours", nullptr, &contactColours_);
+    ImGui::MenuItem("Legend", nullptr, &style_.legend);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Optimise")) {
+    // Placeholder only: targets and the optimiser need the adjoint, which is not built yet.
+    ImGui::MenuItem("Targets and optimiser: not available yet (need the adjoint)", nullptr, false, false);
+    ImGui::EndMenu();
+  }
+  std::string title = doc.displayName() + (doc.dirty() ? " *" : "");
+  ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(title.c_str()).x - 16.0f);
+  ImGui::TextUnformatted(title.c_str());
+  ImGui::EndMainMenuBar();
+}
+
+void EditorApp::applyEdit(const std::string& error, unsigned itemId) {
+  if (!error.empty()) report(error, true);
+  lastEditId_ = itemId;
+}
+
+bool EditorApp::numberField(const char* label, const std::string& path, double fallback,
+                            const char* format) {
+  double value = numberAt(session_.document(), path, fallback);
+  ImGui::PushID(path.c_str());
+  const ImGuiID id = ImGui::GetID(label);
+  const bool changed = ImGui::InputDouble(label, &value, 0.0, 0.0, format);
+  if (changed) {
+    const bool coalesce = id == lastEditId_ && !ImGui::IsItemActivated();
+    applyEdit(session_.document().setValue(path, value, coalesce), id);
+  }
+  if (ImGui::IsItemDeactivated()) lastEditId_ = 0;
+  ImGui::PopID();
+  return changed;
+}
+
+bool EditorApp::integerField(const char* label, const std::string& path, int fallback) {
+  int value = static_cast<int>(numberAt(session_.document(), path, fallback));
+  ImGui::PushID(path.c_str());
+  const ImGuiID id = ImGui::GetID(label);
+  const bool changed = ImGui::InputInt(label, &value);
+  if (changed) {
+    const bool coalesce = id == lastEditId_ && !ImGui::IsItemActivated();
+    applyEdit(session_.document().setValue(path, value, coalesce), id);
+  }
+  if (ImGui::IsItemDeactivated()) lastEditId_ = 0;
+  ImGui::PopID();
+  return changed;
+}
+
+bool EditorApp::vectorField(const char* label, const std::string& path, const double* fallback) {
+  double v[3] = {fallback[0], fallback[1], fallback[2]};
+  const nlohmann::json* j = session_.document().find(path);
+  if (j && j->is_array() && j->size() == 3)
+    for (int i = 0; i < 3; ++i)
+      if ((*j)[std::size_t(i)].is_number()) v[i] = (*j)[std::size_t(i)].get<double>();
+  ImGui::PushID(path.c_str());
+  const ImGuiID id = ImGui::GetID(label);
+  const bool changed = ImGui::InputScalarN(label, ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g");
+  if (changed) {
+    const bool coalesce = id == lastEditId_ && !ImGui::IsItemActivated();
+    applyEdit(session_.document().setValue(path, nlohmann::json::array({v[0], v[1], v[2]}), coalesce), id);
+  }
+  if (ImGui::IsItemDeactivated()) lastEditId_ = 0;
+  ImGui::PopID();
+  return changed;
+}
+
+void EditorApp::comboField(const char* label, const std::string& path, const char* const* options,
+                           int count, const char* fallback) {
+  const nlohmann::json* j = session_.document().find(path);
+  const std::string current = j && j->is_string() ? j->get<std::string>() : fallback;
+  ImGui::PushID(path.c_str());
+  if (ImGui::BeginCombo(label, current.c_str())) {
+    for (int i = 0; i < count; ++i)
+      if (ImGui::Selectable(options[i], current == options[i]) && current != options[i])
+        applyEdit(session_.document().setValue(path, options[i]));
+    ImGui::EndCombo();
+  }
+  ImGui::PopID();
+}
+
+void EditorApp::drawScenePanel(float top, float height) {
+  ImGui::SetNextWindowPos(ImVec2(0, top));
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, height));
+  ImGui::Begin("Scene", nullptr, kFixedWindow);
+  EditorDocument& doc = session_.document();
+  ImGui::Text("%s%s", doc.displayName().c_str(), doc.dirty() ? " (unsaved changes)" : "");
+  if (doc.valid()) {
+    ImGui::TextColored(kOkColour, "Valid scene: %d vertices", doc.scene()->vertexCount());
+    for (const std::string& w : doc.scene()->warnings) {
+      ImGui::PushStyleColor(ImGuiCol_Text, kWarningColour);
+      ImGui::TextWrapped("warning: %s", w.c_str());
+      ImGui::PopStyleColor();
+    }
+  } else {
+    // The loader's own message (file, JSON path, what is wrong); simulation waits for a fix.
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
+    ImGui::TextWrapped("error: %s", doc.validationError().c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!message_.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, messageIsError_ ? kErrorColour : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", message_.c_str());
+    ImGui::PopStyleColor();
+  }
+  ImGui::Separator();
+  ImGui::PushItemWidth(170.0f);
+  if (ImGui::CollapsingHeader("Time step and solver", ImGuiTreeNodeFlags_DefaultOpen)) timePanel();
+  if (ImGui::CollapsingHeader("Cloth and material", ImGuiTreeNodeFlags_DefaultOpen)) clothPanel();
+  if (ImGui::CollapsingHeader("Gravity and wind")) effectsPanel();
+  if (ImGui::CollapsingHeader("Obstacles")) obstaclePanel();
+  if (ImGui::CollapsingHeader("Selection", ImGuiTreeNodeFlags_DefaultOpen)) selectionPanel();
+  if (ImGui::CollapsingHeader("Targets and optimiser")) {
+    ImGui::TextDisabled("Not available yet: the optimiser and target");
+    ImGui::TextDisabled("panels need the adjoint, which is being built.");
+  }
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void EditorApp::timePanel() {
+  numberField("dt (s)", "time.dt", 0.01);
+  integerField("steps", "time.steps", 100);
+  static const char* methods[] = {"newton", "pd"};
+  comboField("method", "solver.method", methods, 2, "newton");
+  integerField("PD iterations", "solver.pd_iterations", 100);
+  numberField("PD tolerance (m/s^2)", "solver.pd_tolerance", 1e-4);
+  static const char* accelerations[] = {"anderson", "none"};
+  comboField("acceleration", "solver.acceleration", accelerations, 2, "anderson");
+}
+
+void EditorApp::clothPanel() {
+  const nlohmann::json* cloths = session_.document().find("cloths");
+  if (!cloths || !cloths->is_array()) {
+    ImGui::TextDisabled("no cloths");
+    return;
+  }
+  for (std::size_t c = 0; c < cloths->size(); ++c) {
+    const std::string base = "cloths." + std::to_string(c);
+    ImGui::PushID(int(c));
+    if (ImGui::TreeNodeEx("cloth", ImGuiTreeNodeFlags_DefaultOpen, "Cloth %zu", c)) {
+      numberField("density (kg/m^2)", base + ".material.density", 0.1);
+      numberField("stretch (N/m)", base + ".material.stretch", 100.0);
+      numberField("bend (N m)", base + ".material.bend", 0.0);
+      const bool hasSelf = session_.document().find(base + ".self_collision") != nullptr;
+      bool self = hasSelf;
+      if (ImGui::Checkbox("self-collision", &self)) {
+        if (self)
+          applyEdit(session_.document().setValue(base + ".self_collision",
+                                                 {{"radius", 0.004}, {"friction", 0.3}}));
+        else
+          applyEdit(session_.document().removeValue(base + ".self_collision"));
+      }
+      if (hasSelf) {
+        numberField("radius (m)", base + ".self_collision.radius", 0.004);
+        numberField("friction", base + ".self_collision.friction", 0.3);
+      }
+      const nlohmann::json* attachments = session_.document().find(base + ".attachments");
+      if (attachments && attachments->is_array()) {
+        for (std::size_t a = 0; a < attachments->size(); ++a) {
+          const nlohmann::json& at = (*attachments)[a];
+          const std::size_t n = at.contains("vertices") && at["vertices"].is_array() ? at["vertices"].size() : 0;
+          const std::string kind = at.value("kind", std::string("fixed"));
+          ImGui::PushID(int(a));
+          ImGui::Text("attachment %zu: %s, %zu vertices", a, kind.c_str(), n);
+          ImGui::SameLine();
+          if (ImGui::SmallButton("remove"))
+            applyEdit(session_.document().removeValue(base + ".attachments." + std::to_string(a)));
+          ImGui::PopID();
+        }
+      }
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+}
+
+void EditorApp::effectsPanel() {
+  EditorDocument& doc = session_.document();
+  bool gravity = doc.find("gravity") != nullptr;
+  if (ImGui::Checkbox("gravity", &gravity)) {
+    applyEdit(gravity ? doc.setValue("gravity", nlohmann::json::array({0.0, -9.8, 0.0}))
+                      : doc.removeValue("gravity"));
+  }
+  if (doc.find("gravity")) {
+    static const double g[3] = {0.0, -9.8, 0.0};
+    vectorField("g (m/s^2)", "gravity", g);
+  }
+  bool wind = doc.find("wind") != nullptr;
+  if (ImGui::Checkbox("wind", &wind)) {
+    applyEdit(wind ? doc.setValue("wind", {{"direction", {1.0, 0.0, 0.0}},
+                                           {"strength", 1.0},
+                                           {"frequency", 1.0},
+                                           {"phase", 0.0}})
+                   : doc.removeValue("wind"));
+  }
+  if (doc.find("wind")) {
+    static const double x[3] = {1.0, 0.0, 0.0};
+    vectorField("direction", "wind.direction", x);
+    numberField("strength (N/m^2)", "wind.strength", 0.0);
+    numberField("frequency (Hz)", "wind.frequency", 0.0);
+    numberField("phase (rad)", "wind.phase", 0.0);
+    static const char* models[] = {"sinusoid", "constant"};
+    comboField("model", "wind.model", models, 2, "sinusoid");
+  }
+  ImGui::TextDisabled("Adding or removing an effect adds or removes its module.");
+}
+
+void EditorApp::obstaclePanel() {
+  EditorDocument& doc = session_.document();
+  const nlohmann::json* obstacles = doc.find("obstacles");
+  const std::size_t count = obstacles && obstacles->is_array() ? obstacles->size() : 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const nlohmann::json& o = (*obstacles)[i];
+    std::string shape = "?";
+    for (const char* s : {"plane", "sphere", "capsule", "box", "cylinder", "mesh"})
+      if (o.contains(s)) shape = s;
+    const std::string base = "obstacles." + std::to_string(i);
+    ImGui::PushID(int(i));
+    const bool open = ImGui::TreeNodeEx("obstacle", ImGuiTreeNodeFlags_DefaultOpen, "%zu: %s", i, shape.c_str());
+    ImGui::SameLine();
+    bool removed = false;
+    if (ImGui::SmallButton("remove")) {
+      applyEdit(doc.removeValue(base));
+      removed = true;
+    }
+    if (open) {
+      if (!removed) {
+        static const double zero[3] = {0, 0, 0}, up[3] = {0, 1, 0}, one[3] = {1, 1, 1};
+        const std::string s = base + "." + shape;
+        if (shape == "plane") {
+          vectorField("point", s + ".point", zero);
+          vectorField("normal", s + ".normal", up);
+        } else if (shape == "sphere") {
+          vectorField("center", s + ".center", zero);
+          numberField("radius", s + ".radius", 0.3);
+        } else if (shape == "capsule" || shape == "cylinder") {
+          vectorField("a", s + ".a", zero);
+          vectorField("b", s + ".b", up);
+          numberField("radius", s + ".radius", 0.1);
+        } else if (shape == "box") {
+          vectorField("center", s + ".center", zero);
+          vectorField("size", s + ".size", one);
+          vectorField("rotate (deg)", s + ".rotate_deg", zero);
+        } else if (shape == "mesh") {
+          const nlohmann::json* file = doc.find(s + ".file");
+          ImGui::TextDisabled("mesh file: %s", file && file->is_string() ? file->get<std::string>().c_str() : "?");
+        }
+        numberField("friction", base + ".friction", 0.0);
+        numberField("thickness (m)", base + ".thickness", 1e-3);
+      }
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+    if (removed) break;  // indices shifted; the list is drawn again next frame
+  }
+  ImGui::TextUnformatted("Add:");
+  static const char* shapes[] = {"plane", "sphere", "capsule", "box", "cylinder"};
+  for (const char* shape : shapes) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton(shape)) {
+      nlohmann::json o;
+      const std::string s = shape;
+      if (s == "plane") o["plane"] = {{"point", {0.0, 0.0, 0.0}}, {"normal", {0.0, 1.0, 0.0}}};
+      if (s == "sphere") o["sphere"] = {{"center", {0.0, 0.0, 0.0}}, {"radius", 0.3}};
+      if (s == "capsule") o["capsule"] = {{"a", {-0.3, 0.0, 0.0}}, {"b", {0.3, 0.0, 0.0}}, {"radius", 0.1}};
+      if (s == "cylinder") o["cylinder"] = {{"a", {0.0, -0.2, 0.0}}, {"b", {0.0, 0.2, 0.0}}, {"radius", 0.2}};
+      if (s == "box") o["box"] = {{"center", {0.0, 0.0, 0.0}}, {"size", {0.4, 0.4, 0.4}}, {"rotate_deg", {0.0, 0.0, 0.0}}};
+      o["friction"] = 0.3;
+      applyEdit(doc.edit("Add " + s, [&](nlohmann::json& d) {
+        if (!d.contains("obstacles")) d["obstacles"] = nlohmann::json::array();
+        d["obstacles"].push_back(o);
+      }));
+    }
+  }
+}
+
+void EditorApp::selectionPanel() {
+  const auto& nodes = session_.selection().nodes();
+  ImGui::Text("%zu vertices selected", nodes.size());
+  if (!nodes.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < nodes.size() && i < 24; ++i) list += (i ? ", " : "") + std::to_string(nodes[i]);
+    if (nodes.size() > 24) list += ", ...";
+    ImGui::TextWrapped("%s", list.c_str());
+  }
+  ImGui::BeginDisabled(nodes.empty() || !session_.document().valid());
+  if (ImGui::Button("Pin selection")) {
+    const std::string error = session_.pinSelection();
+    report(error.empty() ? "pinned " + std::to_string(nodes.size()) + " vertices" : error, !error.empty());
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Clear")) session_.selection().clear();
+  ImGui::EndDisabled();
+  ImGui::TextDisabled("Click: pick a vertex; drag: box select;");
+  ImGui::TextDisabled("Shift adds. Right drag: orbit; middle: pan;");
+  ImGui::TextDisabled("wheel: zoom; F: frame the scene.");
+}
+
+void EditorApp::drawViewport(float left, float top, float width, float height) {
+  ImGui::SetNextWindowPos(ImVec2(left, top));
+  ImGui::SetNextWindowSize(ImVec2(width, height));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  ImGui::Begin("Viewport", nullptr, kFixedWindow | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoTitleBar);
+  ImGui::PopStyleVar();
+  const ImVec2 size = ImGui::GetContentRegionAvail();
+  viewportWidth_ = std::max(1, int(size.x));
+  viewportHeight_ = std::max(1, int(size.y));
+  renderViewport();
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(viewport_->colorTexture())),
+               ImVec2(float(viewportWidth_), float(viewportHeight_)), ImVec2(0, 1), ImVec2(1, 0));
+  ImGui::SetCursorScreenPos(origin);
+  ImGui::InvisibleButton("viewport-input", ImVec2(float(viewportWidth_), float(viewportHeight_)),
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                             ImGuiButtonFlags_MouseButtonMiddle);
+  const ImGuiIO& io = ImGui::GetIO();
+  const bool hovered = ImGui::IsItemHovered();
+  const ImVec2 mouse(io.MousePos.x - origin.x, io.MousePos.y - origin.y);
+  render::Camera& camera = session_.camera();
+  if (hovered && io.MouseWheel != 0.0f) camera.zoom(std::pow(0.9f, io.MouseWheel));
+  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Right))
+    camera.orbit(-io.MouseDelta.x * 0.4f, io.MouseDelta.y * 0.4f);
+  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
+    const float scale = camera.distance * 2.0f * std::tan(camera.fovYDeg * 3.14159265f / 360.0f) / float(viewportHeight_);
+    camera.pan(-io.MouseDelta.x * scale, io.MouseDelta.y * scale);
+  }
+  if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    boxStart_[0] = mouse.x;
+    boxStart_[1] = mouse.y;
+    boxSelecting_ = true;
+  }
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  if (boxSelecting_) {
+    const bool dragged = ImGui::IsMouseDragging(ImGuiMouseButton_Left);
+    if (dragged)
+      draw->AddRect(ImVec2(origin.x + boxStart_[0], origin.y + boxStart_[1]), io.MousePos,
+                    IM_COL32(255, 210, 60, 255));
+    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) {
+      boxSelecting_ = false;
+      const ImVec2 drag = ImGui::GetMouseDragDelta(ImGuiMouseButton_Left);
+      if (drag.x != 0.0f || drag.y != 0.0f)
+        session_.boxSelectPixels(boxStart_[0], boxStart_[1], mouse.x, mouse.y, viewportWidth_,
+                                 viewportHeight_, io.KeyShift);
+      else
+        session_.clickSelect(mouse.x, mouse.y, viewportWidth_, viewportHeight_, io.KeyShift);
+    }
+  }
+  // Selected vertices, drawn over the image (not part of viewport screenshots).
+  if (const render::RenderScene* scene = session_.viewportScene()) {
+    for (int node : session_.selection().nodes()) {
+      if (node >= scene->cloth.positions.rows()) continue;
+      const auto p = projectToPixel(camera, scene->cloth.positions.row(node).transpose(), viewportWidth_, viewportHeight_);
+      if (p) draw->AddCircleFilled(ImVec2(origin.x + p->x(), origin.y + p->y()), 4.0f, IM_COL32(255, 210, 60, 255));
+    }
+  }
+  if (!session_.document().valid())
+    draw->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(230, 80, 70, 255),
+                  "The scene does not validate: showing the last valid state (see the Scene panel).");
+  ImGui::End();
+}
+
+void EditorApp::renderViewport() {
+  viewport_->resize(viewportWidth_, viewportHeight_);
+  const render::RenderScene* scene = session_.viewportScene();
+  render::RenderScene empty;
+  render::RenderScene shown = scene ? *scene : empty;
+  if (!contactColours_) shown.contacts.reset();
+  try {
+    renderer_->render(shown, session_.camera(), style_);
+  } catch (const std::exception& e) {
+    report(std::string("viewport: ") + e.what(), true);
+  }
+  context_.makeCurrent();
+}
+
+render::Image EditorApp::viewportImage(int width, int height) {
+  const int w = viewportWidth_, h = viewportHeight_;
+  viewport_->resize(width, height);
+  const render::RenderScene* scene = session_.viewportScene();
+  render::RenderScene shown = scene ? *scene : render::RenderScene{};
+  if (!contactColours_) shown.contacts.reset();
+  render::Image image = renderer_->renderImage(shown, session_.camera(), style_);
+  viewport_->resize(w, h);
+  context_.makeCurrent();
+  return image;
+}
+
+render::Image EditorApp::windowImage() {
+  context_.makeCurrent();
+  const WeftEditorGl& gl = weftEditorGl;
+  const int w = context_.width(), h = context_.height();
+  std::vector<std::uint8_t> rgba(static_cast<std::size_t>(w) * h * 4);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, context_.framebuffer());
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  render::Image image(w, h);
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* src = &rgba[static_cast<std::size_t>(h - 1 - y) * w * 4];
+    std::uint8_t* dst = image.at(0, y);
+    for (int x = 0; x < w; ++x, src += 4, dst += 3) dst[0] = src[0], dst[1] = src[1], dst[2] = src[2];
+  }
+  return image;
+}
+
+void EditorApp::drawTimeline(float left, float top, float width, float height) {
+  ImGui::SetNextWindowPos(ImVec2(left, top));
+  ImGui::SetNextWindowSize(ImVec2(width, height));
+  ImGui::Begin("Timeline", nullptr, kFixedWindow);
+  SimulationCache& cache = session_.cache();
+  const EditorDocument& doc = session_.document();
+  const int sceneSteps = doc.valid() ? doc.scene()->time.steps : 0;
+
+  ImGui::BeginDisabled(!doc.valid() || cache.running());
+  if (ImGui::Button("Simulate")) {
+    const std::string error = session_.simulate();
+    report(error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : error, !error.empty());
+  }
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::Text("%d steps (time.steps)", sceneSteps);
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!cache.running());
+  if (ImGui::Button("Cancel")) cache.cancel();
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  const int available = cache.frameCount();
+  char progress[96];
+  std::snprintf(progress, sizeof progress, "%d / %d states (%s)", available, cache.requestedFrames(),
+                SimulationCache::statusName(cache.status()));
+  ImGui::ProgressBar(float(cache.progress()), ImVec2(-1, 0), progress);
+
+  if (cache.status() == SimulationCache::Status::Failed) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
+    ImGui::TextWrapped("simulation failed: %s", cache.error().c_str());
+    ImGui::PopStyleColor();
+  } else if (session_.cacheStale()) {
+    ImGui::TextColored(kWarningColour, "The scene changed since this simulation: the frames are stale. Simulate again.");
+  }
+
+  Playback& playback = session_.playback();
+  ImGui::BeginDisabled(available == 0);
+  if (ImGui::Button("|<")) playback.step(-1, available);
+  ImGui::SameLine();
+  if (ImGui::Button(playback.playing() ? "Pause" : "Play")) {
+    if (!playback.playing() && playback.frame() >= available - 1 && !cache.running()) playback.scrub(0, available);
+    playback.toggle();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) playback.step(1, available);
+  ImGui::SameLine();
+  int k = playback.frame();
+  ImGui::SetNextItemWidth(std::max(100.0f, ImGui::GetContentRegionAvail().x - 260.0f));
+  if (ImGui::SliderInt("##frame", &k, 0, std::max(available - 1, 0), "state %d")) playback.scrub(k, available);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  const auto scene = cache.scene();
+  const auto f = cache.frame(playback.frame());
+  if (f && scene) {
+    ImGui::Text("t = %.4f s", f->state * scene->time.dt);
+    ImGui::Text("contacts: take-off %d, stick %d, slip %d   PD iterations %d, residual %.3g m/s^2",
+                f->stats.takeoff, f->stats.stick, f->stats.slip, f->stats.pdIterations, f->stats.residual);
+  } else {
+    ImGui::TextDisabled("no frames: press Simulate");
+  }
+  ImGui::TextDisabled("Space: play/pause   Left/Right: step one state");
+  ImGui::End();
+}
+
+void EditorApp::drawFileDialog() {
+  if (fileDialog_ == FileDialog::None) return;
+  const char* title = fileDialog_ == FileDialog::Open ? "Open scene" : "Save scene as";
+  if (!ImGui::IsPopupOpen(title)) {
+    const std::string current = session_.document().file();
+    std::snprintf(pathBuffer_, sizeof pathBuffer_, "%s", current.c_str());
+    ImGui::OpenPopup(title);
+  }
+  if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::TextUnformatted("Scene file path (absolute, or relative to the working directory):");
+    ImGui::SetNextItemWidth(520.0f);
+    const bool enter = ImGui::InputText("##path", pathBuffer_, sizeof pathBuffer_, ImGuiInputTextFlags_EnterReturnsTrue);
+    const bool ok = ImGui::Button(fileDialog_ == FileDialog::Open ? "Open" : "Save") || enter;
+    ImGui::SameLine();
+    const bool cancel = ImGui::Button("Cancel");
+    if (ok && pathBuffer_[0]) {
+      if (fileDialog_ == FileDialog::Open)
+        doOpen(pathBuffer_);
+      else
+        doSaveAs(pathBuffer_);
+    }
+    if ((ok && pathBuffer_[0]) || cancel) {
+      fileDialog_ = FileDialog::None;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+}
+
+void EditorApp::drawClosePrompt() {
+  if (!closePrompt_) return;
+  if (!ImGui::IsPopupOpen("Unsaved changes")) ImGui::OpenPopup("Unsaved changes");
+  if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s has unsaved changes.", session_.document().displayName().c_str());
+    if (ImGui::Button("Save")) {
+      doSave();
+      if (!session_.document().dirty()) closeConfirmed_ = true;
+      closePrompt_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) {
+      closeConfirmed_ = true;
+      closePrompt_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) {
+      closePrompt_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+}
+
+}  // namespace weft::editor

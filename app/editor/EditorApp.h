@@ -1,0 +1,106 @@
+#pragma once
+// The editor's Dear ImGui front end over an EditorSession: menus, scene panels, the viewport
+// (the Renderer drawing into an off-screen target shown as an image, with orbit camera,
+// click and box selection), and the timeline. It owns the ImGui context and the OpenGL3
+// backend; the platform side (GLFW input, or the headless script feeding ImGui's IO) is the
+// caller's: call the platform's NewFrame, then frame().
+
+#include "EditorSession.h"
+
+#include <weft/render/Image.h>
+#include <weft/render/RenderContext.h>
+#include <weft/render/RenderStyle.h>
+
+#include <memory>
+#include <string>
+
+namespace weft::render {
+class Renderer;
+}
+
+namespace weft::editor {
+
+class ViewportTarget;
+
+class EditorApp {
+ public:
+  // `context` is current and outlives the app. Creates the ImGui context (no .ini file: the
+  // layout is fixed) and the OpenGL3 renderer backend.
+  EditorApp(EditorSession& session, render::RenderContext& context);
+  ~EditorApp();
+  EditorApp(const EditorApp&) = delete;
+  EditorApp& operator=(const EditorApp&) = delete;
+
+  // One UI frame into the context's framebuffer: builds the UI, draws the viewport, renders
+  // ImGui. The platform has set io.DisplaySize, io.DeltaTime and input before.
+  void frame();
+
+  // The viewport alone, drawn at width x height with the current camera and style.
+  render::Image viewportImage(int width, int height);
+  // The whole window as last drawn (menus, panels, viewport).
+  render::Image windowImage();
+
+  // Viewport size in pixels as laid out by the last frame.
+  int viewportWidth() const { return viewportWidth_; }
+  int viewportHeight() const { return viewportHeight_; }
+  render::RenderStyle& style() { return style_; }
+
+  // Closing: a dirty document asks first (Save / Discard / Cancel).
+  void requestClose();
+  bool closeConfirmed() const { return closeConfirmed_; }
+
+  // The last user-facing message (an error from an action, or what an action did).
+  const std::string& message() const { return message_; }
+  bool messageIsError() const { return messageIsError_; }
+
+ private:
+  void drawMenuBar();
+  void drawScenePanel(float top, float height);
+  void drawViewport(float left, float top, float width, float height);
+  void drawTimeline(float left, float top, float width, float height);
+  void drawFileDialog();
+  void drawClosePrompt();
+  void handleShortcuts();
+  void renderViewport();
+
+  void report(const std::string& text, bool error);
+  void doOpen(const std::string& file);
+  void doSave();
+  void doSaveAs(const std::string& file);
+  void doUndo();
+  void doRedo();
+
+  // Widgets bound to a JSON path of the document. `fallback` is shown when the key is absent.
+  bool numberField(const char* label, const std::string& path, double fallback, const char* format = "%.6g");
+  bool integerField(const char* label, const std::string& path, int fallback);
+  bool vectorField(const char* label, const std::string& path, const double* fallback);
+  void comboField(const char* label, const std::string& path, const char* const* options, int count,
+                  const char* fallback);
+  void applyEdit(const std::string& error, unsigned itemId = 0);
+
+  void timePanel();
+  void clothPanel();
+  void effectsPanel();
+  void obstaclePanel();
+  void selectionPanel();
+
+  EditorSession& session_;
+  render::RenderContext& context_;
+  std::unique_ptr<ViewportTarget> viewport_;
+  std::unique_ptr<render::Renderer> renderer_;
+  render::RenderStyle style_;
+  bool contactColours_ = true;
+  int viewportWidth_ = 1, viewportHeight_ = 1;
+  bool boxSelecting_ = false;
+  float boxStart_[2] = {0, 0};
+  unsigned lastEditId_ = 0;  // ImGui item that made the last document edit (coalescing)
+
+  enum class FileDialog { None, Open, SaveAs };
+  FileDialog fileDialog_ = FileDialog::None;
+  char pathBuffer_[1024] = {};
+  bool closePrompt_ = false, closeConfirmed_ = false;
+  std::string message_;
+  bool messageIsError_ = false;
+};
+
+}  // namespace weft::editor

@@ -1,0 +1,303 @@
+#include "EditorDocument.h"
+
+#include <weft/core/Error.h>
+#include <weft/scene/JsonPath.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace weft::editor {
+
+namespace fs = std::filesystem;
+
+EditorDocument::EditorDocument(nlohmann::json document) : document_(std::move(document)) {
+  revalidate();
+}
+
+nlohmann::json EditorDocument::defaultSceneDocument() {
+  return nlohmann::json::parse(R"({
+    "name": "untitled",
+    "time": { "dt": 0.01, "steps": 100 },
+    "gravity": [0, -9.8, 0],
+    "solver": { "pd_iterations": 100, "pd_tolerance": 1e-4 },
+    "cloths": [ {
+      "mesh": { "grid": { "size": [1.0, 1.0], "resolution": [16, 16] },
+                "transform": { "rotate_deg": [90, 0, 0], "translate": [0, 1.0, 0] } },
+      "material": { "density": 0.2, "stretch": 1000.0, "bend": 0.0001 },
+      "attachments": [ { "vertices": [0, 16], "kind": "fixed" } ]
+    } ]
+  })");
+}
+
+void EditorDocument::open(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, "-", "cannot open the file: " + std::string(std::strerror(errno)));
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json parsed;
+  try {
+    parsed = nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(file, "-", std::string("not valid JSON: ") + e.what());
+  }
+  if (!parsed.is_object()) throw InputError(file, "-", "a scene must be a JSON object");
+  document_ = std::move(parsed);
+  file_ = file;
+  undo_.clear();
+  redo_.clear();
+  state_ = savedState_ = nextState_++;
+  ++revision_;
+  revalidate();
+}
+
+void EditorDocument::save() {
+  if (file_.empty()) throw InputError("untitled", "-", "the document has no file yet: use Save As");
+  writeFileAtomically(file_, document_.dump(2) + "\n");
+  savedState_ = state_;
+}
+
+void EditorDocument::saveAs(const std::string& file) {
+  if (file.empty()) throw InputError("-", "-", "no file name given");
+  writeFileAtomically(file, document_.dump(2) + "\n");
+  const bool directoryChanged = fs::absolute(file).parent_path() != fs::path(directory());
+  file_ = file;
+  savedState_ = state_;
+  // Relative mesh paths now resolve against the new folder.
+  if (directoryChanged) {
+    ++revision_;
+    revalidate();
+  }
+}
+
+std::string EditorDocument::directory() const {
+  if (file_.empty()) return fs::current_path().string();
+  return fs::absolute(file_).parent_path().string();
+}
+
+std::string EditorDocument::displayName() const {
+  return file_.empty() ? "untitled" : fs::path(file_).filename().string();
+}
+
+const nlohmann::json* EditorDocument::find(const std::string& path) const {
+  return findJsonPath(document_, path);
+}
+
+std::string EditorDocument::setValue(const std::string& path, const nlohmann::json& value,
+                                     bool coalesce, bool createParents) {
+  nlohmann::json after = document_;
+  if (createParents) {
+    // Create missing objects along the way (never array elements).
+    const auto parts = splitJsonPath(path);
+    nlohmann::json* node = &after;
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+      if (node->is_object()) {
+        if (!node->contains(parts[i])) (*node)[parts[i]] = nlohmann::json::object();
+        node = &(*node)[parts[i]];
+      } else if (node->is_array()) {
+        char* end = nullptr;
+        const unsigned long index = std::strtoul(parts[i].c_str(), &end, 10);
+        if (parts[i].empty() || *end != '\0' || index >= node->size()) break;
+        node = &(*node)[index];
+      } else {
+        break;
+      }
+    }
+  }
+  const std::string error = setJsonPath(after, path, value);
+  if (!error.empty()) return path + ": " + error;
+  if (after == document_) return "";
+  commit("Set " + path, path, document_, std::move(after), coalesce);
+  return "";
+}
+
+std::string EditorDocument::removeValue(const std::string& path) {
+  const auto parts = splitJsonPath(path);
+  if (parts.empty()) return path + ": empty path";
+  nlohmann::json after = document_;
+  nlohmann::json* parent = &after;
+  if (parts.size() > 1) {
+    std::string parentPath = parts[0];
+    for (std::size_t i = 1; i + 1 < parts.size(); ++i) parentPath += "." + parts[i];
+    parent = findJsonPath(after, parentPath);
+  }
+  if (!parent) return path + ": unknown path";
+  if (parent->is_object()) {
+    if (parent->erase(parts.back()) == 0) return path + ": unknown path";
+  } else if (parent->is_array()) {
+    char* end = nullptr;
+    const unsigned long index = std::strtoul(parts.back().c_str(), &end, 10);
+    if (*end != '\0' || index >= parent->size()) return path + ": index out of range";
+    parent->erase(index);
+  } else {
+    return path + ": unknown path";
+  }
+  commit("Remove " + path, "", document_, std::move(after), false);
+  return "";
+}
+
+std::string EditorDocument::edit(const std::string& label,
+                                 const std::function<void(nlohmann::json&)>& change) {
+  nlohmann::json after = document_;
+  try {
+    change(after);
+  } catch (const std::exception& e) {
+    return label + ": " + e.what();
+  }
+  if (after == document_) return "";
+  commit(label, "", document_, std::move(after), false);
+  return "";
+}
+
+void EditorDocument::commit(std::string label, std::string coalesceKey, nlohmann::json before,
+                            nlohmann::json after, bool coalesce) {
+  const bool merge = coalesce && !coalesceKey.empty() && !undo_.empty() &&
+                     undo_.back().coalesceKey == coalesceKey && state_ != savedState_;
+  if (!merge) {
+    undo_.push_back(Step{std::move(label), std::move(coalesceKey), std::move(before), state_});
+    if (undo_.size() > kMaxUndo) undo_.erase(undo_.begin());
+  }
+  redo_.clear();
+  document_ = std::move(after);
+  state_ = nextState_++;
+  ++revision_;
+  revalidate();
+}
+
+bool EditorDocument::undo() {
+  if (undo_.empty()) return false;
+  Step step = std::move(undo_.back());
+  undo_.pop_back();
+  redo_.push_back(Step{step.label, "", document_, state_});
+  document_ = std::move(step.before);
+  state_ = step.beforeState;
+  ++revision_;
+  revalidate();
+  return true;
+}
+
+bool EditorDocument::redo() {
+  if (redo_.empty()) return false;
+  Step step = std::move(redo_.back());
+  redo_.pop_back();
+  undo_.push_back(Step{step.label, "", document_, state_});
+  document_ = std::move(step.before);
+  state_ = step.beforeState;
+  ++revision_;
+  revalidate();
+  return true;
+}
+
+void EditorDocument::revalidate() {
+  try {
+    scene_ = std::make_shared<const Scene>(
+        parseScene(document_, file_.empty() ? displayName() : file_, directory()));
+    error_.clear();
+  } catch (const std::exception& e) {
+    // InputError carries "<file>: <path>: <what>"; anything else is still a message, never a crash.
+    scene_.reset();
+    error_ = e.what();
+  }
+}
+
+void writeFileAtomically(const std::string& path, const std::string& text) {
+  const fs::path target = fs::absolute(path);
+  const fs::path folder = target.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) throw InputError(path, "-", "the folder does not exist");
+  std::string temp = (folder / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
+  const int fd = ::mkstemp(temp.data());
+  if (fd < 0) throw InputError(path, "-", "cannot create a temporary file: " + std::string(std::strerror(errno)));
+  auto fail = [&](const std::string& what) {
+    const std::string reason = what + ": " + std::strerror(errno);
+    ::close(fd);
+    ::unlink(temp.c_str());
+    throw InputError(path, "-", reason);
+  };
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail("cannot write");
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) fail("cannot flush");
+  // mkstemp creates 0600: keep the replaced file's permissions, or make an ordinary document.
+  struct stat existing {};
+  const mode_t mode = ::stat(target.c_str(), &existing) == 0 ? (existing.st_mode & 07777) : 0644;
+  if (::fchmod(fd, mode) != 0) fail("cannot set permissions");
+  if (::close(fd) != 0) {
+    const std::string reason = std::string("cannot close: ") + std::strerror(errno);
+    ::unlink(temp.c_str());
+    throw InputError(path, "-", reason);
+  }
+  if (::rename(temp.c_str(), target.c_str()) != 0) {
+    const std::string reason = std::string("cannot replace the file: ") + std::strerror(errno);
+    ::unlink(temp.c_str());
+    throw InputError(path, "-", reason);
+  }
+}
+
+RecentFiles::RecentFiles(std::string storeFile, std::size_t limit)
+    : storeFile_(std::move(storeFile)), limit_(limit) {
+  load();
+}
+
+std::string RecentFiles::defaultStoreFile() {
+  const char* config = std::getenv("XDG_CONFIG_HOME");
+  const char* home = std::getenv("HOME");
+  fs::path base = config && *config ? fs::path(config) : fs::path(home ? home : ".") / ".config";
+  return (base / "weft" / "recent-files.json").string();
+}
+
+void RecentFiles::add(const std::string& file) {
+  std::error_code ec;
+  const std::string absolute = fs::absolute(file, ec).lexically_normal().string();
+  files_.erase(std::remove(files_.begin(), files_.end(), absolute), files_.end());
+  files_.insert(files_.begin(), absolute);
+  if (files_.size() > limit_) files_.resize(limit_);
+  store();
+}
+
+void RecentFiles::remove(const std::string& file) {
+  files_.erase(std::remove(files_.begin(), files_.end(), file), files_.end());
+  store();
+}
+
+void RecentFiles::load() {
+  files_.clear();
+  std::ifstream in(storeFile_);
+  if (!in) return;
+  try {
+    const nlohmann::json list = nlohmann::json::parse(in);
+    for (const auto& item : list)
+      if (item.is_string() && files_.size() < limit_) files_.push_back(item.get<std::string>());
+  } catch (const std::exception&) {
+    files_.clear();  // a damaged list is not worth an error: it is rebuilt as files are opened
+  }
+}
+
+void RecentFiles::store() const {
+  if (storeFile_.empty()) return;
+  std::error_code ec;
+  fs::create_directories(fs::path(storeFile_).parent_path(), ec);
+  try {
+    writeFileAtomically(storeFile_, nlohmann::json(files_).dump(2) + "\n");
+  } catch (const std::exception&) {
+    // The recent list is a convenience; failing to store it must not disturb editing.
+  }
+}
+
+}  // namespace weft::editor

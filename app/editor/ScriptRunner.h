@@ -1,0 +1,51 @@
+#pragma once
+// Headless automation: a JSON script of editor actions, run one action per UI frame through
+// the same EditorSession and EditorApp a person uses (so every action is followed by at least
+// one real UI frame). The format is documented in README ("Editor"); in short
+//
+//   { "actions": [ {"open": "scene.json"}, {"set": "time.steps", "value": 10},
+//                  {"select": [0, 16]}, {"pin": true}, {"simulate": 10}, {"scrub": 5},
+//                  {"save": "out.json"}, {"screenshot": "view.png", "size": [320, 240]} ] }
+//
+// A failing action stops the script with an error naming the script, the action's index and
+// kind, and what went wrong.
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace weft::editor {
+
+class EditorApp;
+class EditorSession;
+
+class ScriptRunner {
+ public:
+  // Throws InputError when the file cannot be read or is not a script.
+  explicit ScriptRunner(const std::string& file);
+
+  enum class State { Running, Finished, Failed };
+  // Runs the next action (or keeps waiting for one in progress). Call once per UI frame,
+  // after the frame has been drawn.
+  State update(EditorSession& session, EditorApp& app);
+
+  const std::string& error() const { return error_; }  // "<script>: actions.N (kind): what"
+  int exitCode() const { return exitCode_; }  // 0, 2 (failing action), 3 (simulation failed)
+
+ private:
+  bool run(const nlohmann::json& action, EditorSession& session, EditorApp& app);  // false: wait
+  void fail(const std::string& what, int code = 2);
+
+  std::string file_;
+  nlohmann::json actions_;
+  std::size_t next_ = 0;
+  int waitFrames_ = 0;
+  bool waitingForSimulation_ = false;
+  double waitStarted_ = 0.0;
+  double timeout_ = 300.0;
+  std::string error_;
+  int exitCode_ = 0;
+  State state_ = State::Running;
+};
+
+}  // namespace weft::editor

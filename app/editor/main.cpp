@@ -1,0 +1,180 @@
+// weft-editor: the Dear ImGui + GLFW editor, or the same UI driven headless by a script.
+//
+//   weft-editor [SCENE]                                   a window (needs a display)
+//   weft-editor [SCENE] --script FILE                     a window, driven by the script
+//   weft-editor [SCENE] --headless --script FILE [--size WxH] [--backend auto|osmesa|egl]
+//
+// Exit codes follow the `weft` contract: 0 success, 2 bad input or a failing script action,
+// 3 a simulation that failed numerically.
+
+#include "EditorApp.h"
+#include "EditorSession.h"
+#include "ScriptRunner.h"
+
+#include <weft/core/Error.h>
+#include <weft/render/GlfwContext.h>
+#include <weft/render/HeadlessContext.h>
+
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <cfloat>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+namespace {
+
+using namespace weft;
+using namespace weft::editor;
+
+struct Options {
+  std::string scene, script, recentStore;
+  bool headless = false, recentGiven = false;
+  int width = 1280, height = 720;
+  render::HeadlessBackend backend = render::HeadlessBackend::Auto;
+};
+
+void usage(std::ostream& out) {
+  out << "usage: weft-editor [SCENE] [--headless] [--script FILE] [--size WxH]\n"
+         "                   [--backend auto|osmesa|egl] [--recent-files FILE]\n";
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw InputError("-", a, "needs a value");
+      return argv[++i];
+    };
+    if (a == "--headless") {
+      o.headless = true;
+    } else if (a == "--script") {
+      o.script = value();
+    } else if (a == "--size") {
+      const std::string v = value();
+      if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 320 || o.height < 240)
+        throw InputError("-", "--size", "expects WxH of at least 320x240, got " + v);
+    } else if (a == "--backend") {
+      const std::string v = value();
+      if (!render::parseHeadlessBackend(v, o.backend))
+        throw InputError("-", "--backend", "expects auto, osmesa or egl, got " + v);
+    } else if (a == "--recent-files") {
+      o.recentStore = value();
+      o.recentGiven = true;
+    } else if (a == "--help" || a == "-h") {
+      usage(std::cout);
+      std::exit(0);
+    } else if (!a.empty() && a[0] == '-') {
+      throw InputError("-", a, "unknown option");
+    } else if (o.scene.empty()) {
+      o.scene = a;
+    } else {
+      throw InputError("-", a, "only one scene file may be given");
+    }
+  }
+  if (o.headless && o.script.empty())
+    throw InputError("-", "--headless", "needs --script FILE (there is nobody to click)");
+  return o;
+}
+
+// Runs UI frames until the script ends (or, without a script, until the window closes).
+int loop(EditorSession& session, EditorApp& app, std::optional<ScriptRunner>& script,
+         const std::function<bool()>& beginFrame, const std::function<void()>& endFrame) {
+  auto last = std::chrono::steady_clock::now();
+  while (true) {
+    if (!beginFrame()) return 0;
+    const auto t = std::chrono::steady_clock::now();
+    ImGui::GetIO().DeltaTime = std::max(1e-4f, std::chrono::duration<float>(t - last).count());
+    last = t;
+    app.frame();
+    endFrame();
+    if (script) {
+      const ScriptRunner::State state = script->update(session, app);
+      if (state == ScriptRunner::State::Failed) {
+        std::cerr << "error: " << script->error() << "\n";
+        return script->exitCode();
+      }
+      if (state == ScriptRunner::State::Finished) {
+        std::cout << "weft-editor: script done: " << session.document().displayName() << ", "
+                  << session.cache().frameCount() << " cached states, "
+                  << session.selection().nodes().size() << " selected vertices\n";
+        return 0;
+      }
+    }
+    // Leave the cores to the simulation while it runs.
+    if (session.cache().running()) std::this_thread::sleep_for(std::chrono::milliseconds(8));
+  }
+}
+
+int runHeadless(const Options& o, EditorSession& session, std::optional<ScriptRunner>& script) {
+  std::unique_ptr<render::RenderContext> context =
+      render::createHeadlessContext(o.width, o.height, o.backend, &std::cerr);
+  int code = 0;
+  {
+    EditorApp app(session, *context);
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(float(o.width), float(o.height));
+    io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+    code = loop(session, app, script, [] { return true; }, [] {});
+  }
+  context.reset();  // before Mesa's exit handlers
+  return code;
+}
+
+int runWindow(const Options& o, EditorSession& session, std::optional<ScriptRunner>& script) {
+  render::GlfwContext context("Weft editor", o.width, o.height);
+  glfwSwapInterval(1);
+  int code = 0;
+  {
+    EditorApp app(session, context);
+    ImGui_ImplGlfw_InitForOpenGL(context.window(), true);
+    code = loop(
+        session, app, script,
+        [&] {
+          if (glfwWindowShouldClose(context.window())) {
+            glfwSetWindowShouldClose(context.window(), GLFW_FALSE);
+            app.requestClose();
+          }
+          if (app.closeConfirmed()) return false;
+          glfwPollEvents();
+          ImGui_ImplGlfw_NewFrame();
+          return true;
+        },
+        [&] { context.present(); });
+    ImGui_ImplGlfw_Shutdown();
+  }
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    std::optional<ScriptRunner> script;
+    if (!o.script.empty()) script.emplace(o.script);
+    // Scripted runs keep the recent-files list in memory unless told where it lives, so tests
+    // never touch the user's list.
+    const std::string store = o.recentGiven ? o.recentStore
+                              : script     ? std::string()
+                                           : RecentFiles::defaultStoreFile();
+    EditorSession session(store);
+    if (!o.scene.empty()) session.open(o.scene);
+    return o.headless ? runHeadless(o, session, script) : runWindow(o, session, script);
+  } catch (const InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  }
+}
