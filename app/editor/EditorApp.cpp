@@ -229,12 +229,13 @@ void EditorApp::applyEdit(const std::string& error, unsigned itemId) {
   lastEditId_ = itemId;
 }
 
-bool EditorApp::numberField(const char* label, const std::string& path, double fallback,
-                            const char* format) {
-  double value = numberAt(session_.document(), path, fallback);
+template <class Value, class Widget>
+bool EditorApp::documentField(const char* label, const std::string& path, Value value, Widget&& widget) {
+  // One document edit per change; consecutive changes of the same item (typing, dragging) merge
+  // into one undo step.
   ImGui::PushID(path.c_str());
   const ImGuiID id = ImGui::GetID(label);
-  const bool changed = ImGui::InputDouble(label, &value, 0.0, 0.0, format);
+  const bool changed = widget(&value);
   if (changed) {
     const bool coalesce = id == lastEditId_ && !ImGui::IsItemActivated();
     applyEdit(session_.document().setValue(path, value, coalesce), id);
@@ -244,18 +245,15 @@ bool EditorApp::numberField(const char* label, const std::string& path, double f
   return changed;
 }
 
+bool EditorApp::numberField(const char* label, const std::string& path, double fallback,
+                            const char* format) {
+  return documentField(label, path, numberAt(session_.document(), path, fallback),
+                       [&](double* v) { return ImGui::InputDouble(label, v, 0.0, 0.0, format); });
+}
+
 bool EditorApp::integerField(const char* label, const std::string& path, int fallback) {
-  int value = static_cast<int>(numberAt(session_.document(), path, fallback));
-  ImGui::PushID(path.c_str());
-  const ImGuiID id = ImGui::GetID(label);
-  const bool changed = ImGui::InputInt(label, &value);
-  if (changed) {
-    const bool coalesce = id == lastEditId_ && !ImGui::IsItemActivated();
-    applyEdit(session_.document().setValue(path, value, coalesce), id);
-  }
-  if (ImGui::IsItemDeactivated()) lastEditId_ = 0;
-  ImGui::PopID();
-  return changed;
+  return documentField(label, path, static_cast<int>(numberAt(session_.document(), path, fallback)),
+                       [&](int* v) { return ImGui::InputInt(label, v); });
 }
 
 bool EditorApp::vectorField(const char* label, const std::string& path, const double* fallback) {

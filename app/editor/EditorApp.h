@@ -73,6 +73,8 @@ class EditorApp {
   // Widgets bound to a JSON path of the document. `fallback` is shown when the key is absent.
   bool numberField(const char* label, const std::string& path, double fallback, const char* format = "%.6g");
   bool integerField(const char* label, const std::string& path, int fallback);
+  template <class Value, class Widget>
+  bool documentField(const char* label, const std::string& path, Value value, Widget&& widget);
   bool vectorField(const char* label, const std::string& path, const double* fallback);
   void comboField(const char* label, const std::string& path, const char* const* options, int count,
                   const char* fallback);

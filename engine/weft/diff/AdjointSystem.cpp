@@ -19,18 +19,11 @@ AdjointSystem::AdjointSystem(const Scene& scene) : model_(buildClothModel(scene)
   add(std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, false)));
   add(std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, true)));
 
-  const int m = model_.nodeCount();
-  Eigen::SparseMatrix<double> mass(m, m);
-  std::vector<Eigen::Triplet<double>> diag;
-  for (int i = 0; i < m; ++i) diag.emplace_back(i, i, model_.mass[i]);
-  mass.setFromTriplets(diag.begin(), diag.end());
-  system_ = mass;
+  system_ = assembleSystemMatrix(model_.mass, constraints_, h_);
   for (const auto& c : constraints_) {
-    system_ += (h_ * h_) * c->weightedGram();
     anyDerivative_ = anyDerivative_ || c->hasDerivative();
     rows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
-  system_.makeCompressed();
   if (!cholesky_.factorize(system_)) throw NumericalError(0, "backward", "system matrix P is not positive definite");
   buildColouring();
 }

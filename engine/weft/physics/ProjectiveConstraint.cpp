@@ -41,4 +41,18 @@ Eigen::SparseMatrix<double> ProjectiveConstraint::weightedGram() const {
   return Eigen::SparseMatrix<double>(at_ * weights_.asDiagonal() * a);
 }
 
+Eigen::SparseMatrix<double> assembleSystemMatrix(const Eigen::VectorXd& mass,
+                                                 const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints,
+                                                 double h) {
+  const int m = static_cast<int>(mass.size());
+  Eigen::SparseMatrix<double> system(m, m);
+  std::vector<Eigen::Triplet<double>> diagonal;
+  diagonal.reserve(m);
+  for (int i = 0; i < m; ++i) diagonal.emplace_back(i, i, mass[i]);
+  system.setFromTriplets(diagonal.begin(), diagonal.end());
+  for (const auto& c : constraints) system += (h * h) * c->weightedGram();
+  system.makeCompressed();
+  return system;
+}
+
 }  // namespace weft

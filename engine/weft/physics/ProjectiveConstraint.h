@@ -10,6 +10,7 @@
 
 #include <Eigen/SparseCore>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,5 +55,11 @@ class ProjectiveConstraint {
   Eigen::VectorXd weights_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> at_;
 };
+
+// The one-coordinate PD system matrix M + h^2 sum_i w_i A_i^T A_i (DiffCloth Eq. 7), compressed:
+// the Simulator's P and the adjoint's (DiffCloth Sec. 4.1).
+Eigen::SparseMatrix<double> assembleSystemMatrix(const Eigen::VectorXd& mass,
+                                                 const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints,
+                                                 double h);
 
 }  // namespace weft

@@ -101,14 +101,7 @@ int Simulator::addModule(const std::string& name) {
 }
 
 void Simulator::assembleAndFactorize() {
-  const int m = model_.nodeCount();
-  Eigen::SparseMatrix<double> mass(m, m);
-  std::vector<Eigen::Triplet<double>> diag;
-  for (int i = 0; i < m; ++i) diag.emplace_back(i, i, model_.mass[i]);
-  mass.setFromTriplets(diag.begin(), diag.end());
-  system_ = mass;
-  for (const auto& c : constraints_) system_ += (h_ * h_) * c->weightedGram();
-  system_.makeCompressed();
+  system_ = assembleSystemMatrix(model_.mass, constraints_, h_);
   systemRows_ = system_;
   if (!cholesky_.factorize(system_))
     throw NumericalError(0, "solver", "system matrix P is not positive definite");
