@@ -12,6 +12,8 @@ int benchCommand(const std::vector<std::string>& args);
 int renderCommand(const std::vector<std::string>& args);
 // `weft gradcheck` (GradcheckCommand.cpp): adjoint vs finite-difference gradient of the task loss.
 int gradcheckCommand(const std::vector<std::string>& args);
+// `weft optimize` (OptimizeCommand.cpp): minimises the task loss over the task's parameters.
+int optimizeCommand(const std::vector<std::string>& args);
 // `weft bench render` (RenderBench.cpp).
 int renderBenchmark(const std::vector<std::string>& args);
 

@@ -21,6 +21,8 @@ const char* kUsage =
     "  bench NAME [--out DIR] [--quick]        (NAME: forward, continuity, contact, render)\n"
     "  gradcheck SCENE [--param PATH ...] [--eps E] [--json] [--set PATH=VALUE ...]\n"
     "         [--backward gmres|fixed_point|direct] [--forward-tolerance T] [--backward-tolerance T]\n"
+    "  optimize SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]\n"
+    "         [--max-evaluations N] [--learning-rate R] [--set PATH=VALUE ...]\n"
     "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";
 
 }  // namespace
@@ -38,6 +40,7 @@ int main(int argc, char** argv) {
     if (verb == "render") return weft::cli::renderCommand(args);
     if (verb == "bench") return weft::cli::benchCommand(args);
     if (verb == "gradcheck") return weft::cli::gradcheckCommand(args);
+    if (verb == "optimize") return weft::cli::optimizeCommand(args);
     std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(), kUsage);
     return 2;
   } catch (const weft::InputError& e) {

@@ -118,6 +118,14 @@ struct Wind {
 struct Task {
   nlohmann::json loss;                  // validated structure; interpreted by the diff concern
   std::vector<std::string> parameters;  // JSON paths of scalars in the scene
+  // Optional explicit optimisation bounds (task.bounds: {"<parameter path>": [lower, upper]}, a
+  // null side meaning unbounded); `weft optimize` uses them instead of the parameter kind's
+  // default bounds.
+  struct Bound {
+    std::string path;
+    double lower, upper;
+  };
+  std::vector<Bound> bounds;
 };
 
 struct Scene {

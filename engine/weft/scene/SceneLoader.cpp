@@ -6,8 +6,10 @@
 #include <weft/scene/JsonPath.h>
 #include <weft/scene/JsonReader.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -283,7 +285,7 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
 }
 
 Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string& directory) {
-  r.allowOnly({"loss", "parameters"});
+  r.allowOnly({"loss", "parameters", "bounds"});
   Task task;
   const JsonReader loss = r.at("loss").object();
   if (loss.value().empty()) loss.fail("needs at least one loss term");
@@ -308,6 +310,20 @@ Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string&
       if (!v) p.fail("parameter '" + path + "' names no value in the scene (write the value in the scene file)");
       if (!v->is_number()) p.fail("parameter '" + path + "' is not a number in the scene");
       task.parameters.push_back(path);
+    }
+  }
+  if (auto bounds = r.optional("bounds")) {
+    bounds->object();
+    for (auto it = bounds->value().begin(); it != bounds->value().end(); ++it) {
+      const JsonReader b = bounds->at(it.key());
+      if (std::find(task.parameters.begin(), task.parameters.end(), it.key()) == task.parameters.end())
+        b.fail("bounds are given for '" + it.key() + "', which is not one of task.parameters");
+      if (b.size() != 2) b.fail("must be [lower, upper] (null for an unbounded side)");
+      const double inf = std::numeric_limits<double>::infinity();
+      const double lower = b[0].value().is_null() ? -inf : b[0].number();
+      const double upper = b[1].value().is_null() ? inf : b[1].number();
+      if (!(lower < upper)) b.fail("lower bound must be below the upper bound");
+      task.bounds.push_back({it.key(), lower, upper});
     }
   }
   return task;

@@ -1,0 +1,174 @@
+// `weft optimize SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]
+//                      [--max-evaluations N] [--learning-rate R] [--set PATH=VALUE ...]
+//                      [--threads N] [--quiet]`
+// Minimises the scene's task loss over its task.parameters (scenes without contact for now) and
+// writes, into DIR (default out/optimize-<scene name>), staged so that a failed run never
+// replaces a good folder:
+//   loss.csv     evaluation,steps,loss,<parameter paths...>  (one row per evaluation)
+//   result.json  method, seed, initial/final parameters and loss, evaluations, steps, gradient
+//                norm, stop reason, timing, backward-solver counts
+//   loss.png     loss against simulated steps (gnuplot; skipped, with a note, without it)
+// The budget is in simulated steps as DiffCloth's tables count them: a forward step is one, a
+// backward step one more, so one evaluation of a scene with N steps costs 2N.
+
+#include "CommandLine.h"
+#include "Commands.h"
+#include "SceneOverrideOption.h"
+#include "bench/BenchTable.h"
+
+#include <weft/core/Error.h>
+#include <weft/diff/Backpropagation.h>
+#include <weft/io/StagedDirectory.h>
+#include <weft/optim/Optimizer.h>
+#include <weft/optim/SimulationObjective.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+namespace weft::cli {
+
+int applyThreads(const CommandLine& cl);  // SimulateCommand.cpp
+
+namespace {
+
+// The default budget: enough for 100 evaluations (L-BFGS-B usually needs far fewer).
+constexpr long long kDefaultEvaluations = 100;
+
+nlohmann::json parameterObject(const ParameterSpace& space, const Eigen::VectorXd& values) {
+  nlohmann::json o = nlohmann::json::object();
+  for (int i = 0; i < space.size(); ++i) o[space.parameters()[i].path] = values[i];
+  return o;
+}
+
+}  // namespace
+
+int optimizeCommand(const std::vector<std::string>& args) {
+  CommandLine cl(args,
+                 {"--method", "--seed", "--budget", "--out", "--max-evaluations", "--learning-rate", "--set", "--threads"},
+                 {"--quiet"});
+  if (cl.positional().size() != 1) cl.fail("SCENE", "optimize takes exactly one scene file");
+  const std::string file = cl.positional()[0];
+  cl.setContext(file);
+  applyThreads(cl);
+  const std::string method = cl.value("--method", "lbfgsb");
+  if (method == "cmaes" || method == "es1p1")
+    cl.fail("--method", "'" + method + "' is not yet implemented (available: lbfgsb, adam)");
+  if (method != "lbfgsb" && method != "adam")
+    cl.fail("--method", "must be one of lbfgsb, cmaes, es1p1, adam, got '" + method + "'");
+  OptimizerSettings settings;
+  settings.seed = static_cast<unsigned>(cl.integer("--seed", 0, 0, 2147483647));
+  settings.maxEvaluations = cl.integer("--max-evaluations", 0, 0, 100000000);
+  settings.learningRate = cl.number("--learning-rate", settings.learningRate);
+  if (!(settings.learningRate > 0.0)) cl.fail("--learning-rate", "must be > 0");
+  const double budgetOption = cl.number("--budget", 0.0);
+  if (cl.has("--budget") && !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
+    cl.fail("--budget", "must be a positive whole number of simulated steps");
+
+  const Scene scene = loadScene(file, parseOverrides(cl));
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  requireContactFree(scene);
+  if (!scene.task) throw InputError(file, "task", "the scene has no task; optimize needs task.loss and parameters");
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  if (parameters.empty()) throw InputError(file, "task.parameters", "no parameters to optimise");
+  SimulationObjective objective(scene, parameters);
+  const long long perEvaluation = objective.stepsPerEvaluation();
+  settings.budget = cl.has("--budget") ? static_cast<long long>(budgetOption) : kDefaultEvaluations * perEvaluation;
+  if (settings.budget < perEvaluation)
+    cl.fail("--budget", "must allow at least one evaluation (" + std::to_string(perEvaluation) +
+                            " simulated steps: " + std::to_string(scene.time.steps) + " forward + " +
+                            std::to_string(scene.time.steps) + " backward)");
+
+  const std::string outDir = cl.value("--out", "out/optimize-" + scene.name);
+  StagedDirectory out(outDir);  // fails early on an unusable --out, before optimising
+
+  const ParameterSpace& space = objective.space();
+  std::ofstream csv(out.file("loss.csv"));
+  csv << "evaluation,steps,loss";
+  for (const SceneParameter& p : space.parameters()) csv << "," << p.path;
+  csv << "\n";
+  csv.precision(17);
+  const bool quiet = cl.has("--quiet");
+  std::unique_ptr<Optimizer> optimizer = makeOptimizer(method, settings);
+  optimizer->log().setObserver([&](const LogEntry& e) {
+    if (!std::isfinite(e.loss) || !e.gradient.allFinite())
+      throw NumericalError(0, "optimize", "loss or gradient is not finite at evaluation " + std::to_string(e.evaluation));
+    const Eigen::VectorXd v = space.toValues(e.x);
+    csv << e.evaluation << "," << e.steps << "," << e.loss;
+    for (int i = 0; i < v.size(); ++i) csv << "," << v[i];
+    csv << "\n";
+    if (!quiet) std::fprintf(stderr, "\revaluation %d, %lld steps, loss %.6e   ", e.evaluation, e.steps, e.loss);
+  });
+
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::VectorXd z0 = space.toCoordinates(space.initialValues());
+  const OptimizationResult result =
+      optimizer->minimize(objective, z0, space.lowerCoordinates(), space.upperCoordinates());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!quiet) std::fprintf(stderr, "\n");
+  csv.close();
+  if (!csv) throw InputError(outDir, "loss.csv", "cannot write");
+  if (optimizer->log().empty()) throw NumericalError(0, "optimize", "no evaluation was made");
+
+  const OptimizationLog& log = optimizer->log();
+  const Eigen::VectorXd finalValues = space.toValues(result.x);
+  const Eigen::VectorXd dLdtheta = space.gradientToValues(result.x, result.gradient);
+  nlohmann::json bounds = nlohmann::json::object();
+  for (const SceneParameter& p : space.parameters())
+    bounds[p.path] = {{"lower", std::isfinite(p.lower) ? nlohmann::json(p.lower) : nlohmann::json(nullptr)},
+                      {"upper", std::isfinite(p.upper) ? nlohmann::json(p.upper) : nlohmann::json(nullptr)},
+                      {"log_scale", p.logScale}};
+  const AdjointSolverStats& b = objective.backwardStats();
+  nlohmann::json report = {
+      {"scene", file},
+      {"method", method},
+      {"seed", settings.seed},
+      {"budget", settings.budget},
+      {"initial_parameters", parameterObject(space, space.initialValues())},
+      {"initial_loss", log.entries().front().loss},
+      {"final_parameters", parameterObject(space, finalValues)},
+      {"final_loss", result.loss},
+      {"evaluations", result.evaluations},
+      {"best_evaluation", log.best().evaluation},
+      {"iterations", result.iterations},
+      {"steps", result.steps},
+      {"steps_per_evaluation", perEvaluation},
+      {"gradient", parameterObject(space, dLdtheta)},
+      {"gradient_norm", dLdtheta.norm()},
+      {"projected_gradient_norm", result.projectedGradientNorm},
+      {"stop_reason", result.stopReason},
+      {"bounds", bounds},
+      {"seconds", seconds},
+      {"backward", {{"method", scene.solver.backward.method},
+                    {"solves", b.solves},
+                    {"iterations", b.iterations},
+                    {"not_converged", b.notConverged},
+                    {"fallbacks", b.fallbacks}}},
+      {"unconverged_forward_steps", objective.unconvergedForwardSteps()},
+  };
+  std::string plotNote;
+  PlotSeries series{"loss", {}, {}};
+  for (const LogEntry& e : log.entries()) series.x.push_back(static_cast<double>(e.steps)), series.y.push_back(e.loss);
+  const bool plotted = plotSeries(out.file("loss.png"), scene.name + ": " + method, "simulated steps (forward + backward)",
+                                  "loss", {series}, false, log.best().loss > 0.0, plotNote);
+  report["plot"] = plotted ? nlohmann::json("loss.png") : nlohmann::json(nullptr);
+  if (!plotted) std::fprintf(stderr, "warning: %s\n", plotNote.c_str());
+  {
+    std::ofstream json(out.file("result.json"));
+    json << report.dump(2) << "\n";
+    if (!json) throw InputError(outDir, "result.json", "cannot write");
+  }
+  out.commit();
+
+  std::printf("optimize: %s: %s, %d evaluations, %lld simulated steps, loss %.6e -> %.6e, stop: %s, %.2f s -> %s\n",
+              scene.name.c_str(), method.c_str(), result.evaluations, result.steps, log.entries().front().loss,
+              result.loss, result.stopReason.c_str(), seconds, outDir.c_str());
+  return 0;
+}
+
+}  // namespace weft::cli

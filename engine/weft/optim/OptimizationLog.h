@@ -1,0 +1,40 @@
+#pragma once
+// Every evaluation an optimiser made, in order, with the simulated steps spent so far: the rows of
+// `loss.csv`, and the best point seen (what an optimiser returns: line searches evaluate trial
+// points that may be worse than the last accepted one).
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <vector>
+
+namespace weft {
+
+struct LogEntry {
+  int evaluation = 0;    // 1-based
+  long long steps = 0;   // simulated steps so far, this evaluation included
+  double loss = 0.0;
+  Eigen::VectorXd x;         // optimiser coordinates
+  Eigen::VectorXd gradient;  // dL/dx in optimiser coordinates
+};
+
+class OptimizationLog {
+ public:
+  using Observer = std::function<void(const LogEntry&)>;
+  void setObserver(Observer observer) { observer_ = std::move(observer); }
+  void add(LogEntry entry);
+  // Forgets the entries (a new run), keeping the observer.
+  void clear() { entries_.clear(), best_ = 0; }
+  const std::vector<LogEntry>& entries() const { return entries_; }
+  bool empty() const { return entries_.empty(); }
+  // The entry with the lowest loss (the first of equals); requires !empty().
+  const LogEntry& best() const { return entries_[best_]; }
+  long long steps() const { return entries_.empty() ? 0 : entries_.back().steps; }
+
+ private:
+  std::vector<LogEntry> entries_;
+  std::size_t best_ = 0;
+  Observer observer_;
+};
+
+}  // namespace weft

@@ -1,0 +1,53 @@
+#pragma once
+// The coordinates an optimiser works in for a scene's parameters, and their bounds.
+//
+// Bounds: each parameter kind has a default box (stiffness and density strictly positive, a
+// wind strength within the loader's range, angles and vectors free), replaced by the task's
+// explicit task.bounds entry when there is one. The scene's starting value must lie inside.
+//
+// Coordinates: the physical values span decades (a stretch of 400 N/m next to a wind direction
+// component of 0.2), while L-BFGS-B's first step and Adam's learning rate are in the units of the
+// variables. So strictly positive material parameters (stretch, bend, density) are optimised as
+// log(value) (SceneParameter::logScale), and every other parameter as value / s with s its
+// starting magnitude (1 when it starts at 0). Gradients follow by the chain rule:
+// dL/dz = dL/dtheta * dtheta/dz, with dtheta/dz = theta (log) or s (linear).
+
+#include <weft/diff/ParameterSet.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace weft {
+
+class ParameterSpace {
+ public:
+  // Throws InputError (file, "task.bounds.<path>" or the parameter path) when the starting
+  // value lies outside its bounds.
+  ParameterSpace(const Scene& scene, const ParameterSet& parameters);
+
+  int size() const { return static_cast<int>(parameters_.size()); }
+  const std::vector<SceneParameter>& parameters() const { return parameters_; }
+
+  Eigen::VectorXd toCoordinates(const Eigen::VectorXd& values) const;
+  Eigen::VectorXd toValues(const Eigen::VectorXd& z) const;
+  // dL/dz from dL/dtheta at z.
+  Eigen::VectorXd gradientToCoordinates(const Eigen::VectorXd& z, const Eigen::VectorXd& dLdtheta) const;
+  // dL/dtheta from dL/dz at z.
+  Eigen::VectorXd gradientToValues(const Eigen::VectorXd& z, const Eigen::VectorXd& dLdz) const;
+
+  Eigen::VectorXd lowerValues() const;
+  Eigen::VectorXd upperValues() const;
+  Eigen::VectorXd lowerCoordinates() const { return toCoordinates(lowerValues()); }
+  Eigen::VectorXd upperCoordinates() const { return toCoordinates(upperValues()); }
+  const Eigen::VectorXd& initialValues() const { return initial_; }
+
+ private:
+  std::vector<SceneParameter> parameters_;  // with lower, upper and logScale set
+  Eigen::VectorXd initial_, scale_;
+};
+
+// The default box and log-scale choice of a parameter kind (written into `parameter`).
+void applyDefaultBounds(SceneParameter& parameter);
+
+}  // namespace weft

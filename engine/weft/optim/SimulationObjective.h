@@ -1,0 +1,43 @@
+#pragma once
+// The scene's task loss as a function of its parameters, in ParameterSpace coordinates: each
+// evaluation sets the parameters into the scene (through the strict loader), runs the forward
+// pass and backpropagates the loss (DiffCloth Sec. 4.1, Eqs. 16-19). Cost, as the paper's tables
+// count it: each forward step is one simulated step and each backward step one more, so one
+// evaluation costs 2 * time.steps.
+
+#include <weft/diff/AdjointSolver.h>
+#include <weft/diff/TaskLoss.h>
+#include <weft/optim/Objective.h>
+#include <weft/optim/ParameterSpace.h>
+
+namespace weft {
+
+class SimulationObjective : public Objective {
+ public:
+  // Throws InputError for a scene with contact (not yet differentiable), without a task, or with
+  // parameters that cannot be resolved or bounded.
+  SimulationObjective(const Scene& scene, const ParameterSet& parameters);
+
+  int dimension() const override { return space_.size(); }
+  double evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& gradient) override;
+  long long stepsPerEvaluation() const override { return 2LL * scene_.time.steps; }
+
+  const ParameterSpace& space() const { return space_; }
+  const ParameterSet& parameters() const { return parameters_; }
+  const Scene& scene() const { return scene_; }
+  // Totals over all evaluations.
+  const AdjointSolverStats& backwardStats() const { return backward_; }
+  int unconvergedForwardSteps() const { return unconverged_; }
+  double seconds() const { return seconds_; }
+
+ private:
+  Scene scene_;
+  ParameterSet parameters_;
+  ParameterSpace space_;
+  TaskLoss loss_;
+  AdjointSolverStats backward_;
+  int unconverged_ = 0;
+  double seconds_ = 0.0;
+};
+
+}  // namespace weft

@@ -1,0 +1,181 @@
+// `weft optimize` through the real binary: loss.csv, result.json and the loss plot of a tiny
+// system identification, the falling loss, and the exits of bad input (2).
+
+#include <app/CliSupport.h>
+#include <diff/DiffTestSupport.h>
+
+#include <support/SceneBuilder.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace weft {
+namespace {
+
+using test::describe;
+using test::runWeft;
+using test::splitCommas;
+using test::splitLines;
+using test::TempDir;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+constexpr int kSteps = 15;
+
+// A 4 x 4 cloth in wind, 15 steps, whose target was simulated with stretch 250 (it starts at 300).
+std::string writeTinyScene(const TempDir& dir, const nlohmann::json& extraTask = nullptr) {
+  nlohmann::json doc = test::windClothScene(4, kSteps);
+  nlohmann::json target = doc;
+  target["cloths"][0]["material"]["stretch"] = 250.0;
+  test::writeTargetTrajectory(target, dir.file("target.npy"));
+  test::addTask(doc, "trajectory", "target.npy", {"cloths.0.material.stretch", "wind.strength"});
+  if (extraTask.is_object())
+    for (auto it = extraTask.begin(); it != extraTask.end(); ++it) doc["task"][it.key()] = it.value();
+  return test::writeScene(dir.file("tiny.json"), doc);
+}
+
+TEST(OptimizeCli, WritesLossCsvResultJsonAndPlot) {
+  TempDir dir;
+  const std::string scene = writeTinyScene(dir);
+  const std::string out = dir.file("opt");
+  const int budget = 20 * 2 * kSteps;
+  const auto r = runWeft({"optimize", scene, "--budget", std::to_string(budget), "--out", out, "--seed", "3",
+                          "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  EXPECT_THAT(r.out, StartsWith("optimize: "));
+
+  const auto lines = splitLines(test::readFile(out + "/loss.csv"));
+  ASSERT_GE(lines.size(), 3u);
+  EXPECT_EQ(lines[0], "evaluation,steps,loss,cloths.0.material.stretch,wind.strength");
+  double first = 0, best = 1e300;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto f = splitCommas(lines[i]);
+    ASSERT_EQ(f.size(), 5u) << lines[i];
+    EXPECT_EQ(std::stoi(f[0]), static_cast<int>(i));
+    EXPECT_EQ(std::stoll(f[1]), 2LL * kSteps * static_cast<long long>(i));  // forward + backward
+    EXPECT_LE(std::stoll(f[1]), budget);
+    const double loss = std::stod(f[2]);
+    if (i == 1) {
+      first = loss;
+      EXPECT_DOUBLE_EQ(std::stod(f[3]), 300.0);  // starts from the scene's values
+      EXPECT_DOUBLE_EQ(std::stod(f[4]), 1.5);
+    }
+    best = std::min(best, loss);
+  }
+  EXPECT_LT(best, 1e-3 * first) << "the loss falls";
+
+  const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
+  for (const char* key : {"method", "seed", "initial_parameters", "initial_loss", "final_parameters", "final_loss",
+                          "evaluations", "steps", "gradient_norm", "stop_reason"})
+    EXPECT_TRUE(result.contains(key)) << key;
+  EXPECT_EQ(result["method"], "lbfgsb");
+  EXPECT_EQ(result["seed"], 3);
+  EXPECT_EQ(result["evaluations"].get<std::size_t>(), lines.size() - 1);
+  EXPECT_EQ(result["steps"].get<long long>(), 2LL * kSteps * (lines.size() - 1));
+  EXPECT_DOUBLE_EQ(result["initial_loss"].get<double>(), first);
+  EXPECT_DOUBLE_EQ(result["final_loss"].get<double>(), best);
+  EXPECT_DOUBLE_EQ(result["initial_parameters"]["cloths.0.material.stretch"].get<double>(), 300.0);
+  EXPECT_NEAR(result["final_parameters"]["cloths.0.material.stretch"].get<double>(), 250.0, 5.0);
+  EXPECT_NEAR(result["final_parameters"]["wind.strength"].get<double>(), 1.5, 0.03);
+  if (result["plot"].is_string()) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/loss.png"));
+  }
+}
+
+TEST(OptimizeCli, AdamLowersTheLossAndIsReproducible) {
+  TempDir dir;
+  const std::string scene = writeTinyScene(dir);
+  std::string csv[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::string out = dir.file("adam" + std::to_string(k));
+    const auto r = runWeft({"optimize", scene, "--method", "adam", "--seed", "5", "--max-evaluations", "15", "--out",
+                            out, "--quiet", "--threads", "1"});
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    csv[k] = test::readFile(out + "/loss.csv");
+    const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
+    EXPECT_EQ(result["method"], "adam");
+    EXPECT_EQ(result["evaluations"], 15);
+    EXPECT_EQ(result["stop_reason"], "max evaluations");
+    EXPECT_LT(result["final_loss"].get<double>(), 0.5 * result["initial_loss"].get<double>());
+  }
+  EXPECT_EQ(csv[0], csv[1]);
+}
+
+struct BadOptimize {
+  const char* name;
+  std::vector<std::string> args;
+  const char* where;
+  const char* phrase;
+};
+
+TEST(OptimizeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
+  TempDir dir;
+  const std::string scene = writeTinyScene(dir);
+  const std::string noTask = test::dataFile("scenes/hanging_wind.json");
+  const std::string out = dir.file("kept");
+  std::filesystem::create_directories(out);
+  dir.write("kept/loss.csv", "good\n");
+  const BadOptimize cases[] = {
+      {"Cmaes", {scene, "--method", "cmaes"}, "--method: ", "not yet implemented"},
+      {"Es1p1", {scene, "--method", "es1p1"}, "--method: ", "not yet implemented"},
+      {"UnknownMethod", {scene, "--method", "sgd"}, "--method: ", "must be one of"},
+      {"ZeroBudget", {scene, "--budget", "0"}, "--budget: ", "positive whole number"},
+      {"TooSmallBudget", {scene, "--budget", "10"}, "--budget: ", "at least one evaluation"},
+      {"NoTask", {noTask}, "task: ", "no task"},
+      {"UnknownSet", {scene, "--set", "solver.nope.x=1"}, "--set solver.nope.x: ", "unknown path"},
+  };
+  for (const BadOptimize& c : cases) {
+    SCOPED_TRACE(c.name);
+    std::vector<std::string> args{"optimize"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    args.insert(args.end(), {"--out", out, "--quiet"});
+    const auto r = runWeft(args);
+    EXPECT_EQ(r.exitCode, 2) << describe(r);
+    EXPECT_THAT(r.err, StartsWith("error: "));
+    EXPECT_THAT(r.err, HasSubstr(c.where));
+    EXPECT_THAT(r.err, HasSubstr(c.phrase));
+    EXPECT_EQ(test::readFile(out + "/loss.csv"), "good\n");
+  }
+}
+
+TEST(OptimizeCli, TaskBoundsAreValidatedAndHonoured) {
+  TempDir dir;
+  {
+    // Bounds for a path that is not a task parameter: a loader error at task.bounds.
+    nlohmann::json doc = test::windClothScene(4, kSteps);
+    test::addTask(doc, "trajectory", "target.npy", {"cloths.0.material.stretch"});
+    doc["task"]["bounds"] = {{"cloths.0.material.bend", {0.0, 1.0}}};
+    const auto r = runWeft({"optimize", test::writeScene(dir.file("stray.json"), doc), "--quiet"});
+    EXPECT_EQ(r.exitCode, 2) << describe(r);
+    EXPECT_THAT(r.err, HasSubstr("task.bounds.cloths.0.material.bend: "));
+    EXPECT_THAT(r.err, HasSubstr("not one of task.parameters"));
+  }
+  {
+    const std::string scene = writeTinyScene(dir, {{"bounds", {{"cloths.0.material.stretch", {100.0, 200.0}}}}});
+    const auto r = runWeft({"optimize", scene, "--quiet"});
+    EXPECT_EQ(r.exitCode, 2) << describe(r);
+    EXPECT_THAT(r.err, HasSubstr("task.bounds.cloths.0.material.stretch: "));
+    EXPECT_THAT(r.err, HasSubstr("outside its bounds"));
+  }
+  {
+    // The generating stretch (250) lies below the box [280, 400]: the optimum lands on 280.
+    const std::string scene = writeTinyScene(dir, {{"bounds", {{"cloths.0.material.stretch", {280.0, 400.0}}}}});
+    const std::string out = dir.file("bounded");
+    const auto r = runWeft({"optimize", scene, "--max-evaluations", "25", "--out", out, "--quiet", "--threads", "1"});
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
+    EXPECT_NEAR(result["final_parameters"]["cloths.0.material.stretch"].get<double>(), 280.0, 1e-6);
+    const auto lines = splitLines(test::readFile(out + "/loss.csv"));
+    for (std::size_t i = 1; i < lines.size(); ++i) {
+      const double s = std::stod(splitCommas(lines[i])[3]);
+      EXPECT_GE(s, 280.0 - 1e-9);
+      EXPECT_LE(s, 400.0 + 1e-9);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace weft
