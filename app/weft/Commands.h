@@ -14,6 +14,8 @@ int renderCommand(const std::vector<std::string>& args);
 int gradcheckCommand(const std::vector<std::string>& args);
 // `weft optimize` (OptimizeCommand.cpp): minimises the task loss over the task's parameters.
 int optimizeCommand(const std::vector<std::string>& args);
+// `weft landscape` (LandscapeCommand.cpp): the task loss on a grid over one or two parameters.
+int landscapeCommand(const std::vector<std::string>& args);
 // `weft bench render` (RenderBench.cpp).
 int renderBenchmark(const std::vector<std::string>& args);
 

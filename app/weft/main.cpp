@@ -18,11 +18,13 @@ const char* kUsage =
     "  render SCENE|RUNDIR [--frames A:B:S] [--size WxH] [--camera front|side|top|auto]\n"
     "         [--overlay contacts|strain|speed|none] [--wireframe] [--out DIR] [--video FILE.mp4]\n"
     "         [--backend auto|osmesa|egl] [--set PATH=VALUE ...] [--quiet]\n"
-    "  bench NAME [--out DIR] [--quick]        (NAME: forward, continuity, contact, render)\n"
+    "  bench NAME [--out DIR] [--quick]        (NAME: forward, backward, continuity, contact, render)\n"
     "  gradcheck SCENE [--param PATH ...] [--eps E] [--json] [--set PATH=VALUE ...]\n"
     "         [--backward gmres|fixed_point|direct] [--forward-tolerance T] [--backward-tolerance T]\n"
     "  optimize SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]\n"
     "         [--max-evaluations N] [--learning-rate R] [--set PATH=VALUE ...]\n"
+    "  landscape SCENE --param A [--param B] [--grid N] [--range PATH=LO:HI ...] [--out DIR]\n"
+    "         [--set PATH=VALUE ...] [--threads N] [--quiet]\n"
     "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";
 
 }  // namespace
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
     if (verb == "bench") return weft::cli::benchCommand(args);
     if (verb == "gradcheck") return weft::cli::gradcheckCommand(args);
     if (verb == "optimize") return weft::cli::optimizeCommand(args);
+    if (verb == "landscape") return weft::cli::landscapeCommand(args);
     std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(), kUsage);
     return 2;
   } catch (const weft::InputError& e) {
