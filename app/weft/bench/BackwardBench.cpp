@@ -42,24 +42,6 @@ double peakRssMegabytes() {
   return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
 }
 
-std::vector<int> parseResolutions(const CommandLine& cl, std::vector<int> fallback) {
-  if (!cl.has("--resolutions")) return fallback;
-  std::vector<int> out;
-  const std::string text = cl.value("--resolutions", "");
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', begin), text.size());
-    const std::string item = text.substr(begin, comma - begin);
-    char* end = nullptr;
-    const long n = std::strtol(item.c_str(), &end, 10);
-    if (item.empty() || *end != '\0' || n < 1 || n > 1024)
-      cl.fail("--resolutions", "expects quads per side as a comma-separated list, e.g. 12,24; got '" + text + "'");
-    out.push_back(static_cast<int>(n));
-    begin = comma + 1;
-  }
-  return out;
-}
-
 struct Method {
   std::string label, method;
   double tolerance;
@@ -73,7 +55,7 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
   const int threads = cl.integer("--threads", 1, 1, 1024);
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
-  const std::vector<int> resolutions = parseResolutions(cl, quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48});
+  const std::vector<int> resolutions = benchResolutions(cl, quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48});
   const int steps = quick ? 30 : 200;
   const double forwardTolerance = 1e-8;  // m/s^2, Newton-PCG
   const std::vector<Method> methods = {{"direct", "direct", 1e-4},

@@ -1,5 +1,7 @@
 #include "BenchTable.h"
 
+#include "CommandLine.h"
+
 #include <weft/core/Error.h>
 
 #include <sys/utsname.h>
@@ -95,6 +97,24 @@ std::string machineDescription() {
   std::ostringstream s;
   s << u.sysname << " " << u.machine << ", " << std::thread::hardware_concurrency() << " cores, " << cpu;
   return s.str();
+}
+
+std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallback) {
+  if (!cl.has("--resolutions")) return fallback;
+  std::vector<int> out;
+  const std::string text = cl.value("--resolutions", "");
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, comma - begin);
+    char* end = nullptr;
+    const long n = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || *end != '\0' || n < 1 || n > 1024)
+      cl.fail("--resolutions", "expects quads per side as a comma-separated list, e.g. 12,24,48; got '" + text + "'");
+    out.push_back(static_cast<int>(n));
+    begin = comma + 1;
+  }
+  return out;
 }
 
 }  // namespace weft::cli

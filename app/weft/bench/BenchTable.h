@@ -7,6 +7,8 @@
 
 namespace weft::cli {
 
+class CommandLine;
+
 class BenchTable {
  public:
   explicit BenchTable(std::vector<std::string> columns) : columns_(std::move(columns)) {}
@@ -35,5 +37,9 @@ bool plotSeries(const std::string& png, const std::string& title, const std::str
 std::string formatNumber(double v, int precision = 4);
 // "Linux x86_64, 2 cores, <cpu model>" for the record of where a benchmark ran.
 std::string machineDescription();
+
+// --resolutions: a comma-separated list of quads per side (e.g. 12,24), or `fallback` when the
+// option is absent; bad lists fail through cl (exit 2).
+std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallback);
 
 }  // namespace weft::cli

@@ -74,23 +74,9 @@ int forwardBenchmark(const CommandLine& cl, const std::string& outDir) {
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
 
-  std::vector<int> resolutions = quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48, 96};
-  if (cl.has("--resolutions")) {
-    // A comma-separated subset, e.g. 24,48, to remeasure some sizes without the hour-long 96^2.
-    resolutions.clear();
-    const std::string text = cl.value("--resolutions", "");
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-      const std::size_t comma = std::min(text.find(',', begin), text.size());
-      const std::string item = text.substr(begin, comma - begin);
-      char* end = nullptr;
-      const long n = std::strtol(item.c_str(), &end, 10);
-      if (item.empty() || *end != '\0' || n < 1 || n > 1024)
-        cl.fail("--resolutions", "expects quads per side as a comma-separated list, e.g. 24,48; got '" + text + "'");
-      resolutions.push_back(static_cast<int>(n));
-      begin = comma + 1;
-    }
-  }
+  // --resolutions: a subset, e.g. 24,48, to remeasure some sizes without the hour-long 96^2.
+  const std::vector<int> resolutions =
+      benchResolutions(cl, quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48, 96});
   const std::vector<int> caps = {5, 10, 20, 50, 100, 200};
   const std::vector<double> tolerances = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   BenchTable table({"quads", "vertices", "steps", "setting", "pd_iterations", "pd_tolerance",
