@@ -84,7 +84,7 @@ struct WeftEditorGl {
 };
 
 // The table in use (the one loaded last). A plain global with C++ linkage: ImGui's backend
-// reads it through the macros of ImGuiGlLoader.h.
+// reads it through the macros of ImGuiBackendGlRouting.h.
 extern WeftEditorGl weftEditorGl;
 
 namespace weft::render {

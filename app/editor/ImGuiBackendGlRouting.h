@@ -1,7 +1,8 @@
 #pragma once
-// Force-included (-include) into Debian's imgui_impl_opengl3.cpp, compiled with
-// IMGUI_IMPL_OPENGL_LOADER_CUSTOM: routes every gl* call of the backend through the editor's
-// table, loaded from the current RenderContext (see EditorGl.h).
+// Weft's own macro table (not Dear ImGui code): force-included (-include) into Debian's
+// imgui_impl_opengl3.cpp, compiled with IMGUI_IMPL_OPENGL_LOADER_CUSTOM, it routes every gl*
+// call of that backend through the editor's table, loaded from the current RenderContext (see
+// EditorGl.h).
 
 #include "EditorGl.h"
 
