@@ -28,6 +28,21 @@ inline std::string describe(const ProcessResult& r) {
          "--- stderr\n" + r.err;
 }
 
+// Runs `weft VERB args...` and expects a clean bad-input failure: exit 2 and one
+// `error: ...` message naming `where` and `phrase`. The caller then checks what must be left
+// untouched (no stdout, an old output folder).
+inline ProcessResult expectBadInput(const std::string& verb, const std::vector<std::string>& args,
+                                    const std::string& where, const std::string& phrase) {
+  std::vector<std::string> all{verb};
+  all.insert(all.end(), args.begin(), args.end());
+  ProcessResult r = runWeft(all);
+  EXPECT_EQ(r.exitCode, 2) << describe(r);
+  EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(where), std::string::npos) << "expected '" << where << "' in: " << r.err;
+  EXPECT_NE(r.err.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.err;
+  return r;
+}
+
 struct ParsedNpy {
   int major = 0, minor = 0;
   std::size_t dataOffset = 0;

@@ -97,13 +97,7 @@ TEST(GradcheckCli, BadInputExitsTwoNamingFileAndPath) {
   };
   for (const BadGradcheck& c : cases) {
     SCOPED_TRACE(c.name);
-    std::vector<std::string> args{"gradcheck"};
-    args.insert(args.end(), c.args.begin(), c.args.end());
-    const auto r = runWeft(args);
-    EXPECT_EQ(r.exitCode, 2) << describe(r);
-    EXPECT_THAT(r.err, StartsWith("error: "));
-    EXPECT_THAT(r.err, HasSubstr(c.where));
-    EXPECT_THAT(r.err, HasSubstr(c.phrase));
+    const auto r = test::expectBadInput("gradcheck", c.args, c.where, c.phrase);
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
 }

@@ -129,14 +129,9 @@ TEST(OptimizeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
   };
   for (const BadOptimize& c : cases) {
     SCOPED_TRACE(c.name);
-    std::vector<std::string> args{"optimize"};
-    args.insert(args.end(), c.args.begin(), c.args.end());
+    std::vector<std::string> args = c.args;
     args.insert(args.end(), {"--out", out, "--quiet"});
-    const auto r = runWeft(args);
-    EXPECT_EQ(r.exitCode, 2) << describe(r);
-    EXPECT_THAT(r.err, StartsWith("error: "));
-    EXPECT_THAT(r.err, HasSubstr(c.where));
-    EXPECT_THAT(r.err, HasSubstr(c.phrase));
+    test::expectBadInput("optimize", args, c.where, c.phrase);
     EXPECT_EQ(test::readFile(out + "/loss.csv"), "good\n");
   }
 }
