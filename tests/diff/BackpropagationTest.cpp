@@ -70,18 +70,5 @@ TEST(Backpropagation, InitialVelocityGradientIsTheSumOfTheNodalOnes) {
   EXPECT_EQ(g.solver.solves, 10);
 }
 
-TEST(Backpropagation, ContactScenesAreRejected) {
-  nlohmann::json doc = test::windClothScene(4, 5);
-  doc["obstacles"] = {{{"sphere", {{"center", {0, 0, 0}}, {"radius", 0.2}}}, {"friction", 0.3}}};
-  const Scene scene = test::parse(doc);
-  try {
-    requireContactFree(scene);
-    FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.path(), "obstacles");
-    EXPECT_NE(e.reason().find("not yet supported"), std::string::npos);
-  }
-}
-
 }  // namespace
 }  // namespace weft

@@ -84,13 +84,13 @@ struct BadGradcheck {
 
 TEST(GradcheckCli, BadInputExitsTwoNamingFileAndPath) {
   const std::string noTask = test::dataFile("scenes/hanging_wind.json");
-  const std::string contact = std::string(WEFT_ASSET_DIR) + "/scenes/sphere.json";
   const BadGradcheck cases[] = {
       {"UnknownParameter", {kScene, "--param", "cloths.0.material.nope"}, "--param cloths.0.material.nope: ",
        "names no value"},
       {"NotDifferentiable", {kScene, "--param", "time.dt"}, "--param time.dt: ", "not differentiable"},
       {"NoTask", {noTask}, "task: ", "no task"},
-      {"ContactScene", {contact}, "obstacles: ", "not yet supported"},
+      {"ContactFrictionOfNoObstacle", {kScene, "--param", "obstacles.3.friction"}, "--param obstacles.3.friction: ",
+       "names no value"},
       {"BadEps", {kScene, "--eps", "0"}, "--eps: ", "must be in (0, 1)"},
       {"BadBackward", {kScene, "--backward", "cg"}, "--backward: ", "must be one of"},
       {"UnknownSet", {kScene, "--set", "solver.nope.x=1"}, "--set solver.nope.x: ", "unknown path"},

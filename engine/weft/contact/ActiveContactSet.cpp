@@ -44,7 +44,8 @@ void ActiveContactSet::reset(const std::vector<ContactConstraint>& obstacleConta
   lastChange_ = 0.0;
   auto add = [&](const ContactConstraint& c, double effectiveMass) {
     contacts_.push_back(Contact{c.node, c.partner, c.obstacle, c.normal, c.reference, c.friction, effectiveMass,
-                                ContactBranch::TakeOff, Vec3::Zero(), 0.0, Vec3::Zero(), 0, Vec3::Zero(), 0.0});
+                                ContactBranch::TakeOff, Vec3::Zero(), 0.0, Vec3::Zero(), 0, Vec3::Zero(), 0.0,
+                                c.sample, c.pathFraction});
   };
   for (const ContactConstraint& c : obstacleContacts) add(c, mass[c.node]);
   for (const ContactConstraint& c : pairs) add(c, mass[c.node] * mass[c.partner] / (mass[c.node] + mass[c.partner]));
@@ -328,6 +329,9 @@ void ActiveContactSet::record(StepContacts& out) const {
     p.velocity = c.velocity;
     p.friction = c.friction;
     p.effectiveMass = c.effectiveMass;
+    p.reference = c.reference;
+    p.sample = c.sample;
+    p.pathFraction = c.pathFraction;
     out.points.push_back(p);
   }
   out.sweepChange = lastChange_;

@@ -97,6 +97,8 @@ class ActiveContactSet {
     int flips;             // branch switches this step
     Vec3 hessianSlide;     // slip: u_T and max(|u_T|, eps) where the friction Hessian was prepared
     double hessianNorm;
+    Vec3 sample;           // detection's surface sample (recorded for the backward pass)
+    double pathFraction;
   };
   struct Row {
     int a, b, contact;

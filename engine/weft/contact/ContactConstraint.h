@@ -25,6 +25,12 @@ struct ContactConstraint {
   Vec3 normal = Vec3::UnitY();     // unit: out of the obstacle, or from partner to node
   Vec3 reference = Vec3::Zero();   // m/s, see above
   double friction = 0.0;
+  // Obstacle contacts: where detection sampled the surface, sample = x_n + pathFraction * (the
+  // predicted displacement). The frame (normal, nearest point, surface velocity) is a function of
+  // this point, so the backward pass differentiates the frame through it (DiffCloth Sec. 4.3,
+  // J_n(x_n, v_n)).
+  Vec3 sample = Vec3::Zero();
+  double pathFraction = 0.0;
 };
 
 }  // namespace weft

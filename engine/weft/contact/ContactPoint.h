@@ -38,6 +38,13 @@ struct ContactPoint {
   // Effective mass (kg): the node's lumped mass, or the pair's reduced mass. The free
   // momentum the law saw is effectiveMass * velocity - impulse.
   double effectiveMass = 0.0;
+  // The velocity the law measures against (ContactConstraint.h): the surface's tangential
+  // velocity less the gap-closing rate, gap / h, along the normal.
+  Vec3 reference = Vec3::Zero();
+  // Obstacle contacts: the point where detection sampled the surface and its fraction of the
+  // predicted path (ContactConstraint.h); what the frame is a function of, for the backward pass.
+  Vec3 sample = Vec3::Zero();
+  double pathFraction = 0.0;
 };
 
 }  // namespace weft

@@ -33,14 +33,15 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
     if (!sameNode) groupStart_.push_back(static_cast<int>(contacts_.size()));
     coupled_ = coupled_ || sameNode;
     contacts_.push_back(Contact{slotFor(c.node), -1, c.obstacle, c.normal, c.reference, c.friction, mass[c.node],
-                                Vec3::Zero(), ContactBranch::TakeOff});
+                                Vec3::Zero(), ContactBranch::TakeOff, c.sample, c.pathFraction});
   }
   groupStart_.push_back(static_cast<int>(contacts_.size()));
   pairBegin_ = static_cast<int>(contacts_.size());
   for (const ContactConstraint& c : pairs) {
     const double ma = mass[c.node], mb = mass[c.partner];
     contacts_.push_back(Contact{slotFor(c.node), slotFor(c.partner), -1, c.normal, c.reference, c.friction,
-                                ma * mb / (ma + mb), Vec3::Zero(), ContactBranch::TakeOff});
+                                ma * mb / (ma + mb), Vec3::Zero(), ContactBranch::TakeOff, c.sample,
+                                c.pathFraction});
   }
   coupled_ = coupled_ || !pairs.empty();
   layerStart_ = layerStart;
@@ -113,6 +114,9 @@ void ContactSolver::record(StepContacts& out) const {
     p.velocity = u - c.reference;
     p.friction = c.friction;
     p.effectiveMass = c.effectiveMass;
+    p.reference = c.reference;
+    p.sample = c.sample;
+    p.pathFraction = c.pathFraction;
     out.points.push_back(p);
   }
   out.sweepChange = lastChange_;

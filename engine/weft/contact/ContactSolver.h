@@ -60,6 +60,8 @@ class ContactSolver {
     double friction, effectiveMass;
     Vec3 impulse;  // on slot a (slot b receives the opposite)
     ContactBranch branch;
+    Vec3 sample;  // detection's surface sample (recorded for the backward pass)
+    double pathFraction;
   };
   double update(Contact& c);  // one Gauss-Seidel update; returns |delta r| / m
 

@@ -29,10 +29,12 @@ void ObstacleContactDetector::detect(const NodeMatrix& x, const NodeMatrix& disp
       const double reach = obstacle.thickness() + margin_;
       SurfaceSample s;
       bool hit = false;
-      for (int k = 0; k <= segments && !hit; ++k)
+      int k = 0;
+      for (; k <= segments && !hit; ++k)
         hit =
             obstacle.sample(start + (double(k) / segments) * path, reach, s) && s.distance < reach;
       if (!hit) continue;
+      const double fraction = double(k - 1) / segments;
       ContactConstraint c;
       c.node = i;
       c.obstacle = o;
@@ -43,6 +45,8 @@ void ObstacleContactDetector::detect(const NodeMatrix& x, const NodeMatrix& disp
       const double gap = s.normal.dot(start - s.point) - obstacle.thickness();
       const Vec3 surface = obstacle.surfaceVelocity(s.point);
       c.reference = surface - s.normal.dot(surface) * s.normal - (gap / h) * s.normal;
+      c.sample = start + fraction * path;
+      c.pathFraction = fraction;
       local.push_back(c);
     }
   });

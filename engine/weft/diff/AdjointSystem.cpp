@@ -70,9 +70,10 @@ void AdjointSystem::buildColouring() {
   }
 }
 
-void AdjointSystem::prepare(const NodeMatrix& x) {
+void AdjointSystem::prepare(const NodeMatrix& x, const ContactAdjoint* contact) {
   for (auto& c : constraints_)
     if (c->hasDerivative()) c->prepareDerivative(x, false);  // exact derivative (Eq. 18), not clamped
+  contact_ = contact && contact->size() > 0 ? contact : nullptr;
 }
 
 void AdjointSystem::multiplyP(const NodeMatrix& in, NodeMatrix& out) const { out = system_ * in; }
@@ -88,12 +89,35 @@ void AdjointSystem::multiplyDeltaP(const NodeMatrix& in, NodeMatrix& out) const 
 }
 
 void AdjointSystem::multiplyK(const NodeMatrix& in, NodeMatrix& out) const {
+  if (contact_) {
+    // K z = (P - Delta P)(z + wbar) - M wbar, wbar = R'^T z (ContactAdjoint.h).
+    contact_->applyTransposed(in, contactWbar_, contactY_);
+    contactSum_ = in + contactWbar_;
+    multiplyP(contactSum_, out);
+    out -= model_.mass.asDiagonal() * contactWbar_;
+    for (std::size_t c = 0; c < constraints_.size(); ++c) {
+      if (!constraints_[c]->hasDerivative()) continue;
+      constraints_[c]->applyDerivative(contactSum_, rows_[c]);
+      constraints_[c]->gather(rows_[c], -h_ * h_, out);
+    }
+    return;
+  }
   multiplyP(in, out);
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
     if (!constraints_[c]->hasDerivative()) continue;
     constraints_[c]->applyDerivative(in, rows_[c]);
     constraints_[c]->gather(rows_[c], -h_ * h_, out);
   }
+}
+
+void AdjointSystem::multiplyCoupling(const NodeMatrix& in, NodeMatrix& out) const {
+  if (!contact_) {
+    multiplyDeltaP(in, out);
+    return;
+  }
+  multiplyK(in, work_);
+  multiplyP(in, out);
+  out -= work_;
 }
 
 void AdjointSystem::solveP(NodeMatrix& inOut) { cholesky_.solveInPlace(inOut); }
@@ -124,6 +148,36 @@ Eigen::SparseMatrix<double> AdjointSystem::assembleK() const {
   k.setFromTriplets(entries.begin(), entries.end());
   k.makeCompressed();
   return k;
+}
+
+Eigen::SparseMatrix<double> AdjointSystem::assembleSystem() const {
+  Eigen::SparseMatrix<double> k = assembleK();
+  if (!contact_) return k;
+  // [ K  (K - M) B ; -G  T^T ] (ContactAdjoint::appendTransposedBlocks).
+  const int n = 3 * nodeCount(), c = 3 * contact_->size();
+  std::vector<Eigen::Triplet<double>> bEntries, minusG, tTransposed;
+  contact_->appendTransposedBlocks(bEntries, minusG, tTransposed);
+  Eigen::SparseMatrix<double> b(n, c);
+  b.setFromTriplets(bEntries.begin(), bEntries.end());
+  Eigen::SparseMatrix<double> kMinusM = k;
+  for (int d = 0; d < 3; ++d)
+    for (int i = 0; i < nodeCount(); ++i) kMinusM.coeffRef(d * nodeCount() + i, d * nodeCount() + i) -= model_.mass[i];
+  const Eigen::SparseMatrix<double> coupling = kMinusM * b;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(k.nonZeros() + coupling.nonZeros() + minusG.size() + tTransposed.size());
+  auto append = [&](const Eigen::SparseMatrix<double>& block, int rowOffset, int colOffset) {
+    for (int j = 0; j < block.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(block, j); it; ++it)
+        entries.emplace_back(rowOffset + it.row(), colOffset + it.col(), it.value());
+  };
+  append(k, 0, 0);
+  append(coupling, 0, n);
+  for (const auto& e : minusG) entries.emplace_back(n + e.row(), e.col(), e.value());
+  for (const auto& e : tTransposed) entries.emplace_back(n + e.row(), n + e.col(), e.value());
+  Eigen::SparseMatrix<double> system(n + c, n + c);
+  system.setFromTriplets(entries.begin(), entries.end());
+  system.makeCompressed();
+  return system;
 }
 
 }  // namespace weft

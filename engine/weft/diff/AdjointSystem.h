@@ -1,12 +1,15 @@
 #pragma once
-// The linear system of one backward step without contact (DiffCloth Eq. 19):
+// The linear system of one backward step (DiffCloth Eq. 19, and Eq. 29 with contact):
 //
-//   K z = g,   K = P - Delta P,   Delta P = h^2 sum_i w_i A_i^T (dp_i/dx)|_{x_{n+1}},
+//   K z = g,   K = P - Delta P                       (no contact in the step)
+//   K z = g,   K = (P - Delta P - Delta R)^T         (contact: ContactAdjoint.h)
 //
 // with P = M + h^2 sum_i w_i A_i^T A_i the prefactorised PD matrix (Eq. 7, one coordinate,
-// times I_3) and Delta P the exact projection derivatives at the recorded end-of-step state
-// x_{n+1}. K is h^2 times the Hessian of the implicit-Euler energy (Eq. 3), hence symmetric;
-// it is indefinite where the cloth is compressed (buckling modes).
+// times I_3) and Delta P = h^2 sum_i w_i A_i^T (dp_i/dx)|_{x_{n+1}} the exact projection
+// derivatives at the recorded end-of-step state x_{n+1}. P - Delta P is h^2 times the Hessian of
+// the implicit-Euler energy (Eq. 3), hence symmetric; it is indefinite where the cloth is
+// compressed (buckling modes). Delta R (the contact branches) makes K unsymmetric; with
+// R'^T from ContactAdjoint, K z = (P - Delta P)(z + R'^T z) - M R'^T z.
 //
 // The constraints are built here from the scene with the same make* functions as the Simulator
 // (the Simulator is not touched), so P and Delta P are exactly the forward's. Vectors are m x 3
@@ -14,6 +17,7 @@
 // column-major storage (index = coordinate * m + node).
 
 #include <weft/core/Types.h>
+#include <weft/diff/ContactAdjoint.h>
 #include <weft/physics/ClothModel.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SparseCholesky.h>
@@ -38,18 +42,27 @@ class AdjointSystem {
   const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const { return constraints_; }
   const Eigen::SparseMatrix<double>& systemMatrix() const { return system_; }  // P, one coordinate
 
-  // Evaluates the projection derivatives (Delta P) at x (the recorded x_{n+1}).
-  void prepare(const NodeMatrix& x);
+  // Evaluates the projection derivatives (Delta P) at x (the recorded x_{n+1}) and takes the
+  // step's prepared contacts (null or empty: none). `contact` must outlive the step's solve.
+  void prepare(const NodeMatrix& x, const ContactAdjoint* contact = nullptr);
   bool hasDeltaP() const { return anyDerivative_; }
+  bool hasContact() const { return contact_ != nullptr; }
+  // K != P: the fixed point of Eq. 20/30 needs more than one solve.
+  bool hasCoupling() const { return anyDerivative_ || contact_ != nullptr; }
 
-  void multiplyP(const NodeMatrix& in, NodeMatrix& out) const;       // out = P in
-  void multiplyDeltaP(const NodeMatrix& in, NodeMatrix& out) const;  // out = Delta P in
-  void multiplyK(const NodeMatrix& in, NodeMatrix& out) const;       // out = (P - Delta P) in
-  void solveP(NodeMatrix& inOut);                                    // inOut = P^{-1} inOut (CHOLMOD factor)
+  void multiplyP(const NodeMatrix& in, NodeMatrix& out) const;         // out = P in
+  void multiplyDeltaP(const NodeMatrix& in, NodeMatrix& out) const;    // out = Delta P in
+  void multiplyK(const NodeMatrix& in, NodeMatrix& out) const;         // out = K in
+  void multiplyCoupling(const NodeMatrix& in, NodeMatrix& out) const;  // out = (P - K) in (Eq. 30's (Delta P + Delta R)^T)
+  void solveP(NodeMatrix& inOut);                                      // inOut = P^{-1} inOut (CHOLMOD factor)
   // K assembled as a 3m x 3m sparse matrix (flat index = coordinate * m + node), Delta P found by
   // coloured probing (Curtis-Powell-Reid): nodes of one colour share no constraint row, so one
   // product per colour and coordinate recovers all their columns.
   Eigen::SparseMatrix<double> assembleK() const;
+  // The system for a direct solve: P - Delta P without contact; with contact the augmented
+  // transposed system of ContactAdjoint::appendTransposedBlocks, (3m + 3c) square, whose first 3m
+  // unknowns are z for a right-hand side [g; 0].
+  Eigen::SparseMatrix<double> assembleSystem() const;
   int probeColours() const { return static_cast<int>(colourNodes_.size()); }
 
  private:
@@ -62,6 +75,9 @@ class AdjointSystem {
   SparseCholesky cholesky_;
   bool anyDerivative_ = false;
   mutable std::vector<NodeMatrix> rows_;  // per-constraint derivative rows (work buffers)
+  const ContactAdjoint* contact_ = nullptr;
+  mutable NodeMatrix contactWbar_, contactSum_, work_;
+  mutable Eigen::MatrixX3d contactY_;
   // Node adjacency (nodes sharing a constraint row, self included) and its distance-2 colouring.
   std::vector<std::vector<int>> neighbours_;
   std::vector<std::vector<int>> colourNodes_;

@@ -5,20 +5,12 @@
 #include <weft/diff/ParameterPartials.h>
 
 #include <chrono>
+#include <memory>
 
 namespace weft {
 
-void requireContactFree(const Scene& scene) {
-  const char* what = "gradients through contact are not yet supported (DiffCloth Sec. 4.2 is the next step)";
-  if (!scene.obstacles.empty()) throw InputError(scene.file, "obstacles", what);
-  for (std::size_t c = 0; c < scene.cloths.size(); ++c)
-    if (scene.cloths[c].selfCollision)
-      throw InputError(scene.file, "cloths." + std::to_string(c) + ".self_collision", what);
-}
-
 GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, const TaskLoss& loss,
                              const ParameterSet& parameters, const BackwardSettings& settings) {
-  requireContactFree(scene);
   const auto start = std::chrono::steady_clock::now();
   GradientResult result;
   result.loss = loss.value(trajectory);
@@ -32,19 +24,36 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
   const int steps = trajectory.stepCount();
   const int m = model.nodeCount();
 
+  // Contact steps (ContactAdjoint.h): the law's Jacobians and frames from the recorded contacts.
+  std::unique_ptr<ContactAdjoint> contact;
+  if (!trajectory.contacts.empty()) contact = std::make_unique<ContactAdjoint>(scene, model);
+
   std::vector<NodeMatrix> dLdx = loss.gradient(trajectory);
   NodeMatrix dLdvNext = NodeMatrix::Zero(m, 3);  // dL/dv_{n+1} through the steps after n+1
-  NodeMatrix rhs(m, 3), z(m, 3);
+  NodeMatrix rhs(m, 3), z(m, 3), wbar = NodeMatrix::Zero(m, 3), dLdv(m, 3);
+  Eigen::MatrixX3d y;
   for (int n = steps - 1; n >= 0; --n) {
+    const NodeMatrix& x0 = trajectory.positions[n];
+    const NodeMatrix& v0 = trajectory.velocities[n];
     const NodeMatrix& x1 = trajectory.positions[n + 1];
+    const double t1 = trajectory.steps[n].time;
     rhs = dLdx[n + 1] + dLdvNext / h;
-    system.prepare(x1);
+    const bool touching = contact && !trajectory.contacts[n].points.empty();
+    if (touching) contact->prepare(trajectory.contacts[n], x0, t1 - h, t1, n + 1);
+    system.prepare(x1, touching ? contact.get() : nullptr);
     solver.solve(system, rhs, z, n + 1);
-    partials.accumulate(trajectory.positions[n], trajectory.velocities[n], x1, trajectory.steps[n].time, z,
-                        result.gradient);
-    const NodeMatrix massZ = model.mass.asDiagonal() * z;
-    dLdx[n] += massZ - dLdvNext / h;
-    dLdvNext = h * massZ;
+    // wbar = R'^T z: what the contact impulses pass on of z (zero without contact).
+    if (system.hasContact()) contact->applyTransposed(z, wbar, y);
+    else wbar.setZero();
+    // Force-like parameters enter f as well as G1: their partials take S^T z = z + wbar.
+    partials.accumulate(x0, v0, x1, t1, z + wbar, result.gradient);
+    dLdx[n] += model.mass.asDiagonal() * z - dLdvNext / h;
+    dLdv = h * (model.mass.asDiagonal() * (z + wbar));  // dG/dv_n = -h M, df/dv_n = M
+    if (system.hasContact()) {
+      contact->addStateGradients(y, dLdx[n], dLdv);
+      contact->addParameterGradients(parameters.parameters(), y, wbar, x0, v0, x1, result.gradient);
+    }
+    dLdvNext = dLdv;
   }
   result.dLdx0 = dLdx[0];
   result.dLdv0 = dLdvNext;

@@ -1,12 +1,13 @@
 #pragma once
-// The backward pass over a recorded run without contact (DiffCloth Sec. 4.1): for each step
-// n = N-1 .. 0, with the recorded x_{n+1},
+// The backward pass over a recorded run (DiffCloth Sec. 4): for each step n = N-1 .. 0, with the
+// recorded x_{n+1} and the step's recorded contacts,
 //
 //   g_hat   = dL/dx_{n+1} + (dL/dv_{n+1}) / h          (v_{n+1} = (x_{n+1} - x_n)/h)
-//   K z     = g_hat,  K = P - Delta P(x_{n+1})         (Eq. 19; K symmetric, so K^T = K)
-//   dL/dx_n += M z - (dL/dv_{n+1}) / h                 (Eq. 16: dx_{n+1}/dx_n = K^{-1} M)
-//   dL/dv_n  = h M z                                    (the same system, Sec. 4.1 end)
-//   dL/dtheta += -z . dG/dtheta                          (ParameterPartials)
+//   K z     = g_hat                                     (Eq. 19, or Eq. 29 transposed with contact)
+//   wbar    = R'^T z                                    (zero without contact; ContactAdjoint.h)
+//   dL/dx_n += M z - (dL/dv_{n+1}) / h + (contact frames)  (Eq. 16: dx_{n+1}/dx_n = K^{-1} M)
+//   dL/dv_n  = h M (z + wbar) + (contact frames)        (v_n enters the step and the free momentum)
+//   dL/dtheta += -(z + wbar) . dG/dtheta + (contact law) (ParameterPartials, ContactAdjoint)
 //
 // and at n = 0 the initial-state gradients. The per-step solve is AdjointSolver's.
 
@@ -27,10 +28,6 @@ struct GradientResult {
   AdjointSolverStats solver;
   double seconds = 0.0;
 };
-
-// Throws InputError naming the obstacle or self-collision path: gradients through contact are
-// not yet supported.
-void requireContactFree(const Scene& scene);
 
 // Backpropagates `loss` through `trajectory` (recorded from `scene` by runForwardPass).
 GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, const TaskLoss& loss,

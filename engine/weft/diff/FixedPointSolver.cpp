@@ -17,16 +17,16 @@ LinearSolveResult FixedPointSolver::solve(AdjointSystem& system, const NodeMatri
   deltaPz_.setZero(rhs.rows(), 3);  // Delta P z_0, z_0 = 0
   history_.clear();
   while (result.iterations < maxIterations_) {
-    z = deltaPz_ + rhs;  // Eq. 20: P z_{k+1} = Delta P z_k + g
+    z = deltaPz_ + rhs;  // Eq. 20 / 30: P z_{k+1} = (Delta P + Delta R) z_k + g
     system.solveP(z);
     ++result.iterations;
-    if (!system.hasDeltaP()) {  // K = P: one solve is exact
+    if (!system.hasCoupling()) {  // K = P: one solve is exact
       result.residual = 0.0;
       result.converged = true;
       return result;
     }
-    system.multiplyDeltaP(z, nextDeltaPz_);
-    // g - K z_{k+1} = g - P z_{k+1} + Delta P z_{k+1} = Delta P (z_{k+1} - z_k).
+    system.multiplyCoupling(z, nextDeltaPz_);
+    // g - K z_{k+1} = g - P z_{k+1} + (P - K) z_{k+1} = (P - K)(z_{k+1} - z_k).
     result.residual = (nextDeltaPz_ - deltaPz_).norm() / rhsNorm;
     deltaPz_.swap(nextDeltaPz_);
     if (result.residual < tolerance_) {

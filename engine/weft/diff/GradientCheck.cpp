@@ -24,7 +24,6 @@ double GradientCheckReport::maxRelativeError() const {
 GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parameters,
                                   const GradientCheckOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  requireContactFree(input);
   const Scene scene = withTightForwardSolver(input, options.forwardTolerance);
   const TaskLoss loss(scene);
   BackwardSettings backward = scene.solver.backward;
