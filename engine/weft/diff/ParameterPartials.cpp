@@ -93,8 +93,37 @@ void ParameterPartials::accumulate(const NodeMatrix& x0, const NodeMatrix& v0, c
       case Kind::Gravity:
         d = h2 * model_.mass.dot(z.col(p.component));
         break;
+      case Kind::HandleOffset:
+      case Kind::HandleTangent: {
+        const Attachment& a = scene_.cloths[p.cloth].attachments[p.index];
+        const auto control = p.kind == Kind::HandleOffset ? HandleTrajectory::Control::Offset
+                                                          : HandleTrajectory::Control::Tangent;
+        // -z . dG/dtheta = h^2 k sum_j z_j . d x_hat_j/dtheta, with d x_hat_j/dtheta = weight e_c.
+        const double weight = a.trajectory.controlWeight(t1, control, p.knot);
+        if (weight == 0.0) break;
+        double zSum = 0.0;
+        for (int v : a.vertices) zSum += z(model_.vertexOffset[p.cloth] + v, p.component);
+        d = h2 * a.stiffness * weight * zSum;
+        break;
+      }
+      case Kind::AttachmentStiffness: {
+        const Attachment& a = scene_.cloths[p.cloth].attachments[p.index];
+        const bool moves = a.kind == Attachment::Kind::Handle;
+        for (int v : a.vertices) {
+          const int node = model_.vertexOffset[p.cloth] + v;
+          // The target as AttachmentConstraint sets it: the initial position, or the handle's
+          // trajectory from it at the step's end time.
+          const Vec3 rest = model_.rest.vertices.row(node).transpose();
+          const Vec3 target = moves ? a.trajectory.target(rest, t1) : rest;
+          d -= h2 * z.row(node).dot(x1.row(node) - target.transpose());
+        }
+        break;
+      }
       case Kind::InitialVelocity:
         break;  // through v_0 only: accumulateInitial
+      case Kind::ObstacleFriction:
+      case Kind::SelfCollisionFriction:
+        break;  // through the contact law only: ContactAdjoint
     }
     gradient[static_cast<int>(k)] += d;
   }

@@ -12,6 +12,13 @@
 //   wind (strength s, direction d, frequency f, phase phi), f_i = s area_i phi(t) d with
 //                              phi = (sin(2 pi f t + phi0) + 1)/2: dG/dtheta = -h^2 df/dtheta;
 //   constant nodal forces and gravity: dG/dF = -h^2 (selection);
+//   handle targets: an attachment row (node j, stiffness k) adds h^2 k (x_j - x_hat_j(t)) to G
+//                              (its P part and its projection p = x_hat, Sec. 3.1), so
+//                              dG_j/d x_hat_j = -h^2 k I, chained through x_hat_j(t_{n+1}) =
+//                              R(t) rest_j + offset(t), offset linear in the trajectory's knot
+//                              values with the keyframe or Hermite weights
+//                              (HandleTrajectory::controlWeight; DiffCloth Appendix B, Hat/Sock);
+//   attachment stiffness k:    dG_j/dk = h^2 (x_j - x_hat_j) for each of its vertices j;
 //   initial velocity: enters v_0 only, so it is read from dL/dv_0 at the end (Backpropagation).
 
 #include <weft/diff/SceneParameter.h>

@@ -16,8 +16,11 @@ bool parseIndex(const std::string& s, int& out) {
 
 const char* kSupported =
     "differentiable parameters are cloths.K.material.{stretch,bend,density}, "
-    "cloths.K.initial_velocity.i, cloths.K.forces.J.force.i, wind.{strength,frequency,phase}, "
-    "wind.direction.i, gravity.i";
+    "cloths.K.initial_velocity.i, cloths.K.forces.J.force.i, cloths.K.attachments.J.stiffness, "
+    "cloths.K.attachments.J.trajectory.keyframes.P.offset.i, "
+    "cloths.K.attachments.J.trajectory.hermite.{points,tangents}.P.i, "
+    "wind.{strength,frequency,phase}, wind.direction.i, gravity.i, obstacles.J.friction, "
+    "cloths.K.self_collision.friction";
 
 }  // namespace
 
@@ -46,6 +49,11 @@ SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path
       else fail("parameter '" + path + "' is not differentiable; " + kSupported);
       return p;
     }
+    if (n == 4 && parts[2] == "self_collision" && parts[3] == "friction") {
+      if (!scene.cloths[p.cloth].selfCollision) fail("parameter '" + path + "': the cloth has no self-collision");
+      p.kind = SceneParameter::Kind::SelfCollisionFriction;
+      return p;
+    }
     if (n == 4 && parts[2] == "initial_velocity") {
       p.kind = SceneParameter::Kind::InitialVelocity;
       p.component = component(parts[3]);
@@ -56,6 +64,29 @@ SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path
       if (!parseIndex(parts[3], p.index)) fail("parameter '" + path + "': no such force");
       p.component = component(parts[5]);
       return p;
+    }
+    if (n >= 5 && parts[2] == "attachments") {
+      const std::vector<Attachment>& attachments = scene.cloths[p.cloth].attachments;
+      if (!parseIndex(parts[3], p.index) || p.index >= static_cast<int>(attachments.size()))
+        fail("parameter '" + path + "': no such attachment");
+      if (n == 5 && parts[4] == "stiffness") {
+        p.kind = SceneParameter::Kind::AttachmentStiffness;
+        return p;
+      }
+      // The knot values of a handle's trajectory: the loader's keys (SceneLoader readTrajectory).
+      const HandleTrajectory& trajectory = attachments[p.index].trajectory;
+      const bool keyframe = n == 9 && parts[5] == "keyframes" && parts[7] == "offset";
+      const bool hermite =
+          n == 9 && parts[5] == "hermite" && (parts[6] == "points" || parts[6] == "tangents");
+      if (parts[4] == "trajectory" && (keyframe || hermite)) {
+        p.kind = keyframe || parts[6] == "points" ? SceneParameter::Kind::HandleOffset
+                                                  : SceneParameter::Kind::HandleTangent;
+        if (!parseIndex(parts[keyframe ? 6 : 7], p.knot) ||
+            p.knot >= static_cast<int>(trajectory.times.size()))
+          fail("parameter '" + path + "': no such knot");
+        p.component = component(parts[n - 1]);
+        return p;
+      }
     }
   } else if (n >= 2 && parts[0] == "wind" && scene.wind) {
     if (n == 2 && parts[1] == "strength") p.kind = SceneParameter::Kind::WindStrength;
@@ -70,6 +101,12 @@ SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path
     if (scene.wind->constant &&
         (p.kind == SceneParameter::Kind::WindFrequency || p.kind == SceneParameter::Kind::WindPhase))
       fail("parameter '" + path + "' has no effect: the wind model is \"constant\"");
+    return p;
+  } else if (n == 3 && parts[0] == "obstacles" && parts[2] == "friction") {
+    // Contact friction: differentiated through the slip branch (ContactAdjoint).
+    if (!parseIndex(parts[1], p.index) || p.index >= static_cast<int>(scene.obstacles.size()))
+      fail("parameter '" + path + "': no such obstacle");
+    p.kind = SceneParameter::Kind::ObstacleFriction;
     return p;
   } else if (n == 2 && parts[0] == "gravity" && scene.gravity) {
     p.kind = SceneParameter::Kind::Gravity;

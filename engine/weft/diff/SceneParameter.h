@@ -24,12 +24,21 @@ struct SceneParameter {
     WindFrequency,    // wind.frequency
     WindPhase,        // wind.phase
     Gravity,          // gravity.i
+    ObstacleFriction,       // obstacles.J.friction (index = J): the slip branch's dr/dmu
+    SelfCollisionFriction,  // cloths.K.self_collision.friction: pairs take the mean of both cloths'
+    // Handles (moving attachments) and attachments, J = index in cloths.K.attachments:
+    HandleOffset,         // ...attachments.J.trajectory.keyframes.P.offset.i or
+                          // ...attachments.J.trajectory.hermite.points.P.i (knot P's offset)
+    HandleTangent,        // ...attachments.J.trajectory.hermite.tangents.P.i (knot P's tangent)
+    AttachmentStiffness,  // ...attachments.J.stiffness (fixed or handle; must be in the file)
   };
   std::string path;
   Kind kind = Kind::Stretch;
   int cloth = -1;      // cloth index, for per-cloth parameters
-  int index = -1;      // force index (NodalForce)
-  int component = -1;  // vector component 0..2 (InitialVelocity, NodalForce, WindDirection, Gravity)
+  int index = -1;      // force (NodalForce) or attachment (Handle*, AttachmentStiffness) index
+  int component = -1;  // vector component 0..2 (InitialVelocity, NodalForce, WindDirection,
+                       // Gravity, HandleOffset, HandleTangent)
+  int knot = -1;       // trajectory knot (HandleOffset, HandleTangent)
 
   // Where the bounds and the optional log scale of an optimisation will live (set by `weft
   // optimize` from the task; unused by the gradient itself). With logScale the optimiser works

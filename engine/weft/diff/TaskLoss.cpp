@@ -2,8 +2,11 @@
 
 #include <weft/core/Error.h>
 #include <weft/diff/FinalFrameLoss.h>
+#include <weft/diff/HemlineLoss.h>
+#include <weft/diff/KeypointLoss.h>
 #include <weft/diff/TrajectoryLoss.h>
 #include <weft/io/Npy.h>
+#include <weft/scene/JsonReader.h>
 #include <weft/scene/SceneLoader.h>
 
 #include <filesystem>
@@ -64,16 +67,83 @@ std::vector<int> readVertices(const Scene& scene, const nlohmann::json& term, co
   return out;
 }
 
+// task.loss.keypoints (KeypointLoss.h): each entry's vertices with explicit `positions` or with
+// the rows of a scene-shaped `target` .npy ([vertices, 3], or [states, vertices, 3] whose state
+// `step` is used, as a positions.npy of a run). The loader has checked the structure and ranges;
+// they are read through the same checks so that every message names its JSON path.
+std::unique_ptr<LossTerm> makeKeypointLoss(const Scene& scene, const JsonReader& term) {
+  std::vector<KeypointLoss::Keypoint> keypoints;
+  const JsonReader points = term.at("points");
+  for (std::size_t e = 0; e < points.size(); ++e) {
+    const JsonReader entry = points[e];
+    const int step = entry.at("step").integer(0, scene.time.steps);
+    const double weight = entry.has("weight") ? entry.at("weight").positive() : 1.0;
+    entry.at("vertices").size();  // required here (readVertices defaults to all)
+    const std::vector<int> vertices = readVertices(scene, entry.value(), entry.path());
+    std::vector<Vec3> targets;
+    if (entry.has("positions")) {
+      const JsonReader positions = entry.at("positions");
+      if (positions.size() != vertices.size())
+        positions.fail("needs one [x, y, z] per listed vertex");
+      for (std::size_t k = 0; k < vertices.size(); ++k) targets.push_back(positions[k].vec3());
+    } else {
+      const std::string where = entry.path() + ".target";
+      const TargetFile file = readTarget(scene, where, entry.at("target").string());
+      if (file.states.size() > 1 && static_cast<int>(file.states.size()) <= step)
+        throw InputError(scene.file, where,
+                         "target has " + std::to_string(file.states.size()) + " states; step " +
+                             std::to_string(step) + " needs at least " + std::to_string(step + 1));
+      const NodeMatrix& state = file.states.size() == 1 ? file.states.front() : file.states[step];
+      for (int v : vertices) targets.push_back(state.row(v).transpose());
+    }
+    for (std::size_t k = 0; k < vertices.size(); ++k)
+      keypoints.push_back({step, vertices[k], targets[k], weight});
+  }
+  const double weight = term.has("weight") ? term.at("weight").positive() : 1.0;
+  return std::make_unique<KeypointLoss>(std::move(keypoints), weight);
+}
+
+// task.loss.hemline (HemlineLoss.h).
+std::unique_ptr<LossTerm> makeHemlineLoss(const Scene& scene, const JsonReader& term) {
+  term.at("vertices").size();  // required here (readVertices defaults to all)
+  std::vector<int> vertices = readVertices(scene, term.value(), term.path());
+  const double height = term.has("height")
+                            ? term.at("height").number()
+                            : targetHemlineHeight(term.at("apex_angle_deg").number(0.0, 180.0),
+                                                  term.at("apex_height").number(),
+                                                  term.at("slant_length").positive());
+  std::vector<int> states;
+  if (auto list = term.optional("steps"))
+    for (std::size_t i = 0; i < list->size(); ++i)
+      states.push_back((*list)[i].integer(0, scene.time.steps));
+  else
+    states.push_back(scene.time.steps);
+  const Vec3 up = term.has("up") ? term.at("up").unitVec3() : Vec3::UnitY();
+  const double weight = term.has("weight") ? term.at("weight").positive() : 1.0;
+  return std::make_unique<HemlineLoss>(std::move(vertices), std::move(states), up, height, weight);
+}
+
 }  // namespace
 
 TaskLoss::TaskLoss(const Scene& scene) {
-  if (!scene.task) throw InputError(scene.file, "task", "the scene has no task (a task.loss is needed for gradients)");
+  if (!scene.task)
+    throw InputError(scene.file, "task",
+                     "the scene has no task (a task.loss is needed for gradients)");
   const nlohmann::json& loss = scene.task->loss;
   for (auto it = loss.begin(); it != loss.end(); ++it) {
     const std::string where = "task.loss." + it.key();
     const nlohmann::json& term = it.value();
+    if (it.key() == "keypoints") {
+      terms_.push_back(makeKeypointLoss(scene, JsonReader(term, scene.file, where)));
+      continue;
+    }
+    if (it.key() == "hemline") {
+      terms_.push_back(makeHemlineLoss(scene, JsonReader(term, scene.file, where)));
+      continue;
+    }
     if (it.key() != "trajectory" && it.key() != "final")
-      throw InputError(scene.file, where, "loss term '" + it.key() + "' is not yet supported (use trajectory or final)");
+      throw InputError(scene.file, where,
+                       "unknown loss term '" + it.key() + "' (trajectory, final, keypoints or hemline)");
     const double weight = term.value("weight", 1.0);
     std::vector<int> vertices = readVertices(scene, term, where);
     TargetFile target = readTarget(scene, where + ".target", term["target"].get<std::string>());

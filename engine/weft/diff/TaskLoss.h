@@ -1,9 +1,9 @@
 #pragma once
 // The scene's task loss (task.loss): the sum of its terms. Built from the validated scene, with
 // the targets read and checked against the scene (vertex count, step count); every problem is an
-// InputError naming the JSON path of the term. Supported terms: "trajectory" (TrajectoryLoss) and
-// "final" (FinalFrameLoss); "keypoints" and "hemline", which the loader accepts, are reported as
-// not yet supported.
+// InputError naming the JSON path of the term. Terms: "trajectory" (TrajectoryLoss), "final"
+// (FinalFrameLoss), "keypoints" (KeypointLoss) and "hemline" (HemlineLoss), each with an optional
+// "weight"; the loss is their sum.
 
 #include <weft/diff/LossTerm.h>
 #include <weft/scene/Scene.h>

@@ -24,6 +24,24 @@ struct HandleTrajectory {
   Vec3 offset(double t) const;
   // Target of a vertex whose rest (initial) position is `rest`.
   Vec3 target(const Vec3& rest, double t) const;
+
+  // The knot values the offset is linear in: `offsets` (keyframe offsets or spline points) and
+  // `tangents` (Hermite only).
+  enum class Control { Offset, Tangent };
+  // d offset(t) / d control[knot], the same scalar for each component (the interpolation is
+  // componentwise): the linear weights (1 - s, s) of the keyframes, or the Hermite basis
+  // h00, h01 (points) and dt h10, dt h11 (tangents) of the interval holding t; outside the key
+  // range the held end point has weight 1 and every tangent 0. What the adjoint chains the
+  // handle targets through (DiffCloth Appendix B, Hat: the spline's tangents and end point).
+  double controlWeight(double t, Control control, int knot) const;
+
+ private:
+  struct Segment {
+    int first = 0;    // knot at the start of the interval holding t
+    double s = 0.0;   // (t - times[first]) / dt, in [0, 1)
+    double dt = 0.0;  // interval length; 0 when t is outside the key range (held end point)
+  };
+  Segment segment(double t) const;
 };
 
 }  // namespace weft

@@ -284,7 +284,80 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
   }
 }
 
-Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string& directory) {
+// Global vertex indices (scene order, as in positions.npy), as the task losses use them.
+std::vector<int> readGlobalVertices(const JsonReader& list, int vertices) {
+  if (list.size() == 0) list.fail("must list at least one vertex");
+  std::vector<int> out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const JsonReader item = list[i];
+    if (!item.value().is_number_integer())
+      item.fail("must be a vertex index in [0, " + std::to_string(vertices) +
+                ") (global, scene order)");
+    const long long v = item.value().get<long long>();
+    if (v < 0 || v >= vertices)
+      item.fail("vertex index " + std::to_string(v) + " out of range: the scene has " +
+                std::to_string(vertices) + " vertices (global, scene order)");
+    out.push_back(static_cast<int>(v));
+  }
+  return out;
+}
+
+// task.loss.keypoints {points: [{step, vertices, positions | target, weight}], weight}
+// (engine/weft/diff/KeypointLoss.h). Target files are checked when the loss is built.
+void checkKeypointsTerm(const JsonReader& term, int steps, int vertices) {
+  term.allowOnly({"points", "weight"});
+  if (term.has("weight")) term.at("weight").positive();
+  const JsonReader points = term.at("points");
+  if (points.size() == 0)
+    points.fail("needs at least one keypoint entry {step, vertices, positions or target}");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const JsonReader entry = points[i].object();
+    entry.allowOnly({"step", "vertices", "positions", "target", "weight"});
+    entry.at("step").integer(0, steps);
+    const std::size_t count = readGlobalVertices(entry.at("vertices"), vertices).size();
+    if (entry.oneOf({"positions", "target"}) == "positions") {
+      const JsonReader positions = entry.at("positions");
+      if (positions.size() != count)
+        positions.fail("needs one [x, y, z] per listed vertex (" + std::to_string(count) +
+                       "), got " + std::to_string(positions.size()));
+      for (std::size_t k = 0; k < count; ++k) positions[k].vec3();
+    } else {
+      entry.at("target").string();
+    }
+    if (entry.has("weight")) entry.at("weight").positive();
+  }
+}
+
+// task.loss.hemline {vertices, height | (apex_angle_deg, apex_height, slant_length), steps, up,
+// weight} (engine/weft/diff/HemlineLoss.h).
+void checkHemlineTerm(const JsonReader& term, int steps, int vertices) {
+  term.allowOnly({"vertices", "height", "apex_angle_deg", "apex_height", "slant_length", "steps",
+                  "up", "weight"});
+  readGlobalVertices(term.at("vertices"), vertices);
+  if (term.has("height")) {
+    for (const char* k : {"apex_angle_deg", "apex_height", "slant_length"})
+      if (term.has(k)) term.at(k).fail("give 'height' or the apex angle form, not both");
+    term.at("height").number();
+  } else if (term.has("apex_angle_deg") || term.has("apex_height") || term.has("slant_length")) {
+    const double angle = term.at("apex_angle_deg").number(0.0, 180.0);
+    if (!(angle > 0.0 && angle < 180.0))
+      term.at("apex_angle_deg").fail("must lie strictly between 0 and 180");
+    term.at("apex_height").number();
+    term.at("slant_length").positive();
+  } else {
+    term.fail("needs a target: 'height' (m) or 'apex_angle_deg', 'apex_height' and 'slant_length'");
+  }
+  if (auto list = term.optional("steps")) {
+    if (list->size() == 0)
+      list->fail("must list at least one step (or leave it out for the last state)");
+    for (std::size_t i = 0; i < list->size(); ++i) (*list)[i].integer(0, steps);
+  }
+  if (auto up = term.optional("up")) up->unitVec3();
+  if (term.has("weight")) term.at("weight").positive();
+}
+
+Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string& directory,
+              int steps, int vertices) {
   r.allowOnly({"loss", "parameters", "bounds"});
   Task task;
   const JsonReader loss = r.at("loss").object();
@@ -299,6 +372,10 @@ Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string&
       if (term.has("weight")) term.at("weight").positive();
       if (term.has("vertices")) term.at("vertices").size();
       (void)directory;  // targets may be produced later (e.g. by a run); checked when the loss is built
+    } else if (it.key() == "keypoints") {
+      checkKeypointsTerm(term, steps, vertices);
+    } else {
+      checkHemlineTerm(term, steps, vertices);
     }
   }
   task.loss = loss.value();
@@ -377,7 +454,8 @@ Scene parseScene(const nlohmann::json& document, const std::string& file, const 
     for (std::size_t i = 0; i < obs->size(); ++i)
       scene.obstacles.push_back(readObstacle((*obs)[i].object(), directory));
   if (auto w = root.optional("wind")) scene.wind = readWind(w->object());
-  if (auto t = root.optional("task")) scene.task = readTask(t->object(), document, directory);
+  if (auto t = root.optional("task"))
+    scene.task = readTask(t->object(), document, directory, scene.time.steps, scene.vertexCount());
   return scene;
 }
 
