@@ -1,15 +1,18 @@
 // `weft optimize SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]
 //                      [--max-evaluations N] [--learning-rate R] [--set PATH=VALUE ...]
 //                      [--threads N] [--quiet]`
-// Minimises the scene's task loss over its task.parameters (scenes without contact for now) and
+// Minimises the scene's task loss over its task.parameters and
 // writes, into DIR (default out/optimize-<scene name>), staged so that a failed run never
 // replaces a good folder:
-//   loss.csv     evaluation,steps,loss,<parameter paths...>  (one row per evaluation)
+//   loss.csv     evaluation,steps,wall_s,loss,<parameter paths...>  (one row per evaluation)
 //   result.json  method, seed, initial/final parameters and loss, evaluations, steps, gradient
-//                norm, stop reason, timing, backward-solver counts
+//                norm (null for the gradient-free methods), stop reason, timing, backward-solver
+//                counts
 //   loss.png     loss against simulated steps (gnuplot; skipped, with a note, without it)
 // The budget is in simulated steps as DiffCloth's tables count them: a forward step is one, a
-// backward step one more, so one evaluation of a scene with N steps costs 2N.
+// backward step one more, so one evaluation of a scene with N steps costs 2N for the
+// gradient-based methods (lbfgsb, adam) and N for the gradient-free ones (cmaes, es1p1). The
+// default budget is the same for every method: 100 gradient evaluations' worth.
 
 #include "CommandLine.h"
 #include "Commands.h"
@@ -57,9 +60,7 @@ int optimizeCommand(const std::vector<std::string>& args) {
   cl.setContext(file);
   applyThreads(cl);
   const std::string method = cl.value("--method", "lbfgsb");
-  if (method == "cmaes" || method == "es1p1")
-    cl.fail("--method", "'" + method + "' is not yet implemented (available: lbfgsb, adam)");
-  if (method != "lbfgsb" && method != "adam")
+  if (!makeOptimizer(method, OptimizerSettings{}))
     cl.fail("--method", "must be one of lbfgsb, cmaes, es1p1, adam, got '" + method + "'");
   OptimizerSettings settings;
   settings.seed = static_cast<unsigned>(cl.integer("--seed", 0, 0, 2147483647));
@@ -72,24 +73,25 @@ int optimizeCommand(const std::vector<std::string>& args) {
 
   const Scene scene = loadScene(file, parseOverrides(cl));
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  requireContactFree(scene);
   if (!scene.task) throw InputError(file, "task", "the scene has no task; optimize needs task.loss and parameters");
   const ParameterSet parameters = ParameterSet::fromTask(scene);
   if (parameters.empty()) throw InputError(file, "task.parameters", "no parameters to optimise");
   SimulationObjective objective(scene, parameters);
-  const long long perEvaluation = objective.stepsPerEvaluation();
-  settings.budget = cl.has("--budget") ? static_cast<long long>(budgetOption) : kDefaultEvaluations * perEvaluation;
+  const bool usesGradient = makeOptimizer(method, OptimizerSettings{})->usesGradient();
+  const long long perEvaluation = usesGradient ? objective.stepsPerEvaluation() : objective.stepsPerValue();
+  settings.budget =
+      cl.has("--budget") ? static_cast<long long>(budgetOption) : kDefaultEvaluations * objective.stepsPerEvaluation();
   if (settings.budget < perEvaluation)
     cl.fail("--budget", "must allow at least one evaluation (" + std::to_string(perEvaluation) +
-                            " simulated steps: " + std::to_string(scene.time.steps) + " forward + " +
-                            std::to_string(scene.time.steps) + " backward)");
+                            " simulated steps: " + std::to_string(scene.time.steps) + " forward" +
+                            (usesGradient ? " + " + std::to_string(scene.time.steps) + " backward)" : ", no backward)"));
 
   const std::string outDir = cl.value("--out", "out/optimize-" + scene.name);
   StagedDirectory out(outDir);  // fails early on an unusable --out, before optimising
 
   const ParameterSpace& space = objective.space();
   std::ofstream csv(out.file("loss.csv"));
-  csv << "evaluation,steps,loss";
+  csv << "evaluation,steps,wall_s,loss";
   for (const SceneParameter& p : space.parameters()) csv << "," << p.path;
   csv << "\n";
   csv.precision(17);
@@ -99,7 +101,9 @@ int optimizeCommand(const std::vector<std::string>& args) {
     if (!std::isfinite(e.loss) || !e.gradient.allFinite())
       throw NumericalError(0, "optimize", "loss or gradient is not finite at evaluation " + std::to_string(e.evaluation));
     const Eigen::VectorXd v = space.toValues(e.x);
-    csv << e.evaluation << "," << e.steps << "," << e.loss;
+    char wall[32];
+    std::snprintf(wall, sizeof wall, "%.6f", e.seconds);
+    csv << e.evaluation << "," << e.steps << "," << wall << "," << e.loss;
     for (int i = 0; i < v.size(); ++i) csv << "," << v[i];
     csv << "\n";
     if (!quiet) std::fprintf(stderr, "\revaluation %d, %lld steps, loss %.6e   ", e.evaluation, e.steps, e.loss);
@@ -117,7 +121,11 @@ int optimizeCommand(const std::vector<std::string>& args) {
 
   const OptimizationLog& log = optimizer->log();
   const Eigen::VectorXd finalValues = space.toValues(result.x);
-  const Eigen::VectorXd dLdtheta = space.gradientToValues(result.x, result.gradient);
+  // The gradient-free methods never compute one: the report says null rather than spend a
+  // backward pass outside the budget.
+  const nlohmann::json null(nullptr);
+  Eigen::VectorXd dLdtheta;
+  if (result.hasGradient) dLdtheta = space.gradientToValues(result.x, result.gradient);
   nlohmann::json bounds = nlohmann::json::object();
   for (const SceneParameter& p : space.parameters())
     bounds[p.path] = {{"lower", std::isfinite(p.lower) ? nlohmann::json(p.lower) : nlohmann::json(nullptr)},
@@ -138,9 +146,10 @@ int optimizeCommand(const std::vector<std::string>& args) {
       {"iterations", result.iterations},
       {"steps", result.steps},
       {"steps_per_evaluation", perEvaluation},
-      {"gradient", parameterObject(space, dLdtheta)},
-      {"gradient_norm", dLdtheta.norm()},
-      {"projected_gradient_norm", result.projectedGradientNorm},
+      {"uses_gradient", usesGradient},
+      {"gradient", result.hasGradient ? parameterObject(space, dLdtheta) : null},
+      {"gradient_norm", result.hasGradient ? nlohmann::json(dLdtheta.norm()) : null},
+      {"projected_gradient_norm", result.hasGradient ? nlohmann::json(result.projectedGradientNorm) : null},
       {"stop_reason", result.stopReason},
       {"bounds", bounds},
       {"seconds", seconds},
@@ -154,7 +163,8 @@ int optimizeCommand(const std::vector<std::string>& args) {
   std::string plotNote;
   PlotSeries series{"loss", {}, {}};
   for (const LogEntry& e : log.entries()) series.x.push_back(static_cast<double>(e.steps)), series.y.push_back(e.loss);
-  const bool plotted = plotSeries(out.file("loss.png"), scene.name + ": " + method, "simulated steps (forward + backward)",
+  const bool plotted = plotSeries(out.file("loss.png"), scene.name + ": " + method,
+                                  usesGradient ? "simulated steps (forward + backward)" : "simulated steps (forward only)",
                                   "loss", {series}, false, log.best().loss > 0.0, plotNote);
   report["plot"] = plotted ? nlohmann::json("loss.png") : nlohmann::json(nullptr);
   if (!plotted) std::fprintf(stderr, "warning: %s\n", plotNote.c_str());

@@ -1,5 +1,6 @@
 // `weft optimize` through the real binary: loss.csv, result.json and the loss plot of a tiny
-// system identification, the falling loss, and the exits of bad input (2).
+// system identification, the falling loss, the gradient-free methods on the shipped wind system
+// identification (budget in forward steps, seeds), and the exits of bad input (2).
 
 #include <app/CliSupport.h>
 #include <diff/DiffTestSupport.h>
@@ -37,6 +38,19 @@ std::string writeTinyScene(const TempDir& dir, const nlohmann::json& extraTask =
   return test::writeScene(dir.file("tiny.json"), doc);
 }
 
+// loss.csv without its wall-clock column (the only column that may differ between reruns).
+std::vector<std::string> withoutWallSeconds(const std::string& csv) {
+  std::vector<std::string> rows;
+  for (const std::string& line : splitLines(csv)) {
+    auto f = splitCommas(line);
+    if (f.size() > 2) f.erase(f.begin() + 2);
+    std::string row;
+    for (const std::string& cell : f) row += cell + ",";
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 TEST(OptimizeCli, WritesLossCsvResultJsonAndPlot) {
   TempDir dir;
   const std::string scene = writeTinyScene(dir);
@@ -49,19 +63,21 @@ TEST(OptimizeCli, WritesLossCsvResultJsonAndPlot) {
 
   const auto lines = splitLines(test::readFile(out + "/loss.csv"));
   ASSERT_GE(lines.size(), 3u);
-  EXPECT_EQ(lines[0], "evaluation,steps,loss,cloths.0.material.stretch,wind.strength");
-  double first = 0, best = 1e300;
+  EXPECT_EQ(lines[0], "evaluation,steps,wall_s,loss,cloths.0.material.stretch,wind.strength");
+  double first = 0, best = 1e300, wall = 0.0;
   for (std::size_t i = 1; i < lines.size(); ++i) {
     const auto f = splitCommas(lines[i]);
-    ASSERT_EQ(f.size(), 5u) << lines[i];
+    ASSERT_EQ(f.size(), 6u) << lines[i];
     EXPECT_EQ(std::stoi(f[0]), static_cast<int>(i));
     EXPECT_EQ(std::stoll(f[1]), 2LL * kSteps * static_cast<long long>(i));  // forward + backward
     EXPECT_LE(std::stoll(f[1]), budget);
-    const double loss = std::stod(f[2]);
+    EXPECT_GE(std::stod(f[2]), wall);  // cumulative wall-clock seconds
+    wall = std::stod(f[2]);
+    const double loss = std::stod(f[3]);
     if (i == 1) {
       first = loss;
-      EXPECT_DOUBLE_EQ(std::stod(f[3]), 300.0);  // starts from the scene's values
-      EXPECT_DOUBLE_EQ(std::stod(f[4]), 1.5);
+      EXPECT_DOUBLE_EQ(std::stod(f[4]), 300.0);  // starts from the scene's values
+      EXPECT_DOUBLE_EQ(std::stod(f[5]), 1.5);
     }
     best = std::min(best, loss);
   }
@@ -88,13 +104,13 @@ TEST(OptimizeCli, WritesLossCsvResultJsonAndPlot) {
 TEST(OptimizeCli, AdamLowersTheLossAndIsReproducible) {
   TempDir dir;
   const std::string scene = writeTinyScene(dir);
-  std::string csv[2];
+  std::vector<std::string> csv[2];
   for (int k = 0; k < 2; ++k) {
     const std::string out = dir.file("adam" + std::to_string(k));
     const auto r = runWeft({"optimize", scene, "--method", "adam", "--seed", "5", "--max-evaluations", "15", "--out",
                             out, "--quiet", "--threads", "1"});
     ASSERT_EQ(r.exitCode, 0) << describe(r);
-    csv[k] = test::readFile(out + "/loss.csv");
+    csv[k] = withoutWallSeconds(test::readFile(out + "/loss.csv"));
     const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
     EXPECT_EQ(result["method"], "adam");
     EXPECT_EQ(result["evaluations"], 15);
@@ -119,11 +135,11 @@ TEST(OptimizeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
   std::filesystem::create_directories(out);
   dir.write("kept/loss.csv", "good\n");
   const BadOptimize cases[] = {
-      {"Cmaes", {scene, "--method", "cmaes"}, "--method: ", "not yet implemented"},
-      {"Es1p1", {scene, "--method", "es1p1"}, "--method: ", "not yet implemented"},
       {"UnknownMethod", {scene, "--method", "sgd"}, "--method: ", "must be one of"},
       {"ZeroBudget", {scene, "--budget", "0"}, "--budget: ", "positive whole number"},
       {"TooSmallBudget", {scene, "--budget", "10"}, "--budget: ", "at least one evaluation"},
+      // A value-only evaluation costs the 15 forward steps: 14 do not buy one.
+      {"TooSmallBudgetCmaes", {scene, "--method", "cmaes", "--budget", "14"}, "--budget: ", "no backward"},
       {"NoTask", {noTask}, "task: ", "no task"},
       {"UnknownSet", {scene, "--set", "solver.nope.x=1"}, "--set solver.nope.x: ", "unknown path"},
   };
@@ -165,10 +181,57 @@ TEST(OptimizeCli, TaskBoundsAreValidatedAndHonoured) {
     EXPECT_NEAR(result["final_parameters"]["cloths.0.material.stretch"].get<double>(), 280.0, 1e-6);
     const auto lines = splitLines(test::readFile(out + "/loss.csv"));
     for (std::size_t i = 1; i < lines.size(); ++i) {
-      const double s = std::stod(splitCommas(lines[i])[3]);
+      const double s = std::stod(splitCommas(lines[i])[4]);
       EXPECT_GE(s, 280.0 - 1e-9);
       EXPECT_LE(s, 400.0 + 1e-9);
     }
+  }
+}
+
+TEST(OptimizeCli, GradientFreeMethodsRunTheWindSystemIdentificationWithinBudget) {
+  // wind_sysid has 30 steps: a value-only evaluation costs 30 simulated steps, so 10 fit in 310.
+  const std::string scene = std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json";
+  const long long budget = 310;
+  TempDir dir;
+  for (const std::string method : {"cmaes", "es1p1"}) {
+    SCOPED_TRACE(method);
+    std::vector<std::string> runs[3];
+    const char* seeds[3] = {"4", "4", "5"};
+    for (int k = 0; k < 3; ++k) {
+      const std::string out = dir.file(method + std::to_string(k));
+      const auto r = runWeft({"optimize", scene, "--method", method, "--seed", seeds[k], "--budget",
+                              std::to_string(budget), "--out", out, "--quiet", "--threads", "1"});
+      ASSERT_EQ(r.exitCode, 0) << describe(r);
+      const std::string csv = test::readFile(out + "/loss.csv");
+      runs[k] = withoutWallSeconds(csv);
+      const auto lines = splitLines(csv);
+      ASSERT_EQ(lines.size(), 11u);
+      EXPECT_EQ(lines[0], "evaluation,steps,wall_s,loss,cloths.0.material.stretch,wind.strength");
+      double first = 0.0, best = 1e300;
+      for (std::size_t i = 1; i < lines.size(); ++i) {
+        const auto f = splitCommas(lines[i]);
+        ASSERT_EQ(f.size(), 6u) << lines[i];
+        EXPECT_EQ(std::stoll(f[1]), 30LL * static_cast<long long>(i));  // forward steps only
+        EXPECT_LE(std::stoll(f[1]), budget);
+        if (i == 1) first = std::stod(f[3]);
+        best = std::min(best, std::stod(f[3]));
+      }
+      EXPECT_LT(best, first) << "the loss falls";
+      const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
+      EXPECT_EQ(result["method"], method);
+      EXPECT_EQ(result["stop_reason"], "budget");
+      EXPECT_EQ(result["steps"], 300);
+      EXPECT_EQ(result["steps_per_evaluation"], 30);
+      EXPECT_EQ(result["uses_gradient"], false);
+      EXPECT_TRUE(result["gradient"].is_null());
+      EXPECT_TRUE(result["gradient_norm"].is_null());
+      EXPECT_DOUBLE_EQ(result["final_loss"].get<double>(), best);
+      if (result["plot"].is_string()) {
+        EXPECT_TRUE(std::filesystem::exists(out + "/loss.png"));
+      }
+    }
+    EXPECT_EQ(runs[0], runs[1]) << "the same seed gives the same log";
+    EXPECT_NE(runs[0], runs[2]) << "another seed samples other points";
   }
 }
 

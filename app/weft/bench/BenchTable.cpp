@@ -7,6 +7,7 @@
 #include <sys/utsname.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -29,6 +30,11 @@ void BenchTable::writeCsv(const std::string& path) const {
 void BenchTable::writeMarkdown(const std::string& path, const std::string& title,
                                const std::string& preamble) const {
   std::ofstream out(path);
+  writeMarkdown(out, title, preamble);
+  if (!out) throw InputError(path, "output", "write failed");
+}
+
+void BenchTable::writeMarkdown(std::ostream& out, const std::string& title, const std::string& preamble) const {
   out << "## " << title << "\n\n" << preamble << "\n\n|";
   for (const auto& c : columns_) out << " " << c << " |";
   out << "\n|";
@@ -39,7 +45,6 @@ void BenchTable::writeMarkdown(const std::string& path, const std::string& title
     for (const auto& cell : row) out << " " << cell << " |";
     out << "\n";
   }
-  if (!out) throw InputError(path, "output", "write failed");
 }
 
 bool plotSeries(const std::string& png, const std::string& title, const std::string& xLabel,
@@ -61,7 +66,7 @@ bool plotSeries(const std::string& png, const std::string& title, const std::str
     if (logY) gp << "set logscale y\nset format y '%.0e'\n";
     gp << "plot ";
     for (std::size_t s = 0; s < series.size(); ++s)
-      gp << (s ? ", " : "") << "'-' using 1:2 with linespoints title '" << series[s].title << "'";
+      gp << (s ? ", " : "") << "'-' using 1:2 with " << series[s].style << " title '" << series[s].title << "'";
     gp << "\n";
     for (const auto& s : series) {
       for (std::size_t i = 0; i < s.x.size(); ++i)
@@ -97,6 +102,24 @@ std::string machineDescription() {
   std::ostringstream s;
   s << u.sysname << " " << u.machine << ", " << std::thread::hardware_concurrency() << " cores, " << cpu;
   return s.str();
+}
+
+std::vector<std::string> benchNames(const CommandLine& cl, const std::string& option, const std::string& fallback,
+                                    const std::vector<std::string>& known) {
+  const std::string text = cl.value(option, fallback);
+  std::vector<std::string> out;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    out.push_back(text.substr(begin, comma - begin));
+    if (std::find(known.begin(), known.end(), out.back()) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      cl.fail(option, "unknown name '" + out.back() + "' (known: " + list + ")");
+    }
+    begin = comma + 1;
+  }
+  return out;
 }
 
 std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallback) {

@@ -2,6 +2,7 @@
 // A measured table as `weft bench` writes it: CSV (all columns), Markdown (for docs) and a PNG
 // plot drawn by gnuplot (Debian's gnuplot-nox) when it is installed.
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -16,16 +17,20 @@ class BenchTable {
   const std::vector<std::vector<std::string>>& rows() const { return rows_; }
   void writeCsv(const std::string& path) const;
   void writeMarkdown(const std::string& path, const std::string& title, const std::string& preamble) const;
+  // The same section into a stream, for a Markdown file holding several tables.
+  void writeMarkdown(std::ostream& out, const std::string& title, const std::string& preamble) const;
 
  private:
   std::vector<std::string> columns_;
   std::vector<std::vector<std::string>> rows_;
 };
 
-// One plotted series: x/y columns of a CSV data block.
+// One plotted series: x/y columns of a CSV data block, drawn in a gnuplot style ("steps" for a
+// running minimum).
 struct PlotSeries {
   std::string title;
   std::vector<double> x, y;
+  std::string style = "linespoints";
 };
 
 // Writes `png` with gnuplot (log-log when asked). Returns false, with a reason, when gnuplot is
@@ -41,5 +46,9 @@ std::string machineDescription();
 // --resolutions: a comma-separated list of quads per side (e.g. 12,24), or `fallback` when the
 // option is absent; bad lists fail through cl (exit 2).
 std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallback);
+// A comma-separated list of names given to `option` (or `fallback`), each one of `known`; an
+// unknown name is an InputError naming the option.
+std::vector<std::string> benchNames(const CommandLine& cl, const std::string& option, const std::string& fallback,
+                                    const std::vector<std::string>& known);
 
 }  // namespace weft::cli

@@ -1,7 +1,10 @@
 #pragma once
-// What an optimiser minimises: a smooth function of a parameter vector with its gradient, and what
-// one evaluation costs in simulated steps. Analytic objectives (the tests' quadratic, Rosenbrock)
-// cost nothing; SimulationObjective costs a forward and a backward pass.
+// What an optimiser minimises: a function of a parameter vector, evaluated either with its
+// gradient (evaluate) or alone (value), and what each kind of evaluation costs in simulated
+// steps. DiffCloth's tables count a forward step as 1 and a backward step as 1 more, so for a
+// simulation a gradient evaluation costs twice its step count and a value-only evaluation (what
+// the gradient-free methods, CMA-ES and the (1+1)-ES, ask for) once. Analytic objectives (the
+// tests' quadratic, Rosenbrock) cost nothing unless they say otherwise.
 
 #include <Eigen/Core>
 
@@ -13,8 +16,18 @@ class Objective {
   virtual int dimension() const = 0;
   // The value at x; writes dL/dx into `gradient` (resized by the callee).
   virtual double evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) = 0;
-  // Simulated steps one evaluation costs (0 for analytic objectives).
+  // The value at x alone. The default computes the gradient and drops it (so it costs what an
+  // evaluation costs, see stepsPerValue); objectives whose value is cheaper on its own override
+  // both.
+  virtual double value(const Eigen::VectorXd& x) {
+    Eigen::VectorXd unused;
+    return evaluate(x, unused);
+  }
+  // Simulated steps one evaluate() costs (0 for analytic objectives).
   virtual long long stepsPerEvaluation() const { return 0; }
+  // Simulated steps one value() costs: by default that of evaluate(), which the default value()
+  // calls.
+  virtual long long stepsPerValue() const { return stepsPerEvaluation(); }
 };
 
 }  // namespace weft

@@ -1,7 +1,8 @@
 #pragma once
-// Every evaluation an optimiser made, in order, with the simulated steps spent so far: the rows of
-// `loss.csv`, and the best point seen (what an optimiser returns: line searches evaluate trial
-// points that may be worse than the last accepted one).
+// Every evaluation an optimiser made, in order, with the simulated steps and wall-clock seconds
+// spent so far and whether it computed a gradient: the rows of `loss.csv` and of `weft bench
+// applications`, and the best point seen (what an optimiser returns: line searches and
+// evolution strategies evaluate trial points that may be worse than the last accepted one).
 
 #include <Eigen/Core>
 
@@ -13,9 +14,11 @@ namespace weft {
 struct LogEntry {
   int evaluation = 0;    // 1-based
   long long steps = 0;   // simulated steps so far, this evaluation included
+  double seconds = 0.0;  // wall-clock seconds since the run started, this evaluation included
   double loss = 0.0;
+  bool hasGradient = false;  // a gradient evaluation (else value only, `gradient` empty)
   Eigen::VectorXd x;         // optimiser coordinates
-  Eigen::VectorXd gradient;  // dL/dx in optimiser coordinates
+  Eigen::VectorXd gradient;  // dL/dx in optimiser coordinates, when hasGradient
 };
 
 class OptimizationLog {

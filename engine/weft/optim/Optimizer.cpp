@@ -1,7 +1,11 @@
 #include <weft/optim/Optimizer.h>
 
 #include <weft/optim/AdamOptimizer.h>
+#include <weft/optim/CmaEsOptimizer.h>
 #include <weft/optim/LbfgsbOptimizer.h>
+#include <weft/optim/OnePlusOneEsOptimizer.h>
+
+#include <limits>
 
 namespace weft {
 namespace {
@@ -20,20 +24,39 @@ double projectedGradientNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& gr
   return ((x - gradient).cwiseMax(lower).cwiseMin(upper) - x).cwiseAbs().maxCoeff();
 }
 
-double Optimizer::evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) {
+void Optimizer::admit(long long cost) const {
   const int done = static_cast<int>(log_.entries().size());
   if (settings_.maxEvaluations > 0 && done >= settings_.maxEvaluations) throw StopRequest{"max evaluations"};
-  const long long cost = objective_->stepsPerEvaluation();
   if (settings_.budget > 0 && log_.steps() + cost > settings_.budget) throw StopRequest{"budget"};
-  LogEntry e;
-  e.loss = objective_->evaluate(x, e.gradient);
-  e.evaluation = done + 1;
+}
+
+double Optimizer::record(LogEntry e, long long cost) {
+  e.evaluation = static_cast<int>(log_.entries().size()) + 1;
   e.steps = log_.steps() + cost;
-  e.x = x;
-  gradient = e.gradient;
+  e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double loss = e.loss;
   log_.add(std::move(e));
   return loss;
+}
+
+double Optimizer::evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) {
+  const long long cost = objective_->stepsPerEvaluation();
+  admit(cost);
+  LogEntry e;
+  e.loss = objective_->evaluate(x, e.gradient);
+  e.hasGradient = true;
+  e.x = x;
+  gradient = e.gradient;
+  return record(std::move(e), cost);
+}
+
+double Optimizer::evaluateValue(const Eigen::VectorXd& x) {
+  const long long cost = objective_->stepsPerValue();
+  admit(cost);
+  LogEntry e;
+  e.loss = objective_->value(x);
+  e.x = x;
+  return record(std::move(e), cost);
 }
 
 OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::VectorXd& x0, const Eigen::VectorXd& lower,
@@ -41,6 +64,7 @@ OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::Vector
   objective_ = &objective;
   log_.clear();
   iterations_ = 0;
+  start_ = std::chrono::steady_clock::now();
   OptimizationResult result;
   try {
     result.stopReason = run(x0.cwiseMax(lower).cwiseMin(upper), lower, upper);
@@ -52,8 +76,10 @@ OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::Vector
     const LogEntry& best = log_.best();
     result.x = best.x;
     result.loss = best.loss;
+    result.hasGradient = best.hasGradient;
     result.gradient = best.gradient;
-    result.projectedGradientNorm = projectedGradientNorm(best.x, best.gradient, lower, upper);
+    result.projectedGradientNorm = best.hasGradient ? projectedGradientNorm(best.x, best.gradient, lower, upper)
+                                                    : std::numeric_limits<double>::quiet_NaN();
   } else {
     result.x = x0.cwiseMax(lower).cwiseMin(upper);
   }
@@ -66,6 +92,8 @@ OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::Vector
 std::unique_ptr<Optimizer> makeOptimizer(const std::string& method, const OptimizerSettings& settings) {
   if (method == "lbfgsb") return std::make_unique<LbfgsbOptimizer>(settings);
   if (method == "adam") return std::make_unique<AdamOptimizer>(settings);
+  if (method == "cmaes") return std::make_unique<CmaEsOptimizer>(settings);
+  if (method == "es1p1") return std::make_unique<OnePlusOneEsOptimizer>(settings);
   return nullptr;
 }
 

@@ -1,15 +1,18 @@
 #pragma once
-// The interface both gradient-based methods share (L-BFGS-B, Adam): minimise an Objective inside a
-// box, stopping on convergence, on the evaluation cap, or before an evaluation would exceed the
-// budget of simulated steps (DiffCloth's tables count cost in simulated steps, forward and
-// backward). Every evaluation goes through evaluate(), which enforces the budget and logs; the
-// result is the best point logged.
+// The interface every method shares, gradient-based (L-BFGS-B, Adam) and gradient-free (CMA-ES,
+// (1+1)-ES): minimise an Objective inside a box, stopping on convergence, on the evaluation cap,
+// or before an evaluation would exceed the budget of simulated steps (DiffCloth's tables count
+// cost in simulated steps: a forward step 1, a backward step 1 more). Every evaluation goes
+// through evaluate() (value and gradient, Objective::stepsPerEvaluation) or evaluateValue()
+// (value alone, Objective::stepsPerValue), which enforce the budget and log; the result is the
+// best point logged.
 
 #include <weft/optim/Objective.h>
 #include <weft/optim/OptimizationLog.h>
 
 #include <Eigen/Core>
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -21,15 +24,16 @@ struct OptimizerSettings {
   int maxIterations = 0;           // 0 = unlimited
   double gradientTolerance = 1e-8; // projected gradient, infinity norm, optimiser coordinates
   double lossTolerance = 1e-12;    // relative loss change between iterations
-  unsigned seed = 0;
+  unsigned seed = 0;               // the evolution strategies' random stream (std::mt19937_64)
   double learningRate = 0.05;      // Adam's step in optimiser coordinates
 };
 
 struct OptimizationResult {
   Eigen::VectorXd x;         // best point evaluated, optimiser coordinates
   double loss = 0.0;
-  Eigen::VectorXd gradient;  // at x
-  double projectedGradientNorm = 0.0;  // infinity norm of the bound-projected gradient at x
+  bool hasGradient = false;  // whether x was a gradient evaluation (never for CMA-ES, (1+1)-ES)
+  Eigen::VectorXd gradient;  // at x, when hasGradient (else empty)
+  double projectedGradientNorm = 0.0;  // infinity norm of the bound-projected gradient at x (NaN without one)
   int evaluations = 0;
   int iterations = 0;
   long long steps = 0;
@@ -41,6 +45,9 @@ class Optimizer {
   explicit Optimizer(OptimizerSettings settings) : settings_(settings) {}
   virtual ~Optimizer() = default;
   virtual std::string name() const = 0;
+  // Whether the method asks for gradients (evaluate) or values alone (evaluateValue): what one of
+  // its evaluations of a simulation costs, 2 * steps or steps.
+  virtual bool usesGradient() const { return true; }
 
   // x0 is projected into [lower, upper] first. Throws what the objective throws (InputError,
   // NumericalError); running out of budget or evaluations is a normal stop.
@@ -53,15 +60,22 @@ class Optimizer {
  protected:
   // The method itself: returns the stop reason. Iterations are counted in iterations_.
   virtual std::string run(Eigen::VectorXd x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) = 0;
-  // One logged, budgeted evaluation. Throws StopRequest when the budget or the evaluation cap
-  // would be exceeded; minimize() catches it.
+  // One logged, budgeted evaluation with the gradient (costs stepsPerEvaluation). Throws
+  // StopRequest when the budget or the evaluation cap would be exceeded; minimize() catches it.
   double evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& gradient);
+  // The same for the value alone (costs stepsPerValue): what gradient-free methods call.
+  double evaluateValue(const Eigen::VectorXd& x);
   int iterations_ = 0;
 
  private:
+  // Checks the cap and the budget for an evaluation costing `cost` steps (throws StopRequest).
+  void admit(long long cost) const;
+  double record(LogEntry entry, long long cost);
+
   OptimizerSettings settings_;
   Objective* objective_ = nullptr;
   OptimizationLog log_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 // Infinity norm of the gradient projected onto the box: components pushing outward at an active
@@ -69,7 +83,7 @@ class Optimizer {
 double projectedGradientNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& gradient, const Eigen::VectorXd& lower,
                              const Eigen::VectorXd& upper);
 
-// "lbfgsb" or "adam"; nullptr for an unknown name.
+// "lbfgsb", "adam", "cmaes" or "es1p1"; nullptr for an unknown name.
 std::unique_ptr<Optimizer> makeOptimizer(const std::string& method, const OptimizerSettings& settings);
 
 }  // namespace weft

@@ -8,15 +8,8 @@
 
 namespace weft {
 
-namespace {
-const Scene& checked(const Scene& scene) {
-  requireContactFree(scene);
-  return scene;
-}
-}  // namespace
-
 SimulationObjective::SimulationObjective(const Scene& scene, const ParameterSet& parameters)
-    : scene_(checked(scene)), parameters_(parameters), space_(scene, parameters), loss_(scene) {}
+    : scene_(scene), parameters_(parameters), space_(scene, parameters), loss_(scene) {}
 
 double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& gradient) {
   const auto start = std::chrono::steady_clock::now();
@@ -35,6 +28,18 @@ double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& 
   backward_.seconds += r.solver.seconds;
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r.loss;
+}
+
+double SimulationObjective::value(const Eigen::VectorXd& z) {
+  // The forward pass and the loss of its trajectory, nothing recorded for a backward pass to use:
+  // what a gradient-free method pays per evaluation (time.steps simulated steps).
+  const auto start = std::chrono::steady_clock::now();
+  const Scene scene = parameters_.withValues(scene_, space_.toValues(z));
+  const ForwardPass forward = runForwardPass(scene);
+  unconverged_ += forward.unconvergedSteps;
+  const double loss = loss_.value(forward.trajectory);
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return loss;
 }
 
 }  // namespace weft

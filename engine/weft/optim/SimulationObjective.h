@@ -1,9 +1,10 @@
 #pragma once
 // The scene's task loss as a function of its parameters, in ParameterSpace coordinates: each
 // evaluation sets the parameters into the scene (through the strict loader), runs the forward
-// pass and backpropagates the loss (DiffCloth Sec. 4.1, Eqs. 16-19). Cost, as the paper's tables
-// count it: each forward step is one simulated step and each backward step one more, so one
-// evaluation costs 2 * time.steps.
+// pass and backpropagates the loss (DiffCloth Sec. 4.1, Eqs. 16-19); value() runs the forward
+// pass alone. Cost, as the paper's tables count it: each forward step is one simulated step and
+// each backward step one more, so one gradient evaluation costs 2 * time.steps and one
+// value-only evaluation time.steps.
 
 #include <weft/diff/AdjointSolver.h>
 #include <weft/diff/TaskLoss.h>
@@ -14,13 +15,15 @@ namespace weft {
 
 class SimulationObjective : public Objective {
  public:
-  // Throws InputError for a scene with contact (not yet differentiable), without a task, or with
+  // Throws InputError for a scene without a task, or with
   // parameters that cannot be resolved or bounded.
   SimulationObjective(const Scene& scene, const ParameterSet& parameters);
 
   int dimension() const override { return space_.size(); }
   double evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& gradient) override;
+  double value(const Eigen::VectorXd& z) override;
   long long stepsPerEvaluation() const override { return 2LL * scene_.time.steps; }
+  long long stepsPerValue() const override { return scene_.time.steps; }
 
   const ParameterSpace& space() const { return space_; }
   const ParameterSet& parameters() const { return parameters_; }

@@ -1,0 +1,80 @@
+// `weft bench applications` through the real binary, on the smallest Flying Napkin with a tiny
+// budget: every method and seed logged within the budget, the methods of one seed starting from
+// the same point and the seeds from different ones, the Markdown tables, and bad input (exit 2).
+
+#include <app/CliSupport.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+
+namespace weft {
+namespace {
+
+using test::describe;
+using test::runWeft;
+using test::splitCommas;
+using test::splitLines;
+using test::TempDir;
+
+TEST(ApplicationsBenchCli, RunsEveryMethodAndSeedWithinTheBudget) {
+  TempDir dir;
+  const std::string out = dir.file("bench");
+  const long long budget = 450;  // napkin_4x4: 50 steps, so 4 gradient evaluations or 9 values
+  const auto r = runWeft({"bench", "applications", "--tasks", "napkin_4x4", "--seeds", "2",
+                          "--budget", std::to_string(budget), "--out", out, "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const auto lines = splitLines(test::readFile(out + "/applications.csv"));
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines[0], "task,method,seed,evaluation,steps,wall_s,loss");
+  std::map<std::string, int> evaluations;   // method/seed -> rows
+  std::map<std::string, double> firstLoss;  // method/seed -> loss at evaluation 1
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto f = splitCommas(lines[i]);
+    ASSERT_EQ(f.size(), 7u) << lines[i];
+    EXPECT_EQ(f[0], "napkin_4x4");
+    const std::string run = f[1] + "/" + f[2];
+    EXPECT_EQ(std::stoi(f[3]), ++evaluations[run]) << lines[i];
+    const long long steps = std::stoll(f[4]);
+    EXPECT_LE(steps, budget);
+    EXPECT_EQ(steps, (f[1] == "lbfgsb" ? 100LL : 50LL) * std::stoi(f[3])) << lines[i];
+    if (f[3] == "1") firstLoss[run] = std::stod(f[6]);
+  }
+  for (const char* method : {"lbfgsb", "cmaes", "es1p1"})
+    for (const char* seed : {"1", "2"})
+      EXPECT_TRUE(evaluations.count(std::string(method) + "/" + seed)) << method << seed;
+  EXPECT_EQ(evaluations["lbfgsb/1"], 4);
+  EXPECT_EQ(evaluations["cmaes/1"], 9);
+  EXPECT_EQ(evaluations["es1p1/2"], 9);
+  // The start is the seed's, the same for every method.
+  EXPECT_EQ(firstLoss["lbfgsb/1"], firstLoss["cmaes/1"]);
+  EXPECT_EQ(firstLoss["lbfgsb/1"], firstLoss["es1p1/1"]);
+  EXPECT_EQ(firstLoss["lbfgsb/2"], firstLoss["es1p1/2"]);
+  EXPECT_NE(firstLoss["lbfgsb/1"], firstLoss["lbfgsb/2"]);
+
+  const std::string md = test::readFile(out + "/applications.md");
+  for (const char* heading :
+       {"Loss reached (DiffCloth Table 2)", "Steps to converge and to reach a threshold",
+        "Every seed (DiffCloth Tables 5-6)", "| napkin_4x4 | 48 | 2 | 450 |"})
+    EXPECT_NE(md.find(heading), std::string::npos) << heading;
+  EXPECT_TRUE(std::filesystem::exists(out + "/loss_napkin_4x4.png") ||
+              r.err.find("gnuplot") != std::string::npos);
+}
+
+TEST(ApplicationsBenchCli, BadInputExitsTwo) {
+  TempDir dir;
+  const std::string out = dir.file("kept");
+  test::expectBadInput("bench", {"applications", "--tasks", "napkin_3x3", "--out", out},
+                       "--tasks: ", "unknown task");
+  test::expectBadInput("bench", {"applications", "--seeds", "0", "--out", out}, "--seeds", "");
+  test::expectBadInput("bench",
+                       {"applications", "--tasks", "napkin_4x4", "--budget", "60", "--out", out},
+                       "--budget: ", "at least one gradient evaluation");
+  test::expectBadInput("bench", {"forward", "--tasks", "napkin_4x4", "--out", out},
+                       "--tasks: ", "applications benchmark only");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace weft
