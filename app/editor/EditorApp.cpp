@@ -1,6 +1,11 @@
 #include "EditorApp.h"
 
 #include "EditorGl.h"
+#include "InspectorPanel.h"
+#include "MeshImportDialog.h"
+#include "ObstacleTemplates.h"
+#include "OptimiserPanel.h"
+#include "TargetPanel.h"
 #include "ViewportTarget.h"
 
 #include <weft/render/RenderError.h>
@@ -38,9 +43,18 @@ bool keyChord(bool ctrl, bool shift, int key) {
 
 // GLFW's key codes for letters are their upper-case ASCII codes; ImGui 1.86 indexes
 // io.KeysDown by the platform's codes.
-constexpr int kKeyN = 'N', kKeyO = 'O', kKeyS = 'S', kKeyQ = 'Q', kKeyF = 'F';
+constexpr int kKeyN = 'N', kKeyO = 'O', kKeyS = 'S', kKeyQ = 'Q', kKeyF = 'F', kKeyI = 'I';
 
 }  // namespace
+
+bool parsePanelTab(const std::string& text, PanelTab& tab) {
+  if (text == "scene") tab = PanelTab::Scene;
+  else if (text == "inspect") tab = PanelTab::Inspect;
+  else if (text == "targets") tab = PanelTab::Targets;
+  else if (text == "optimise" || text == "optimize") tab = PanelTab::Optimise;
+  else return false;
+  return true;
+}
 
 EditorApp::EditorApp(EditorSession& session, render::RenderContext& context)
     : session_(session), context_(context) {
@@ -56,6 +70,10 @@ EditorApp::EditorApp(EditorSession& session, render::RenderContext& context)
   viewport_ = std::make_unique<ViewportTarget>(context_, 640, 480);
   renderer_ = std::make_unique<render::Renderer>(*viewport_);
   style_.legend = true;
+  inspector_ = std::make_unique<InspectorPanel>();
+  targets_ = std::make_unique<TargetPanel>();
+  optimiser_ = std::make_unique<OptimiserPanel>();
+  importDialog_ = std::make_unique<MeshImportDialog>();
 }
 
 EditorApp::~EditorApp() {
@@ -86,6 +104,7 @@ void EditorApp::frame() {
   drawViewport(kPanelWidth, top, width - kPanelWidth, height - top - kTimelineHeight);
   drawTimeline(kPanelWidth, height - kTimelineHeight, width - kPanelWidth, kTimelineHeight);
   drawFileDialog();
+  importDialog_->draw(session_, *this);
   drawClosePrompt();
 
   ImGui::Render();
@@ -108,6 +127,7 @@ void EditorApp::handleShortcuts() {
   if (keyChord(true, false, kKeyS)) doSave();
   if (keyChord(true, true, kKeyS)) fileDialog_ = FileDialog::SaveAs;
   if (keyChord(true, false, kKeyQ)) requestClose();
+  if (keyChord(true, false, kKeyI)) importDialog_->open(MeshImportDialog::Kind::Garment);
   if (io.WantTextInput) return;  // typing into a field: no single-key shortcuts, no undo
   if (keyChord(true, false, ImGui::GetKeyIndex(ImGuiKey_Z))) doUndo();
   if (keyChord(true, true, ImGui::GetKeyIndex(ImGuiKey_Z)) ||
@@ -137,8 +157,8 @@ void EditorApp::doSave() {
     return;
   }
   try {
-    session_.save();
-    report("saved " + session_.document().file(), false);
+    const std::string warning = session_.save();
+    report(warning.empty() ? "saved " + session_.document().file() : warning, !warning.empty());
   } catch (const std::exception& e) {
     report(e.what(), true);
   }
@@ -146,8 +166,8 @@ void EditorApp::doSave() {
 
 void EditorApp::doSaveAs(const std::string& file) {
   try {
-    session_.saveAs(file);
-    report("saved " + file, false);
+    const std::string warning = session_.saveAs(file);
+    report(warning.empty() ? "saved " + file : warning, !warning.empty());
   } catch (const std::exception& e) {
     report(e.what(), true);
   }
@@ -188,6 +208,8 @@ void EditorApp::drawMenuBar() {
     if (ImGui::MenuItem("Save", "Ctrl+S")) doSave();
     if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) fileDialog_ = FileDialog::SaveAs;
     ImGui::Separator();
+    if (ImGui::MenuItem("Import garment...", "Ctrl+I")) importDialog_->open(MeshImportDialog::Kind::Garment);
+    ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) requestClose();
     ImGui::EndMenu();
   }
@@ -201,6 +223,20 @@ void EditorApp::drawMenuBar() {
       session_.selection().clear();
     ImGui::EndMenu();
   }
+  if (ImGui::BeginMenu("Add")) {
+    if (ImGui::MenuItem("Garment (mesh file)...", "Ctrl+I")) importDialog_->open(MeshImportDialog::Kind::Garment);
+    ImGui::Separator();
+    for (const std::string& shape : analyticObstacleShapes()) {
+      const std::string label = "Obstacle: " + shape;
+      if (ImGui::MenuItem(label.c_str())) {
+        const std::string error = session_.addObstacle(shape);
+        report(error.empty() ? "added a " + shape + " (edit it under Obstacles)" : error, !error.empty());
+        showTab(PanelTab::Scene);
+      }
+    }
+    if (ImGui::MenuItem("Obstacle: mesh file...")) importDialog_->open(MeshImportDialog::Kind::Obstacle);
+    ImGui::EndMenu();
+  }
   if (ImGui::BeginMenu("View")) {
     const float aspect = float(viewportWidth_) / float(std::max(viewportHeight_, 1));
     if (ImGui::MenuItem("Frame scene", "F")) session_.frameCamera(aspect);
@@ -209,13 +245,16 @@ void EditorApp::drawMenuBar() {
     if (ImGui::MenuItem("Top")) session_.frameCamera(aspect, render::NamedView::Top);
     ImGui::Separator();
     ImGui::MenuItem("Wireframe", nullptr, &style_.wireframe);
-    ImGui::MenuItem("Contact branch colours", nullptr, &contactColours_);
+    ImGui::MenuItem("Contact branch colours", nullptr, &session_.contactColours);
+    ImGui::MenuItem("Contact force arrows", nullptr, &session_.forceArrows);
     ImGui::MenuItem("Legend", nullptr, &style_.legend);
     ImGui::EndMenu();
   }
-  if (ImGui::BeginMenu("Optimise")) {
-    // Placeholder only: targets and the optimiser need the adjoint, which is not built yet.
-    ImGui::MenuItem("Targets and optimiser: not available yet (need the adjoint)", nullptr, false, false);
+  if (ImGui::BeginMenu("Panels")) {
+    if (ImGui::MenuItem("Scene", nullptr, tab_ == PanelTab::Scene)) showTab(PanelTab::Scene);
+    if (ImGui::MenuItem("Inspect (vertex, contacts, solver)", nullptr, tab_ == PanelTab::Inspect)) showTab(PanelTab::Inspect);
+    if (ImGui::MenuItem("Targets", nullptr, tab_ == PanelTab::Targets)) showTab(PanelTab::Targets);
+    if (ImGui::MenuItem("Optimise", nullptr, tab_ == PanelTab::Optimise)) showTab(PanelTab::Optimise);
     ImGui::EndMenu();
   }
   std::string title = doc.displayName() + (doc.dirty() ? " *" : "");
@@ -314,17 +353,38 @@ void EditorApp::drawScenePanel(float top, float height) {
   }
   ImGui::Separator();
   ImGui::PushItemWidth(170.0f);
+  if (ImGui::BeginTabBar("panels")) {
+    const struct {
+      const char* label;
+      PanelTab tab;
+    } tabs[] = {{"Scene", PanelTab::Scene}, {"Inspect", PanelTab::Inspect}, {"Targets", PanelTab::Targets},
+                {"Optimise", PanelTab::Optimise}};
+    for (const auto& t : tabs) {
+      const ImGuiTabItemFlags flags = tabRequested_ && requestedTab_ == t.tab ? ImGuiTabItemFlags_SetSelected : 0;
+      if (ImGui::BeginTabItem(t.label, nullptr, flags)) {
+        tab_ = t.tab;
+        switch (t.tab) {
+          case PanelTab::Scene: sceneTab(); break;
+          case PanelTab::Inspect: inspector_->draw(session_); break;
+          case PanelTab::Targets: targets_->draw(session_, *this); break;
+          case PanelTab::Optimise: optimiser_->draw(session_, *this); break;
+        }
+        ImGui::EndTabItem();
+      }
+    }
+    tabRequested_ = false;
+    ImGui::EndTabBar();
+  }
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void EditorApp::sceneTab() {
   if (ImGui::CollapsingHeader("Time step and solver", ImGuiTreeNodeFlags_DefaultOpen)) timePanel();
   if (ImGui::CollapsingHeader("Cloth and material", ImGuiTreeNodeFlags_DefaultOpen)) clothPanel();
   if (ImGui::CollapsingHeader("Gravity and wind")) effectsPanel();
   if (ImGui::CollapsingHeader("Obstacles")) obstaclePanel();
   if (ImGui::CollapsingHeader("Selection", ImGuiTreeNodeFlags_DefaultOpen)) selectionPanel();
-  if (ImGui::CollapsingHeader("Targets and optimiser")) {
-    ImGui::TextDisabled("Not available yet: the optimiser and target");
-    ImGui::TextDisabled("panels need the adjoint, which is being built.");
-  }
-  ImGui::PopItemWidth();
-  ImGui::End();
 }
 
 void EditorApp::timePanel() {
@@ -348,6 +408,20 @@ void EditorApp::clothPanel() {
     const std::string base = "cloths." + std::to_string(c);
     ImGui::PushID(int(c));
     if (ImGui::TreeNodeEx("cloth", ImGuiTreeNodeFlags_DefaultOpen, "Cloth %zu", c)) {
+      static const double zero[3] = {0, 0, 0};
+      if (const nlohmann::json* file = session_.document().find(base + ".mesh.file")) {
+        ImGui::TextDisabled("mesh: %s", file->is_string() ? file->get<std::string>().c_str() : "?");
+        numberField("scale", base + ".mesh.scale", 1.0);
+      } else if (session_.document().find(base + ".mesh.grid")) {
+        const nlohmann::json* size = session_.document().find(base + ".mesh.grid.size");
+        const nlohmann::json* res = session_.document().find(base + ".mesh.grid.resolution");
+        ImGui::TextDisabled("grid %s m, %s quads", size ? size->dump().c_str() : "?", res ? res->dump().c_str() : "?");
+      }
+      if (ImGui::TreeNode("placement", "placement (mesh.transform)")) {
+        vectorField("rotate (deg)", base + ".mesh.transform.rotate_deg", zero);
+        vectorField("translate (m)", base + ".mesh.transform.translate", zero);
+        ImGui::TreePop();
+      }
       numberField("density (kg/m^2)", base + ".material.density", 0.1);
       numberField("stretch (N/m)", base + ".material.stretch", 100.0);
       numberField("bend (N m)", base + ".material.bend", 0.0);
@@ -454,6 +528,9 @@ void EditorApp::obstaclePanel() {
         } else if (shape == "mesh") {
           const nlohmann::json* file = doc.find(s + ".file");
           ImGui::TextDisabled("mesh file: %s", file && file->is_string() ? file->get<std::string>().c_str() : "?");
+          numberField("scale", s + ".scale", 1.0);
+          vectorField("rotate (deg)", s + ".transform.rotate_deg", zero);
+          vectorField("translate (m)", s + ".transform.translate", zero);
         }
         numberField("friction", base + ".friction", 0.0);
         numberField("thickness (m)", base + ".thickness", 1e-3);
@@ -464,24 +541,12 @@ void EditorApp::obstaclePanel() {
     if (removed) break;  // indices shifted; the list is drawn again next frame
   }
   ImGui::TextUnformatted("Add:");
-  static const char* shapes[] = {"plane", "sphere", "capsule", "box", "cylinder"};
-  for (const char* shape : shapes) {
+  for (const std::string& shape : analyticObstacleShapes()) {
     ImGui::SameLine();
-    if (ImGui::SmallButton(shape)) {
-      nlohmann::json o;
-      const std::string s = shape;
-      if (s == "plane") o["plane"] = {{"point", {0.0, 0.0, 0.0}}, {"normal", {0.0, 1.0, 0.0}}};
-      if (s == "sphere") o["sphere"] = {{"center", {0.0, 0.0, 0.0}}, {"radius", 0.3}};
-      if (s == "capsule") o["capsule"] = {{"a", {-0.3, 0.0, 0.0}}, {"b", {0.3, 0.0, 0.0}}, {"radius", 0.1}};
-      if (s == "cylinder") o["cylinder"] = {{"a", {0.0, -0.2, 0.0}}, {"b", {0.0, 0.2, 0.0}}, {"radius", 0.2}};
-      if (s == "box") o["box"] = {{"center", {0.0, 0.0, 0.0}}, {"size", {0.4, 0.4, 0.4}}, {"rotate_deg", {0.0, 0.0, 0.0}}};
-      o["friction"] = 0.3;
-      applyEdit(doc.edit("Add " + s, [&](nlohmann::json& d) {
-        if (!d.contains("obstacles")) d["obstacles"] = nlohmann::json::array();
-        d["obstacles"].push_back(o);
-      }));
-    }
+    if (ImGui::SmallButton(shape.c_str())) applyEdit(session_.addObstacle(shape));
   }
+  ImGui::SameLine();
+  if (ImGui::SmallButton("mesh...")) importDialog_->open(MeshImportDialog::Kind::Obstacle);
 }
 
 void EditorApp::selectionPanel() {
@@ -501,16 +566,19 @@ void EditorApp::selectionPanel() {
   ImGui::SameLine();
   if (ImGui::Button("Clear")) session_.selection().clear();
   ImGui::EndDisabled();
-  ImGui::TextDisabled("Click: pick a vertex; drag: box select;");
-  ImGui::TextDisabled("Shift adds. Right drag: orbit; middle: pan;");
-  ImGui::TextDisabled("wheel: zoom; F: frame the scene.");
+  ImGui::TextDisabled("Click: pick (and inspect) a vertex; drag: box");
+  ImGui::TextDisabled("select; Shift adds. Right drag: orbit; middle:");
+  ImGui::TextDisabled("pan; wheel: zoom; F: frame the scene; Alt+drag:");
+  ImGui::TextDisabled("move the selected vertices' targets.");
 }
 
 void EditorApp::drawViewport(float left, float top, float width, float height) {
   ImGui::SetNextWindowPos(ImVec2(left, top));
   ImGui::SetNextWindowSize(ImVec2(width, height));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  ImGui::Begin("Viewport", nullptr, kFixedWindow | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoTitleBar);
+  // No background: the image covers the whole window, and on a software GL every filled pixel counts.
+  ImGui::Begin("Viewport", nullptr,
+               kFixedWindow | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBackground);
   ImGui::PopStyleVar();
   const ImVec2 size = ImGui::GetContentRegionAvail();
   viewportWidth_ = std::max(1, int(size.x));
@@ -535,9 +603,24 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
     camera.pan(-io.MouseDelta.x * scale, io.MouseDelta.y * scale);
   }
   if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-    boxStart_[0] = mouse.x;
-    boxStart_[1] = mouse.y;
-    boxSelecting_ = true;
+    if (io.KeyAlt && !session_.targets().empty()) {
+      // Alt + drag moves the selected vertices' targets in the view plane (one undo step).
+      draggingTargets_ = true;
+      ++dragCount_;
+    } else {
+      boxStart_[0] = mouse.x;
+      boxStart_[1] = mouse.y;
+      boxSelecting_ = true;
+    }
+  }
+  if (draggingTargets_) {
+    if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) {
+      const std::string error =
+          session_.dragTargets(session_.selection().nodes(), io.MouseDelta.x, io.MouseDelta.y, viewportWidth_,
+                               viewportHeight_, "target drag " + std::to_string(dragCount_));
+      if (!error.empty()) report(error, true), draggingTargets_ = false;
+    }
+    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) draggingTargets_ = false;
   }
   ImDrawList* draw = ImGui::GetWindowDrawList();
   if (boxSelecting_) {
@@ -555,12 +638,28 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
         session_.clickSelect(mouse.x, mouse.y, viewportWidth_, viewportHeight_, io.KeyShift);
     }
   }
-  // Selected vertices, drawn over the image (not part of viewport screenshots).
+  // Selected vertices and lines to their targets, drawn over the image (not part of viewport
+  // screenshots).
   if (const render::RenderScene* scene = session_.viewportScene()) {
+    for (const FinalTarget& t : session_.targets()) {
+      if (t.node >= scene->cloth.positions.rows()) continue;
+      const auto from = projectToPixel(camera, scene->cloth.positions.row(t.node).transpose(), viewportWidth_, viewportHeight_);
+      const auto to = projectToPixel(camera, t.position.cast<float>(), viewportWidth_, viewportHeight_);
+      if (from && to)
+        draw->AddLine(ImVec2(origin.x + from->x(), origin.y + from->y()), ImVec2(origin.x + to->x(), origin.y + to->y()),
+                      IM_COL32(160, 80, 200, 220), 1.5f);
+    }
     for (int node : session_.selection().nodes()) {
       if (node >= scene->cloth.positions.rows()) continue;
       const auto p = projectToPixel(camera, scene->cloth.positions.row(node).transpose(), viewportWidth_, viewportHeight_);
-      if (p) draw->AddCircleFilled(ImVec2(origin.x + p->x(), origin.y + p->y()), 4.0f, IM_COL32(255, 210, 60, 255));
+      if (!p) continue;
+      const ImVec2 at(origin.x + p->x(), origin.y + p->y());
+      draw->AddCircleFilled(at, 4.0f, IM_COL32(255, 210, 60, 255));
+      // The inspected vertex gets a ring: its dot alone looks like a slip-branch vertex.
+      if (node == session_.selection().focus()) {
+        draw->AddCircle(at, 9.0f, IM_COL32(20, 20, 24, 255), 0, 4.0f);
+        draw->AddCircle(at, 9.0f, IM_COL32(255, 255, 255, 255), 0, 2.0f);
+      }
     }
   }
   if (!session_.document().valid())
@@ -569,14 +668,33 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   ImGui::End();
 }
 
+bool EditorApp::ViewportState::operator==(const ViewportState& o) const {
+  return frameVersion == o.frameVersion && width == o.width && height == o.height &&
+         std::equal(camera, camera + 11, o.camera) && wireframe == o.wireframe && legend == o.legend &&
+         groundGrid == o.groundGrid;
+}
+
 void EditorApp::renderViewport() {
   viewport_->resize(viewportWidth_, viewportHeight_);
   const render::RenderScene* scene = session_.viewportScene();
+  const render::Camera& c = session_.camera();
+  ViewportState now;
+  now.frameVersion = session_.frameVersion();
+  now.width = viewportWidth_;
+  now.height = viewportHeight_;
+  const float camera[11] = {c.target.x(), c.target.y(), c.target.z(), c.distance, c.yawDeg, c.pitchDeg,
+                            c.fovYDeg, c.orthographic ? 1.0f : 0.0f, c.orthoHalfHeight, c.nearPlane, c.farPlane};
+  std::copy(camera, camera + 11, now.camera);
+  now.wireframe = style_.wireframe;
+  now.legend = style_.legend;
+  now.groundGrid = style_.groundGrid;
+  // An unchanged picture is not drawn again (the texture keeps it): on a software GL the
+  // viewport is most of a frame's cost.
+  if (now == drawn_) return;
   render::RenderScene empty;
-  render::RenderScene shown = scene ? *scene : empty;
-  if (!contactColours_) shown.contacts.reset();
   try {
-    renderer_->render(shown, session_.camera(), style_);
+    renderer_->render(scene ? *scene : empty, c, style_);
+    drawn_ = now;
   } catch (const std::exception& e) {
     report(std::string("viewport: ") + e.what(), true);
   }
@@ -587,10 +705,10 @@ render::Image EditorApp::viewportImage(int width, int height) {
   const int w = viewportWidth_, h = viewportHeight_;
   viewport_->resize(width, height);
   const render::RenderScene* scene = session_.viewportScene();
-  render::RenderScene shown = scene ? *scene : render::RenderScene{};
-  if (!contactColours_) shown.contacts.reset();
-  render::Image image = renderer_->renderImage(shown, session_.camera(), style_);
+  const render::RenderScene empty;
+  render::Image image = renderer_->renderImage(scene ? *scene : empty, session_.camera(), style_);
   viewport_->resize(w, h);
+  drawn_ = ViewportState();  // the texture now holds the screenshot's picture
   context_.makeCurrent();
   return image;
 }

@@ -21,6 +21,15 @@ class Renderer;
 namespace weft::editor {
 
 class ViewportTarget;
+class InspectorPanel;
+class TargetPanel;
+class OptimiserPanel;
+class MeshImportDialog;
+
+// The tabs of the left-hand panel.
+enum class PanelTab { Scene, Inspect, Targets, Optimise };
+// "scene", "inspect", "targets", "optimise"; false for anything else.
+bool parsePanelTab(const std::string& text, PanelTab& tab);
 
 class EditorApp {
  public:
@@ -52,6 +61,12 @@ class EditorApp {
   // The last user-facing message (an error from an action, or what an action did).
   const std::string& message() const { return message_; }
   bool messageIsError() const { return messageIsError_; }
+  // Shows `text` as that message (panels and the script report through it).
+  void report(const std::string& text, bool error);
+
+  // The tab the left panel shows (selected by the menus, the user, or a script).
+  void showTab(PanelTab tab) { requestedTab_ = tab, tabRequested_ = true; }
+  PanelTab tab() const { return tab_; }
 
  private:
   void drawMenuBar();
@@ -63,7 +78,6 @@ class EditorApp {
   void handleShortcuts();
   void renderViewport();
 
-  void report(const std::string& text, bool error);
   void doOpen(const std::string& file);
   void doSave();
   void doSaveAs(const std::string& file);
@@ -85,16 +99,32 @@ class EditorApp {
   void effectsPanel();
   void obstaclePanel();
   void selectionPanel();
+  void sceneTab();
 
   EditorSession& session_;
   render::RenderContext& context_;
   std::unique_ptr<ViewportTarget> viewport_;
   std::unique_ptr<render::Renderer> renderer_;
   render::RenderStyle style_;
-  bool contactColours_ = true;
+  std::unique_ptr<InspectorPanel> inspector_;
+  std::unique_ptr<TargetPanel> targets_;
+  std::unique_ptr<OptimiserPanel> optimiser_;
+  std::unique_ptr<MeshImportDialog> importDialog_;
+  PanelTab tab_ = PanelTab::Scene, requestedTab_ = PanelTab::Scene;
+  bool tabRequested_ = false;
   int viewportWidth_ = 1, viewportHeight_ = 1;
   bool boxSelecting_ = false;
+  bool draggingTargets_ = false;
+  int dragCount_ = 0;  // numbers target drags, so each drag is one undo step
   float boxStart_[2] = {0, 0};
+  // What the viewport texture shows now; it is drawn again only when this changes.
+  struct ViewportState {
+    long frameVersion = -1;
+    int width = 0, height = 0;
+    float camera[11] = {};
+    bool wireframe = false, legend = false, groundGrid = false;
+    bool operator==(const ViewportState& o) const;
+  } drawn_;
   unsigned lastEditId_ = 0;  // ImGui item that made the last document edit (coalescing)
 
   enum class FileDialog { None, Open, SaveAs };

@@ -53,6 +53,7 @@ void EditorDocument::open(const std::string& file) {
   }
   if (!parsed.is_object()) throw InputError(file, "-", "a scene must be a JSON object");
   document_ = std::move(parsed);
+  sidecar_ = nlohmann::json::object();
   file_ = file;
   undo_.clear();
   redo_.clear();
@@ -117,7 +118,7 @@ std::string EditorDocument::setValue(const std::string& path, const nlohmann::js
   const std::string error = setJsonPath(after, path, value);
   if (!error.empty()) return path + ": " + error;
   if (after == document_) return "";
-  commit("Set " + path, path, document_, std::move(after), coalesce);
+  commit("Set " + path, path, std::move(after), sidecar_, coalesce);
   return "";
 }
 
@@ -142,7 +143,7 @@ std::string EditorDocument::removeValue(const std::string& path) {
   } else {
     return path + ": unknown path";
   }
-  commit("Remove " + path, "", document_, std::move(after), false);
+  commit("Remove " + path, "", std::move(after), sidecar_, false);
   return "";
 }
 
@@ -155,19 +156,34 @@ std::string EditorDocument::edit(const std::string& label,
     return label + ": " + e.what();
   }
   if (after == document_) return "";
-  commit(label, "", document_, std::move(after), false);
+  commit(label, "", std::move(after), sidecar_, false);
   return "";
 }
 
-void EditorDocument::commit(std::string label, std::string coalesceKey, nlohmann::json before,
-                            nlohmann::json after, bool coalesce) {
+std::string EditorDocument::editWithSidecar(
+    const std::string& label, const std::function<void(nlohmann::json&, nlohmann::json&)>& change,
+    const std::string& coalesceKey) {
+  nlohmann::json after = document_, sidecarAfter = sidecar_;
+  try {
+    change(after, sidecarAfter);
+  } catch (const std::exception& e) {
+    return label + ": " + e.what();
+  }
+  if (after == document_ && sidecarAfter == sidecar_) return "";
+  commit(label, coalesceKey, std::move(after), std::move(sidecarAfter), !coalesceKey.empty());
+  return "";
+}
+
+void EditorDocument::commit(std::string label, std::string coalesceKey, nlohmann::json after,
+                            nlohmann::json sidecarAfter, bool coalesce) {
   const bool merge = coalesce && !coalesceKey.empty() && !undo_.empty() &&
                      undo_.back().coalesceKey == coalesceKey && state_ != savedState_;
   if (!merge) {
-    undo_.push_back(Step{std::move(label), std::move(coalesceKey), std::move(before), state_});
+    undo_.push_back(Step{std::move(label), std::move(coalesceKey), document_, sidecar_, state_});
     if (undo_.size() > kMaxUndo) undo_.erase(undo_.begin());
   }
   redo_.clear();
+  sidecar_ = std::move(sidecarAfter);
   document_ = std::move(after);
   state_ = nextState_++;
   ++revision_;
@@ -178,8 +194,9 @@ bool EditorDocument::undo() {
   if (undo_.empty()) return false;
   Step step = std::move(undo_.back());
   undo_.pop_back();
-  redo_.push_back(Step{step.label, "", document_, state_});
+  redo_.push_back(Step{step.label, "", document_, sidecar_, state_});
   document_ = std::move(step.before);
+  sidecar_ = std::move(step.sidecarBefore);
   state_ = step.beforeState;
   ++revision_;
   revalidate();
@@ -190,8 +207,9 @@ bool EditorDocument::redo() {
   if (redo_.empty()) return false;
   Step step = std::move(redo_.back());
   redo_.pop_back();
-  undo_.push_back(Step{step.label, "", document_, state_});
+  undo_.push_back(Step{step.label, "", document_, sidecar_, state_});
   document_ = std::move(step.before);
+  sidecar_ = std::move(step.sidecarBefore);
   state_ = step.beforeState;
   ++revision_;
   revalidate();

@@ -65,6 +65,18 @@ class EditorDocument {
   // Any other edit: `change` mutates a copy of the document; one undo step named `label`.
   // Returns an error text when `change` throws (the document is then unchanged).
   std::string edit(const std::string& label, const std::function<void(nlohmann::json&)>& change);
+  // The same, for an edit of the document and its sidecar together (one undo step; consecutive
+  // edits with the same non-empty `coalesceKey` merge into one, as for a drag).
+  std::string editWithSidecar(const std::string& label,
+                              const std::function<void(nlohmann::json& document, nlohmann::json& sidecar)>& change,
+                              const std::string& coalesceKey = "");
+
+  // Editor data that belongs to the document but is not scene JSON (the scene format has no
+  // place for it): the positions of final-frame targets, which the session writes as a .npy next
+  // to the scene on save. Undo and redo restore it together with the document. open() empties
+  // it; resetSidecar() sets it without an undo step (what was read alongside an opened file).
+  const nlohmann::json& sidecar() const { return sidecar_; }
+  void resetSidecar(nlohmann::json sidecar) { sidecar_ = std::move(sidecar); }
 
   bool canUndo() const { return !undo_.empty(); }
   bool canRedo() const { return !redo_.empty(); }
@@ -81,13 +93,15 @@ class EditorDocument {
     std::string label;
     std::string coalesceKey;  // the path of a setValue, "" otherwise
     nlohmann::json before;
+    nlohmann::json sidecarBefore;
     long beforeState = 0;  // identity of the document state `before`
   };
-  void commit(std::string label, std::string coalesceKey, nlohmann::json before, nlohmann::json after,
+  void commit(std::string label, std::string coalesceKey, nlohmann::json after, nlohmann::json sidecarAfter,
               bool coalesce);
   void revalidate();
 
   nlohmann::json document_;
+  nlohmann::json sidecar_ = nlohmann::json::object();
   std::string file_;
   std::shared_ptr<const Scene> scene_;
   std::string error_;

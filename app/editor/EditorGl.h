@@ -36,6 +36,7 @@
   X(PFNGLDRAWELEMENTSBASEVERTEXPROC, DrawElementsBaseVertex)         \
   X(PFNGLENABLEPROC, Enable)                                         \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)       \
+  X(PFNGLFINISHPROC, Finish)                                         \
   X(PFNGLGENBUFFERSPROC, GenBuffers)                                 \
   X(PFNGLGENTEXTURESPROC, GenTextures)                               \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                       \

@@ -5,8 +5,14 @@
 // these methods, so a scripted session exercises the same code as a person clicking.
 
 #include "EditorDocument.h"
+#include "FinalTargets.h"
+#include "LiveLoss.h"
+#include "MeshImport.h"
+#include "OptimizerRun.h"
 #include "Selection.h"
 #include "SimulationCache.h"
+#include "StepStatsSeries.h"
+#include "VertexInspector.h"
 
 #include <weft/physics/ClothModel.h>
 #include <weft/render/Camera.h>
@@ -38,11 +44,21 @@ class EditorSession {
   render::Camera& camera() { return camera_; }
   RecentFiles& recent() { return recent_; }
 
-  // File actions. Errors are InputError (open, save); the document is then unchanged.
-  void newDocument();
+  // File actions. Errors are InputError (open, save); the document is then unchanged. Saving
+  // first writes the editor's final-target .npy next to the scene (when targets were set), then
+  // the scene; it returns a warning text ("" normally), e.g. when the targets could not be
+  // written because the scene does not validate.
+  void newDocument(nlohmann::json document = EditorDocument::defaultSceneDocument());
   void open(const std::string& file);
-  void save();
-  void saveAs(const std::string& file);
+  std::string save();
+  std::string saveAs(const std::string& file);
+
+  // Scene building. Each returns an error text ("" on success) and is one undo step; nothing is
+  // added when the mesh or shape is rejected.
+  MeshImport previewGarment(const MeshImportOptions& options) const;  // what importGarment would add
+  std::string importGarment(const MeshImportOptions& options);
+  std::string addObstacle(const std::string& shape);  // plane, sphere, capsule, box, cylinder
+  std::string importMeshObstacle(const MeshImportOptions& options);
 
   // Starts simulating the current document (`steps`, or the scene's time.steps when < 0).
   // Returns an error text when the document does not validate.
@@ -61,12 +77,50 @@ class EditorSession {
   // Frames the camera on what the viewport shows, for an image of the given aspect.
   void frameCamera(float aspect, render::NamedView view = render::NamedView::Auto);
 
+  // Contact debugging: the focused vertex (Selection::focus) at the playback frame of the cache,
+  // nullopt without a focus or a cached frame fitting the mesh.
+  std::optional<VertexReport> inspect() const;
+  const StepStatsSeries& stepSeries() const { return stepSeries_; }
+  // What the viewport overlays on cached states.
+  bool contactColours = true;  // vertices coloured by Signorini-Coulomb branch
+  bool forceArrows = false;    // contact forces as arrows
+
+  // Final-frame targets (FinalTargets.h). Positions are in metres; "shown" positions are the
+  // ones the viewport draws now (the cached frame, or the rest state).
+  std::vector<FinalTarget> targets() const { return finalTargets(document_.sidecar()); }
+  std::string setTargetsFromSelection();  // a target at each selected vertex's shown position
+  std::string setTarget(int node, const Vec3& position, const std::string& coalesceKey = "");
+  std::string moveTargets(const std::vector<int>& nodes, const Vec3& delta, const std::string& coalesceKey = "");
+  // Moves the targets of `nodes` in the camera's image plane by a pixel offset (x right, y down)
+  // of a width x height view, each at its own depth: what dragging them in the viewport does.
+  std::string dragTargets(const std::vector<int>& nodes, float dx, float dy, int width, int height,
+                          const std::string& coalesceKey = "");
+  std::string removeTargets(const std::vector<int>& nodes);  // empty: all
+  // A recorded motion (a positions.npy of `weft simulate`, [states >= steps + 1, vertices, 3])
+  // as the task's trajectory term; checked by the engine's TaskLoss before it is added.
+  std::string loadTargetMotion(const std::string& file);
+  std::string removeTargetMotion();
+  // The task loss of the cached run (LiveLoss.h).
+  const LossValue& liveLoss();
+
+  // The optimiser (OptimizerRun.h) on a copy of the current document. Targets the editor holds
+  // but has not saved yet are written to a private temporary file for the run.
+  OptimizerRun& optimizer() { return optimizer_; }
+  const OptimizerRun& optimizer() const { return optimizer_; }
+  std::string startOptimizer(const OptimizerRun::Setup& setup, bool paused);
+  // Writes the best values of the run into the document (one undo step), or its start values.
+  std::string applyOptimizerResult();
+  std::string revertToOptimizerStart();
+
   // What the viewport draws now: the cached state at the playback frame (with contact
   // branches) when the cache fits the document's mesh, else the document's rest state. Also
   // the scene the picture comes from (null when nothing can be shown).
   const render::RenderScene* viewportScene();
   // True when the viewport shows a cached state (rather than the rest state).
   bool showingCache() const { return showingCache_; }
+  // Changes whenever viewportScene() builds a new picture: the viewport redraws only then (or
+  // when the camera or style changes), which leaves the CPU to the simulation and the UI.
+  long frameVersion() const { return frameVersion_; }
   // Per-frame bookkeeping: playback advance, clamping the frame to the cache.
   void tick(double seconds);
 
@@ -78,6 +132,11 @@ class EditorSession {
   };
   Builder* builderFor(const std::shared_ptr<const Scene>& scene, std::unique_ptr<Builder>& slot);
   void afterDocumentReplaced();
+  std::string writeTargets(const std::string& sceneFile);
+  std::string editTargets(const std::string& label, std::vector<FinalTarget> targets,
+                          const std::string& coalesceKey = "");
+  std::optional<Vec3> shownPosition(int node);  // double precision, unlike the render frame
+  std::string setParameterValues(const std::string& label, const std::vector<double>& values);
 
   EditorDocument document_;
   SimulationCache cache_;
@@ -89,6 +148,23 @@ class EditorSession {
   std::shared_ptr<const Scene> lastValidScene_;
   render::RenderScene frame_;
   bool showingCache_ = false;
+  // What frame_ was built from: rebuilt only when one of these changes (the UI asks for it
+  // several times per frame, and a 10k-vertex frame is worth keeping).
+  struct FrameKey {
+    const void* scene = nullptr;
+    long revision = -1, runId = -1;
+    int frame = -1;
+    bool colours = false, arrows = false;
+    bool operator==(const FrameKey& o) const {
+      return scene == o.scene && revision == o.revision && runId == o.runId && frame == o.frame &&
+             colours == o.colours && arrows == o.arrows;
+    }
+  } frameKey_;
+  bool frameValid_ = false;
+  long frameVersion_ = 0;
+  StepStatsSeries stepSeries_;
+  LiveLoss liveLoss_;
+  OptimizerRun optimizer_;
 };
 
 }  // namespace weft::editor

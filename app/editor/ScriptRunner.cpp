@@ -22,13 +22,71 @@ std::string kindOf(const nlohmann::json& action) {
   for (const char* k : {"open", "new", "set", "remove", "select", "select_add", "clear_selection", "click",
                         "box_select", "pin", "simulate", "cancel", "scrub", "step", "play", "pause",
                         "undo", "redo", "save", "camera", "screenshot", "window_screenshot", "frames",
-                        "expect", "write_state"})
+                        "expect", "write_state", "import_garment", "add_obstacle", "add_mesh_obstacle",
+                        "panel", "contact_colours", "force_arrows", "set_targets", "target", "move_targets",
+                        "drag_targets", "remove_targets", "load_target_motion", "remove_target_motion",
+                        "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
+                        "optimize_cancel", "optimize_apply", "optimize_revert"})
     if (action.contains(k)) return k;
   return action.begin().key();
 }
 
-nlohmann::json stateOf(EditorSession& session) {
+nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+nlohmann::json inspectorState(const EditorSession& session) {
+  const auto r = session.inspect();
+  if (!r) return nullptr;
+  nlohmann::json contacts = nlohmann::json::array();
+  for (const VertexContact& c : r->contacts)
+    contacts.push_back({{"obstacle", c.obstacle},
+                        {"partner", c.partner},
+                        {"branch", static_cast<int>(c.branch)},
+                        {"normal", vec(c.normal)},
+                        {"impulse", vec(c.impulse)},
+                        {"force", vec(c.force)},
+                        {"velocity", vec(c.velocity)},
+                        {"friction", c.friction}});
+  return {{"node", r->node},
+          {"state", r->state},
+          {"cloth", r->cloth},
+          {"local_vertex", r->localVertex},
+          {"position", vec(r->position)},
+          {"velocity", vec(r->velocity)},
+          {"branch", static_cast<int>(r->branch)},
+          {"contact_force", vec(r->contactForce)},
+          {"contact_impulse", vec(r->contactImpulse)},
+          {"contacts", contacts}};
+}
+
+nlohmann::json optimizerState(const EditorSession& session) {
+  const OptimizerRun& run = session.optimizer();
+  nlohmann::json losses = nlohmann::json::array(), history = nlohmann::json::array();
+  for (const auto& s : run.samples()) {
+    losses.push_back(s.loss);
+    history.push_back(s.values);
+  }
+  const auto best = run.best();
+  return {{"status", OptimizerRun::statusName(run.status())},
+          {"method", run.method()},
+          {"parameters", run.parameters()},
+          {"evaluations", losses.size()},
+          {"losses", losses},
+          {"values", history},
+          {"initial_values", run.initialValues()},
+          {"best_loss", best ? nlohmann::json(best->loss) : nlohmann::json(nullptr)},
+          {"best_values", best ? nlohmann::json(best->values) : nlohmann::json(nullptr)},
+          {"stop_reason", run.stopReason()},
+          {"error", run.error()}};
+}
+
+nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
   const EditorDocument& doc = session.document();
+  nlohmann::json targets = nlohmann::json::object();
+  for (const FinalTarget& t : session.targets()) targets[std::to_string(t.node)] = vec(t.position);
+  const LossValue& loss = session.liveLoss();
+  nlohmann::json terms = nlohmann::json::object();
+  for (const auto& [name, value] : loss.terms) terms[name] = value;
+  const char* tabs[] = {"scene", "inspect", "targets", "optimise"};
   return {{"file", doc.file()},
           {"dirty", doc.dirty()},
           {"valid", doc.valid()},
@@ -39,7 +97,40 @@ nlohmann::json stateOf(EditorSession& session) {
           {"frame", session.playback().frame()},
           {"selected", session.selection().nodes()},
           {"can_undo", doc.canUndo()},
-          {"can_redo", doc.canRedo()}};
+          {"can_redo", doc.canRedo()},
+          {"focus", session.selection().focus()},
+          {"inspector", inspectorState(session)},
+          {"targets", targets},
+          {"loss", loss.available ? nlohmann::json(loss.total) : nlohmann::json(nullptr)},
+          {"loss_terms", terms},
+          {"loss_note", loss.note},
+          {"optimizer", optimizerState(session)},
+          {"plotted_steps", session.stepSeries().size()},
+          {"message", app.message()},
+          {"message_is_error", app.messageIsError()},
+          {"panel", tabs[static_cast<int>(app.tab())]},
+          {"document", doc.document()}};
+}
+
+Vec3 vec3Of(const nlohmann::json& j, const char* what) {
+  if (!j.is_array() || j.size() != 3) throw std::invalid_argument(std::string(what) + " must be [x, y, z]");
+  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+
+// The import options an action names (every key but the file is optional).
+MeshImportOptions importOptions(const nlohmann::json& a, const std::string& kind) {
+  MeshImportOptions o;
+  o.file = a.at(kind).get<std::string>();
+  o.scale = a.value("scale", 1.0);
+  if (a.contains("fit")) {
+    o.fit = true;
+    o.fitSize = a["fit"].get<double>();
+  }
+  if (a.contains("rotate_deg")) o.rotateDeg = vec3Of(a["rotate_deg"], "rotate_deg");
+  if (a.contains("translate")) o.translate = vec3Of(a["translate"], "translate");
+  o.repair = a.value("repair", false);
+  o.smoothNormals = a.value("smooth_normals", true);
+  return o;
 }
 
 }  // namespace
@@ -181,10 +272,8 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     }
   } else if (kind == "save") {
     const nlohmann::json& s = a.at("save");
-    if (s.is_string())
-      session.saveAs(s.get<std::string>());
-    else
-      session.save();
+    const std::string warning = s.is_string() ? session.saveAs(s.get<std::string>()) : session.save();
+    app.report(warning.empty() ? "saved " + session.document().file() : warning, !warning.empty());
   } else if (kind == "camera") {
     const nlohmann::json& c = a.at("camera");
     if (c.is_string()) {
@@ -217,7 +306,7 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     if (waitFrames_ == 0) waitFrames_ = std::max(1, a.at("frames").get<int>());
     return --waitFrames_ == 0;
   } else if (kind == "expect") {
-    const nlohmann::json state = stateOf(session);
+    const nlohmann::json state = stateOf(session, app);
     for (const auto& [key, expected] : a.at("expect").items()) {
       if (key == "value") {
         const std::string path = expected.at("path").get<std::string>();
@@ -236,8 +325,122 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     }
   } else if (kind == "write_state") {
     std::ofstream out(a.at("write_state").get<std::string>());
-    out << stateOf(session).dump(2) << "\n";
+    out << stateOf(session, app).dump(2) << "\n";
     if (!out) throw std::runtime_error("cannot write " + a["write_state"].get<std::string>());
+  } else if (kind == "import_garment" || kind == "add_mesh_obstacle" || kind == "add_obstacle" ||
+             kind == "set_targets" || kind == "target" || kind == "move_targets" || kind == "drag_targets" ||
+             kind == "remove_targets" || kind == "load_target_motion" || kind == "remove_target_motion" ||
+             kind == "optimize_apply" || kind == "optimize_revert") {
+    // Edits that may be refused: the refusal is the UI's message, and fails the action unless
+    // the script expects it ("expect_error": text it must contain).
+    std::string error;
+    if (kind == "import_garment") error = session.importGarment(importOptions(a, kind));
+    else if (kind == "add_mesh_obstacle") error = session.importMeshObstacle(importOptions(a, kind));
+    else if (kind == "add_obstacle") error = session.addObstacle(a.at(kind).get<std::string>());
+    else if (kind == "set_targets") error = session.setTargetsFromSelection();
+    else if (kind == "target") error = session.setTarget(a.at(kind).get<int>(), vec3Of(a.at("position"), "position"));
+    else if (kind == "move_targets")
+      error = session.moveTargets(session.selection().nodes(), vec3Of(a.at(kind), "move_targets"));
+    else if (kind == "drag_targets") {
+      const auto d = a.at(kind).get<std::vector<float>>();
+      if (d.size() != 2) throw std::invalid_argument("drag_targets takes [dx, dy] in viewport pixels");
+      error = session.dragTargets(session.selection().nodes(), d[0], d[1], app.viewportWidth(), app.viewportHeight());
+    } else if (kind == "remove_targets")
+      error = session.removeTargets(a.at(kind).is_array() ? a[kind].get<std::vector<int>>() : std::vector<int>{});
+    else if (kind == "load_target_motion") error = session.loadTargetMotion(a.at(kind).get<std::string>());
+    else if (kind == "remove_target_motion") error = session.removeTargetMotion();
+    else if (kind == "optimize_apply") error = session.applyOptimizerResult();
+    else if (kind == "optimize_revert") error = session.revertToOptimizerStart();
+    // The message the panel's own button would show.
+    std::string done = kind + " done";
+    if (kind == "import_garment") done = "imported " + a[kind].get<std::string>();
+    else if (kind == "add_mesh_obstacle") done = "added mesh obstacle " + a[kind].get<std::string>();
+    else if (kind == "optimize_apply") done = "applied the optimised parameters (Ctrl+Z undoes)";
+    else if (kind == "optimize_revert") done = "reverted to the values the run started from";
+    app.report(error.empty() ? done : error, !error.empty());
+    if (a.contains("expect_error")) {
+      const std::string expected = a["expect_error"].get<std::string>();
+      if (error.empty()) fail("expected an error containing \"" + expected + "\", but it succeeded");
+      else if (error.find(expected) == std::string::npos)
+        fail("expected an error containing \"" + expected + "\", got: " + error);
+      return state_ == State::Running;
+    }
+    if (!error.empty()) {
+      fail(error);
+      return false;
+    }
+  } else if (kind == "panel") {
+    PanelTab tab;
+    if (!parsePanelTab(a.at(kind).get<std::string>(), tab))
+      throw std::invalid_argument("panel must be scene, inspect, targets or optimise");
+    app.showTab(tab);
+  } else if (kind == "contact_colours") {
+    session.contactColours = a.at(kind).get<bool>();
+  } else if (kind == "force_arrows") {
+    session.forceArrows = a.at(kind).get<bool>();
+  } else if (kind == "optimize") {
+    const nlohmann::json& o = a.at(kind);
+    OptimizerRun::Setup setup;
+    setup.method = o.value("method", std::string("lbfgsb"));
+    if (o.contains("parameters")) {
+      setup.parameters = o["parameters"].get<std::vector<std::string>>();
+    } else if (const Scene* scene = session.document().scene(); scene && scene->task) {
+      setup.parameters = scene->task->parameters;
+    }
+    setup.settings.maxEvaluations = o.value("max_evaluations", 0);
+    setup.settings.learningRate = o.value("learning_rate", setup.settings.learningRate);
+    setup.settings.seed = o.value("seed", 0u);
+    const std::string error = session.startOptimizer(setup, o.value("paused", true));
+    app.report(error.empty() ? "optimiser started" : error, !error.empty());
+    if (o.contains("expect_error")) {
+      const std::string expected = o["expect_error"].get<std::string>();
+      if (error.empty()) fail("expected an error containing \"" + expected + "\", but the optimiser started");
+      else if (error.find(expected) == std::string::npos)
+        fail("expected an error containing \"" + expected + "\", got: " + error);
+      return state_ == State::Running;
+    }
+    if (!error.empty()) {
+      fail(error);
+      return false;
+    }
+  } else if (kind == "optimize_step" || kind == "optimize_wait") {
+    // Waits, one UI frame at a time, until N more evaluations are logged (step) or the run has
+    // ended (wait), so the optimiser runs off the UI thread exactly as when clicked.
+    OptimizerRun& run = session.optimizer();
+    if (!waitingForOptimizer_) {
+      if (run.status() == OptimizerRun::Status::Idle) {
+        fail("no optimiser run: start one with {\"optimize\": {...}}");
+        return false;
+      }
+      optimizerTarget_ = run.evaluations() + (kind == "optimize_step" ? std::max(1, a.at(kind).get<int>()) : 0);
+      if (kind == "optimize_step") run.step(optimizerTarget_ - run.evaluations());
+      else run.resume();
+      waitingForOptimizer_ = true;
+      waitStarted_ = now();
+      timeout_ = a.value("timeout_seconds", 300.0);
+      return false;
+    }
+    const bool ended = !run.active();
+    const bool reached = kind == "optimize_step" && run.evaluations() >= optimizerTarget_ &&
+                         (run.status() == OptimizerRun::Status::Paused || ended);
+    if (!ended && !reached) {
+      if (now() - waitStarted_ > timeout_) {
+        run.cancel();
+        fail("the optimiser did not get there within " + std::to_string(timeout_) + " s");
+      }
+      return false;
+    }
+    waitingForOptimizer_ = false;
+    if (run.status() == OptimizerRun::Status::Failed) {
+      fail("optimisation failed: " + run.error(), 3);
+      return false;
+    }
+  } else if (kind == "optimize_resume") {
+    session.optimizer().resume();
+  } else if (kind == "optimize_pause") {
+    session.optimizer().pause();
+  } else if (kind == "optimize_cancel") {
+    session.optimizer().cancel();
   } else {
     fail("unknown action \"" + kind + "\"");
     return false;

@@ -41,6 +41,8 @@ class ScriptRunner {
   std::size_t next_ = 0;
   int waitFrames_ = 0;
   bool waitingForSimulation_ = false;
+  bool waitingForOptimizer_ = false;
+  int optimizerTarget_ = 0;  // evaluations an optimize_step waits for
   double waitStarted_ = 0.0;
   double timeout_ = 300.0;
   std::string error_;

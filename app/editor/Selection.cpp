@@ -82,23 +82,29 @@ bool Selection::contains(int node) const {
 }
 
 void Selection::set(std::vector<int> nodes) {
+  focus_ = nodes.empty() ? -1 : nodes.front();
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   nodes_ = std::move(nodes);
 }
 
 void Selection::add(const std::vector<int>& nodes) {
+  const int focus = nodes.empty() ? focus_ : nodes.front();
   std::vector<int> all = nodes_;
   all.insert(all.end(), nodes.begin(), nodes.end());
   set(std::move(all));
+  focus_ = focus;
 }
 
 void Selection::toggle(int node) {
   auto it = std::lower_bound(nodes_.begin(), nodes_.end(), node);
-  if (it != nodes_.end() && *it == node)
+  if (it != nodes_.end() && *it == node) {
     nodes_.erase(it);
-  else
+    if (focus_ == node) focus_ = nodes_.empty() ? -1 : nodes_.front();
+  } else {
     nodes_.insert(it, node);
+    focus_ = node;
+  }
 }
 
 void addFixedAttachments(nlohmann::json& document, const std::vector<int>& nodes,

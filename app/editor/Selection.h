@@ -37,19 +37,23 @@ std::optional<int> pickVertex(const render::SurfaceMesh& mesh, const Ray& ray);
 std::vector<int> boxSelect(const render::SurfaceMesh& mesh, const render::Camera& camera,
                            Eigen::Vector2f corner0, Eigen::Vector2f corner1, int width, int height);
 
-// A sorted, duplicate-free set of global node indices.
+// A sorted, duplicate-free set of global node indices, and the one vertex the inspector shows
+// (the focus): the vertex last clicked, or the first one named by the last selecting call.
 class Selection {
  public:
   const std::vector<int>& nodes() const { return nodes_; }
   bool empty() const { return nodes_.empty(); }
   bool contains(int node) const;
-  void clear() { nodes_.clear(); }
+  void clear() { nodes_.clear(), focus_ = -1; }
   void set(std::vector<int> nodes);
   void add(const std::vector<int>& nodes);
   void toggle(int node);
+  // The inspected vertex, or -1; always one of nodes().
+  int focus() const { return focus_; }
 
  private:
   std::vector<int> nodes_;
+  int focus_ = -1;
 };
 
 // Adds one fixed attachment per cloth touched by `nodes` (global indices; `vertexOffset` as in

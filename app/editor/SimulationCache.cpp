@@ -1,5 +1,7 @@
 #include "SimulationCache.h"
 
+#include "WorkerThreads.h"
+
 #include <weft/contact/StepContacts.h>
 #include <weft/physics/Simulator.h>
 
@@ -27,17 +29,20 @@ void SimulationCache::start(std::shared_ptr<const Scene> scene, int steps) {
     error_.clear();
   }
   requested_ = std::max(steps, 0) + 1;
+  ++runId_;
   cancel_ = false;
   status_ = Status::Running;
   worker_ = std::thread([this, scene, steps] { run(scene, steps); });
 }
 
 void SimulationCache::run(std::shared_ptr<const Scene> scene, int steps) {
+  useWorkerThreads();
   try {
     Simulator simulator(*scene);
     const int nodes = simulator.model().nodeCount();
     auto first = std::make_shared<CachedFrame>();
     first->positions = simulator.positions();
+    first->velocities = simulator.velocities();
     {
       std::lock_guard<std::mutex> lock(mutex_);
       frames_.push_back(std::move(first));
@@ -51,7 +56,11 @@ void SimulationCache::run(std::shared_ptr<const Scene> scene, int steps) {
       frame->stats = simulator.step();
       frame->state = s;
       frame->positions = simulator.positions();
-      if (simulator.contact()) frame->branches = nodeBranches(simulator.lastContacts(), nodes);
+      frame->velocities = simulator.velocities();
+      if (simulator.contact()) {
+        frame->branches = nodeBranches(simulator.lastContacts(), nodes);
+        frame->contacts = simulator.lastContacts();
+      }
       std::lock_guard<std::mutex> lock(mutex_);
       frames_.push_back(std::move(frame));
     }
@@ -79,6 +88,7 @@ void SimulationCache::clear() {
   scene_.reset();
   error_.clear();
   requested_ = 0;
+  ++runId_;
   status_ = Status::Empty;
 }
 
@@ -109,8 +119,20 @@ std::shared_ptr<const Scene> SimulationCache::scene() const {
 }
 
 bool SimulationCache::staleFor(const nlohmann::json& document) const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return !frames_.empty() && scene_ && scene_->document != document;
+  std::shared_ptr<const Scene> scene;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (frames_.empty() || !scene_) return false;
+    scene = scene_;
+  }
+  return simulatedPart(scene->document) != simulatedPart(document);
+}
+
+nlohmann::json simulatedPart(const nlohmann::json& document) {
+  nlohmann::json part = document;
+  if (part.is_object())
+    for (const char* key : {"task", "name", "description"}) part.erase(key);
+  return part;
 }
 
 const char* SimulationCache::statusName(Status status) {

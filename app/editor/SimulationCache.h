@@ -5,6 +5,7 @@
 // can cancel, and knows the cache is stale once the document differs from the one simulated.
 // No GL and no window: unit tested on its own.
 
+#include <weft/contact/StepContacts.h>
 #include <weft/core/Types.h>
 #include <weft/physics/StepStats.h>
 #include <weft/scene/Scene.h>
@@ -17,21 +18,21 @@
 #include <thread>
 #include <vector>
 
-namespace weft {
-struct StepContacts;
-}
-
 namespace weft::editor {
 
 struct CachedFrame {
   int state = 0;       // 0 = the initial state
   NodeMatrix positions;  // all cloth nodes, scene order
+  NodeMatrix velocities;  // m/s, same layout (the vertex inspector shows them)
   // Per node: the Signorini-Coulomb branch of the step that produced this state (0 none,
   // 1 take-off, 2 stick, 3 slip), chosen as `weft simulate` writes contact_branches.npy: an
   // obstacle contact before any self-collision pair, else the strongest. Empty for state 0
   // and for scenes without contact.
   std::vector<std::uint8_t> branches;
   StepStats stats;  // of the step that produced this state (zero for state 0)
+  // Every contact of that step as the solver left it (branch, normal, impulse, velocity), for
+  // the vertex inspector and the force arrows. Empty for state 0 and scenes without contact.
+  StepContacts contacts;
 };
 
 class SimulationCache {
@@ -63,8 +64,11 @@ class SimulationCache {
   // The scene the cache was computed from (null when empty).
   std::shared_ptr<const Scene> scene() const;
   // True when there are frames and they were computed from a document other than `document`:
-  // a parameter changed since, and the timeline shows old results.
+  // a parameter changed since, and the timeline shows old results. Keys that do not change
+  // the motion (task, name, description) are ignored: editing a target keeps the run current.
   bool staleFor(const nlohmann::json& document) const;
+  // Changes with every start() and clear(): lets readers keep what they derived from one run.
+  long runId() const { return runId_.load(); }
 
   static const char* statusName(Status status);
 
@@ -78,12 +82,16 @@ class SimulationCache {
   std::string error_;
   std::atomic<Status> status_{Status::Empty};
   std::atomic<int> requested_{0};
+  std::atomic<long> runId_{0};
   std::atomic<bool> cancel_{false};
   std::thread worker_;
 };
 
 // Per-node branches of one step's contacts (see CachedFrame::branches).
 std::vector<std::uint8_t> nodeBranches(const StepContacts& contacts, int nodes);
+
+// The part of a scene document that decides the motion: without task, name and description.
+nlohmann::json simulatedPart(const nlohmann::json& document);
 
 // Playback over the cache: the current frame, play/pause at the scene's own rate (one state
 // per dt of wall-clock time times `speed`), single steps, scrubbing. Pure arithmetic.

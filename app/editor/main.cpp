@@ -3,11 +3,14 @@
 //   weft-editor [SCENE]                                   a window (needs a display)
 //   weft-editor [SCENE] --script FILE                     a window, driven by the script
 //   weft-editor [SCENE] --headless --script FILE [--size WxH] [--backend auto|osmesa|egl]
+//   weft-editor [SCENE] --bench [--bench-frames N] [--bench-grid Q] [--bench-steps S]
+//               [--bench-out DIR] [--size WxH] [--backend ...]   UI frame times, headless
 //
 // Exit codes follow the `weft` contract: 0 success, 2 bad input or a failing script action,
 // 3 a simulation that failed numerically.
 
 #include "EditorApp.h"
+#include "EditorBenchmark.h"
 #include "EditorSession.h"
 #include "ScriptRunner.h"
 
@@ -22,6 +25,7 @@
 #include <GLFW/glfw3.h>
 
 #include <cfloat>
+#include <cstdlib>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -37,14 +41,17 @@ using namespace weft::editor;
 
 struct Options {
   std::string scene, script, recentStore;
-  bool headless = false, recentGiven = false;
+  bool headless = false, recentGiven = false, bench = false;
+  EditorBenchmarkOptions benchOptions;
   int width = 1280, height = 720;
   render::HeadlessBackend backend = render::HeadlessBackend::Auto;
 };
 
 void usage(std::ostream& out) {
   out << "usage: weft-editor [SCENE] [--headless] [--script FILE] [--size WxH]\n"
-         "                   [--backend auto|osmesa|egl] [--recent-files FILE]\n";
+         "                   [--backend auto|osmesa|egl] [--recent-files FILE]\n"
+         "       weft-editor [SCENE] --bench [--bench-frames N] [--bench-grid Q] [--bench-steps S]\n"
+         "                   [--bench-out DIR] [--size WxH] [--backend auto|osmesa|egl]\n";
 }
 
 Options parse(int argc, char** argv) {
@@ -67,6 +74,17 @@ Options parse(int argc, char** argv) {
       const std::string v = value();
       if (!render::parseHeadlessBackend(v, o.backend))
         throw InputError("-", "--backend", "expects auto, osmesa or egl, got " + v);
+    } else if (a == "--bench") {
+      o.bench = true;
+    } else if (a == "--bench-frames" || a == "--bench-grid" || a == "--bench-steps") {
+      const std::string v = value();
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0' || n < 1 || n > 100000) throw InputError("-", a, "expects a positive whole number, got " + v);
+      (a == "--bench-frames" ? o.benchOptions.frames : a == "--bench-grid" ? o.benchOptions.grid : o.benchOptions.steps) =
+          static_cast<int>(n);
+    } else if (a == "--bench-out") {
+      o.benchOptions.out = value();
     } else if (a == "--recent-files") {
       o.recentStore = value();
       o.recentGiven = true;
@@ -81,7 +99,8 @@ Options parse(int argc, char** argv) {
       throw InputError("-", a, "only one scene file may be given");
     }
   }
-  if (o.headless && o.script.empty())
+  if (o.bench && !o.script.empty()) throw InputError("-", "--bench", "cannot be combined with --script");
+  if (o.headless && o.script.empty() && !o.bench)
     throw InputError("-", "--headless", "needs --script FILE (there is nobody to click)");
   return o;
 }
@@ -159,7 +178,14 @@ int runWindow(const Options& o, EditorSession& session, std::optional<ScriptRunn
 
 int main(int argc, char** argv) {
   try {
-    const Options o = parse(argc, argv);
+    Options o = parse(argc, argv);
+    if (o.bench) {
+      o.benchOptions.scene = o.scene;
+      o.benchOptions.width = o.width;
+      o.benchOptions.height = o.height;
+      o.benchOptions.backend = o.backend;
+      return runEditorBenchmark(o.benchOptions, std::cout);
+    }
     std::optional<ScriptRunner> script;
     if (!o.script.empty()) script.emplace(o.script);
     // Scripted runs keep the recent-files list in memory unless told where it lives, so tests

@@ -1,0 +1,169 @@
+#include "MeshImport.h"
+
+#include <weft/core/Error.h>
+#include <weft/io/MeshReader.h>
+#include <weft/mesh/RigidTransform.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace weft::editor {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Meshes outside this span are almost surely not in metres.
+constexpr double kLargestPlausible = 20.0, kSmallestPlausible = 0.01;
+
+std::string metres(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
+
+nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+// Reads the file, fills the counts and boxes and the "mesh" object. Returns false (with
+// result.error set) when the file cannot be used at all.
+bool readAndPlace(const MeshImportOptions& o, const std::string& documentFile, const std::string& directory,
+                  MeshImport& result, nlohmann::json& mesh) {
+  if (o.file.empty()) {
+    result.error = "no file given";
+    return false;
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(o.file, ec)) {
+    result.error = o.file + ": file not found";
+    return false;
+  }
+  TriangleMesh read;
+  try {
+    read = readMesh(o.file);
+  } catch (const std::exception& e) {
+    const auto* input = dynamic_cast<const InputError*>(&e);
+    result.error = o.file + ": cannot read the mesh: " + (input ? input->reason() : std::string(e.what()));
+    return false;
+  }
+  result.vertices = read.vertexCount();
+  result.triangles = read.triangleCount();
+  if (result.vertices == 0 || result.triangles == 0) {
+    result.error = o.file + ": the file holds no triangles (" + std::to_string(result.vertices) + " vertices)";
+    return false;
+  }
+  if (!read.vertices.allFinite()) {
+    result.error = o.file + ": the mesh has non-finite vertex coordinates";
+    return false;
+  }
+  result.fileLower = read.vertices.colwise().minCoeff().transpose();
+  result.fileUpper = read.vertices.colwise().maxCoeff().transpose();
+  const double extent = (result.fileUpper - result.fileLower).maxCoeff();
+
+  double scale = o.scale;
+  RigidTransform transform;
+  transform.rotateDeg = o.rotateDeg;
+  transform.translate = o.translate;
+  if (o.fit) {
+    if (!(o.fitSize > 0.0) || !std::isfinite(o.fitSize)) {
+      result.error = "the fit size must be a positive length in metres";
+      return false;
+    }
+    if (!(extent > 0.0)) {
+      result.error = o.file + ": the mesh has no extent to fit (all vertices coincide)";
+      return false;
+    }
+    scale = o.fitSize / extent;
+    const Vec3 centre = 0.5 * (result.fileLower + result.fileUpper);
+    transform.translate = o.translate - transform.rotation() * (scale * centre);
+  }
+  if (!(scale > 0.0) || !std::isfinite(scale)) {
+    result.error = "the scale must be a positive number";
+    return false;
+  }
+  NodeMatrix placed = read.vertices * scale;
+  transform.applyTo(placed);
+  result.lower = placed.colwise().minCoeff().transpose();
+  result.upper = placed.colwise().maxCoeff().transpose();
+  const double size = (result.upper - result.lower).maxCoeff();
+  if (size > kLargestPlausible)
+    result.warnings.push_back("the mesh spans " + metres(size) +
+                              " m: the file is probably not in metres (set a scale, or fit it to a size)");
+  else if (size < kSmallestPlausible)
+    result.warnings.push_back("the mesh spans only " + metres(size) +
+                              " m: the file is probably not in metres (set a scale, or fit it to a size)");
+
+  mesh = {{"file", documentRelativePath(o.file, documentFile, directory)}};
+  if (scale != 1.0) mesh["scale"] = scale;
+  if (!transform.rotateDeg.isZero() || !transform.translate.isZero())
+    mesh["transform"] = {{"rotate_deg", vec(transform.rotateDeg)}, {"translate", vec(transform.translate)}};
+  return true;
+}
+
+// Validates `entry` alone through the loader, in a minimal scene; the loader's message names the
+// file and what is wrong, without the minimal scene's JSON path.
+void validate(const nlohmann::json& minimal, const std::string& documentFile, const std::string& directory,
+              MeshImport& result) {
+  try {
+    const Scene scene = parseScene(minimal, documentFile.empty() ? "untitled" : documentFile, directory);
+    for (const std::string& w : scene.warnings) {
+      // "<file>: <path>: what" -> "what" (the path is the minimal scene's, not the document's)
+      const std::size_t cut = w.find(": ", w.find(": ") + 2);
+      result.warnings.push_back(cut == std::string::npos ? w : w.substr(cut + 2));
+    }
+  } catch (const InputError& e) {
+    result.error = e.reason();
+  } catch (const std::exception& e) {
+    result.error = e.what();
+  }
+}
+
+}  // namespace
+
+std::string documentRelativePath(const std::string& file, const std::string& documentFile,
+                                 const std::string& documentDirectory) {
+  std::error_code ec;
+  const fs::path absolute = fs::weakly_canonical(fs::absolute(file), ec);
+  if (!documentFile.empty()) {
+    const fs::path base = fs::weakly_canonical(fs::absolute(documentDirectory), ec);
+    const fs::path relative = absolute.lexically_relative(base);
+    if (!relative.empty() && *relative.begin() != "..") return relative.generic_string();
+  }
+  return absolute.generic_string();
+}
+
+nlohmann::json defaultGarmentMaterial() {
+  return {{"density", 0.2}, {"stretch", 1000.0}, {"bend", 1e-4}};
+}
+
+MeshImport prepareGarment(const MeshImportOptions& o, const std::string& documentFile,
+                          const std::string& documentDirectory) {
+  MeshImport result;
+  nlohmann::json mesh;
+  if (!readAndPlace(o, documentFile, documentDirectory, result, mesh)) return result;
+  if (o.repair) mesh["repair"] = true;
+  result.entry = {{"mesh", mesh}, {"material", defaultGarmentMaterial()}};
+  const nlohmann::json minimal = {{"time", {{"dt", 0.01}, {"steps", 1}}}, {"cloths", {result.entry}}};
+  validate(minimal, documentFile, documentDirectory, result);
+  if (!result.ok()) result.error = o.file + ": " + result.error;
+  return result;
+}
+
+MeshImport prepareMeshObstacle(const MeshImportOptions& o, const std::string& documentFile,
+                               const std::string& documentDirectory) {
+  MeshImport result;
+  nlohmann::json mesh;
+  if (!readAndPlace(o, documentFile, documentDirectory, result, mesh)) return result;
+  if (!o.smoothNormals) mesh["smooth_normals"] = false;
+  result.entry = {{"mesh", mesh}, {"friction", 0.3}};
+  const nlohmann::json minimal = {
+      {"time", {{"dt", 0.01}, {"steps", 1}}},
+      {"cloths", {{{"mesh", {{"grid", {{"size", {1.0, 1.0}}, {"resolution", {1, 1}}}}}},
+                   {"material", defaultGarmentMaterial()}}}},
+      {"obstacles", {result.entry}}};
+  validate(minimal, documentFile, documentDirectory, result);
+  if (!result.ok()) result.error = o.file + ": " + result.error;
+  return result;
+}
+
+}  // namespace weft::editor

@@ -1,0 +1,191 @@
+#include "OptimiserPanel.h"
+
+#include "EditorApp.h"
+#include "EditorSession.h"
+
+#include <weft/diff/SceneParameter.h>
+#include <weft/optim/ParameterSpace.h>
+#include <weft/scene/JsonPath.h>
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+namespace weft::editor {
+namespace {
+
+// The bounds a run would use for `path`: the parameter kind's default box, replaced by an
+// explicit task.bounds entry. False when the path is not an optimisable parameter.
+bool effectiveBounds(const Scene& scene, const std::string& path, double& lower, double& upper, std::string& error) {
+  try {
+    SceneParameter p = resolveSceneParameter(scene, path, "task.parameters");
+    applyDefaultBounds(p);
+    lower = p.lower, upper = p.upper;
+    for (const Task::Bound& b : scene.task->bounds)
+      if (b.path == path) lower = b.lower, upper = b.upper;
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+}
+
+nlohmann::json bound(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void plotHistory(const char* id, const std::vector<float>& values, const char* overlay, float height) {
+  ImGui::PlotLines(id, values.empty() ? nullptr : values.data(), int(values.size()), 0, overlay, FLT_MAX, FLT_MAX,
+                   ImVec2(ImGui::GetContentRegionAvail().x, height));
+}
+
+}  // namespace
+
+void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
+  EditorDocument& doc = session.document();
+  OptimizerRun& run = session.optimizer();
+  const Scene* scene = doc.scene();
+  const bool active = run.active();
+
+  // Parameters and bounds.
+  std::vector<std::string> chosen;
+  if (!scene) {
+    ImGui::TextDisabled("The scene does not validate.");
+  } else if (!scene->task || scene->task->parameters.empty()) {
+    ImGui::TextWrapped("The scene's task names no parameters. Add their JSON paths to task.parameters in the "
+                       "scene file (e.g. cloths.0.material.stretch), and a loss (Targets tab).");
+  } else {
+    ImGui::TextUnformatted("Parameters (task.parameters) and bounds:");
+    ImGui::BeginDisabled(active);
+    for (const std::string& path : scene->task->parameters) {
+      ImGui::PushID(path.c_str());
+      bool on = !excluded_[path];
+      if (ImGui::Checkbox(path.c_str(), &on)) excluded_[path] = !on;
+      if (on) chosen.push_back(path);
+      const nlohmann::json* value = doc.find(path);
+      ImGui::SameLine();
+      ImGui::TextDisabled("= %.6g", value && value->is_number() ? value->get<double>() : 0.0);
+      double lower = 0, upper = 0;
+      std::string error;
+      if (effectiveBounds(*scene, path, lower, upper, error)) {
+        double b[2] = {lower, upper};
+        ImGui::SetNextItemWidth(220.0f);
+        ImGui::Indent();
+        if (ImGui::InputScalarN("bounds", ImGuiDataType_Double, b, 2, nullptr, nullptr, "%.4g",
+                                ImGuiInputTextFlags_EnterReturnsTrue)) {
+          const std::string e = doc.edit("Set bounds of " + path, [&](nlohmann::json& d) {
+            d["task"]["bounds"][path] = {bound(b[0]), bound(b[1])};
+          });
+          if (!e.empty()) app.report(e, true);
+        }
+        ImGui::Unindent();
+      } else {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
+        ImGui::TextWrapped("%s", error.c_str());
+        ImGui::PopStyleColor();
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndDisabled();
+  }
+
+  // Method and settings.
+  const std::vector<std::string> methods = OptimizerRun::methods();
+  method_ = std::clamp(method_, 0, std::max(int(methods.size()) - 1, 0));
+  ImGui::BeginDisabled(active);
+  if (!methods.empty() && ImGui::BeginCombo("method", methods[std::size_t(method_)].c_str())) {
+    for (int i = 0; i < int(methods.size()); ++i)
+      if (ImGui::Selectable(methods[std::size_t(i)].c_str(), i == method_)) method_ = i;
+    ImGui::EndCombo();
+  }
+  ImGui::InputInt("max evaluations", &maxEvaluations_);
+  maxEvaluations_ = std::max(maxEvaluations_, 1);
+  if (!methods.empty() && methods[std::size_t(method_)] == "adam")
+    ImGui::InputDouble("learning rate", &learningRate_, 0.0, 0.0, "%.4g");
+  ImGui::InputInt("seed", &seed_);
+  ImGui::EndDisabled();
+
+  auto start = [&](bool paused) {
+    OptimizerRun::Setup setup;
+    setup.method = methods.empty() ? "" : methods[std::size_t(method_)];
+    setup.parameters = chosen;
+    setup.settings.maxEvaluations = maxEvaluations_;
+    setup.settings.learningRate = learningRate_;
+    setup.settings.seed = static_cast<unsigned>(std::max(seed_, 0));
+    const std::string error = session.startOptimizer(setup, paused);
+    if (!error.empty()) app.report(error, true);
+    else if (paused) run.step(1);
+  };
+  // Controls.
+  ImGui::BeginDisabled(!scene || chosen.empty() || active);
+  if (ImGui::Button("Run")) start(false);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (active) {
+    const bool paused = run.status() == OptimizerRun::Status::Paused;
+    if (ImGui::Button(paused ? "Resume" : "Pause")) paused ? run.resume() : run.pause();
+    ImGui::SameLine();
+    if (ImGui::Button("Step")) run.step(1);
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) run.cancel();
+  } else {
+    ImGui::BeginDisabled(!scene || chosen.empty());
+    if (ImGui::Button("Step")) start(true);  // a new run, paused after its first evaluation
+    ImGui::EndDisabled();
+  }
+  ImGui::TextDisabled("Step: one more evaluation (forward + adjoint).");
+
+  // Status and history.
+  const std::vector<OptimizerRun::Sample> samples = run.samples();
+  ImGui::Text("%s: %s, %zu evaluations", run.method().empty() ? "optimiser" : run.method().c_str(),
+              OptimizerRun::statusName(run.status()), samples.size());
+  if (!run.stopReason().empty()) ImGui::TextDisabled("stopped: %s", run.stopReason().c_str());
+  if (!run.error().empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
+    ImGui::TextWrapped("%s", run.error().c_str());
+    ImGui::PopStyleColor();
+  }
+  if (samples.empty()) return;
+  std::vector<float> loss;
+  for (const auto& s : samples) loss.push_back(float(std::log10(std::max(s.loss, 1e-300))));
+  const auto best = run.best();
+  char text[128];
+  std::snprintf(text, sizeof text, "log10 loss; best %.4g (evaluation %d)", best ? best->loss : 0.0,
+                best ? best->evaluation : 0);
+  plotHistory("##loss", loss, text, 70.0f);
+  const std::vector<std::string>& paths = run.parameters();
+  for (std::size_t p = 0; p < paths.size(); ++p) {
+    std::vector<float> values;
+    for (const auto& s : samples) values.push_back(float(s.values[p]));
+    std::snprintf(text, sizeof text, "%s: %.6g -> %.6g", paths[p].c_str(), run.initialValues()[p],
+                  best ? best->values[p] : 0.0);
+    ImGui::PushID(int(p));
+    plotHistory("##parameter", values, text, 40.0f);
+    ImGui::PopID();
+  }
+
+  // Into the document.
+  // Applying mid-run is fine: the run works on its own copy of the scene.
+  ImGui::BeginDisabled(!best);
+  if (ImGui::Button("Apply best")) {
+    const std::string error = session.applyOptimizerResult();
+    app.report(error.empty() ? "applied the optimised parameters (Ctrl+Z undoes)" : error, !error.empty());
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Revert to start values")) {
+    const std::string error = session.revertToOptimizerStart();
+    app.report(error.empty() ? "reverted to the values the run started from" : error, !error.empty());
+  }
+  ImGui::EndDisabled();
+  // Other edits since the start (the parameters themselves aside) make the result stale.
+  nlohmann::json started = simulatedPart(run.startDocument());
+  for (const std::string& path : paths)
+    if (const nlohmann::json* now = doc.find(path)) setJsonPath(started, path, *now);
+  if (started != simulatedPart(doc.document()))
+    ImGui::TextDisabled("The scene changed since the run started.");
+}
+
+}  // namespace weft::editor

@@ -1,0 +1,173 @@
+#include "OptimizerRun.h"
+
+#include "WorkerThreads.h"
+
+#include <weft/core/Error.h>
+#include <weft/diff/ParameterSet.h>
+#include <weft/optim/SimulationObjective.h>
+
+#include <cmath>
+
+namespace weft::editor {
+
+std::vector<std::string> OptimizerRun::methods() {
+  // Every name the command line documents, in its order; makeOptimizer decides which exist
+  // (asked once: the answer is fixed for the binary, and the panel asks every frame).
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> found;
+    for (const char* name : {"lbfgsb", "adam", "cmaes", "es1p1"})
+      if (makeOptimizer(name, OptimizerSettings{})) found.emplace_back(name);
+    return found;
+  }();
+  return names;
+}
+
+OptimizerRun::OptimizerRun() = default;
+
+OptimizerRun::~OptimizerRun() {
+  if (gate_) gate_->cancel();
+  join();
+}
+
+void OptimizerRun::join() {
+  if (worker_.joinable()) worker_.join();
+}
+
+std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool paused) {
+  cancel();
+  std::unique_ptr<Optimizer> optimizer = makeOptimizer(setup.method, setup.settings);
+  if (!optimizer) return "unknown optimisation method '" + setup.method + "'";
+  if (setup.parameters.empty()) return "choose at least one parameter to optimise";
+  std::unique_ptr<SimulationObjective> objective;
+  try {
+    if (!scene.task) throw InputError(scene.file, "task", "the scene has no task: set targets or load a target motion first");
+    objective = std::make_unique<SimulationObjective>(scene, ParameterSet::fromPaths(scene, setup.parameters));
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+
+  const ParameterSpace& space = objective->space();
+  method_ = setup.method;
+  parameters_ = setup.parameters;
+  const Eigen::VectorXd lower = space.lowerValues(), upper = space.upperValues(), initial = space.initialValues();
+  lower_.assign(lower.data(), lower.data() + lower.size());
+  upper_.assign(upper.data(), upper.data() + upper.size());
+  initial_.assign(initial.data(), initial.data() + initial.size());
+  startDocument_ = scene.document;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    samples_.clear();
+    error_.clear();
+    stopReason_.clear();
+  }
+  gate_ = std::make_unique<EvaluationGate>();
+  if (paused) gate_->pause();
+  objective_ = std::move(objective);
+  gated_ = std::make_unique<GatedObjective>(*objective_, *gate_);
+  optimizer_ = std::move(optimizer);
+  optimizer_->log().setObserver([this](const LogEntry& e) {
+    Sample s;
+    s.evaluation = e.evaluation;
+    s.steps = e.steps;
+    s.loss = e.loss;
+    const Eigen::VectorXd v = objective_->space().toValues(e.x);
+    s.values.assign(v.data(), v.data() + v.size());
+    std::lock_guard<std::mutex> lock(mutex_);
+    samples_.push_back(std::move(s));
+  });
+  status_ = Status::Running;
+  worker_ = std::thread([this] {
+    useWorkerThreads();
+    const ParameterSpace& space = objective_->space();
+    try {
+      const OptimizationResult result =
+          optimizer_->minimize(*gated_, space.toCoordinates(space.initialValues()), space.lowerCoordinates(),
+                               space.upperCoordinates());
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopReason_ = result.stopReason;
+      }
+      status_ = Status::Finished;
+    } catch (const EvaluationCancelled&) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopReason_ = "cancelled";
+      }
+      status_ = Status::Cancelled;
+    } catch (const std::exception& e) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = e.what();
+      }
+      status_ = Status::Failed;
+    }
+  });
+  return "";
+}
+
+void OptimizerRun::pause() {
+  if (gate_) gate_->pause();
+}
+
+void OptimizerRun::resume() {
+  if (gate_) gate_->resume();
+}
+
+void OptimizerRun::step(int evaluations) {
+  if (gate_) gate_->allow(evaluations);
+}
+
+void OptimizerRun::cancel() {
+  if (gate_) gate_->cancel();
+  join();
+}
+
+void OptimizerRun::wait() { join(); }
+
+OptimizerRun::Status OptimizerRun::status() const {
+  const Status s = status_.load();
+  if (s == Status::Running && gate_ && gate_->paused() && gate_->waiting()) return Status::Paused;
+  return s;
+}
+
+const char* OptimizerRun::statusName(Status status) {
+  switch (status) {
+    case Status::Idle: return "idle";
+    case Status::Running: return "running";
+    case Status::Paused: return "paused";
+    case Status::Finished: return "finished";
+    case Status::Cancelled: return "cancelled";
+    case Status::Failed: return "failed";
+  }
+  return "?";
+}
+
+std::string OptimizerRun::error() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return error_;
+}
+
+std::string OptimizerRun::stopReason() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return stopReason_;
+}
+
+std::vector<OptimizerRun::Sample> OptimizerRun::samples() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return samples_;
+}
+
+int OptimizerRun::evaluations() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(samples_.size());
+}
+
+std::optional<OptimizerRun::Sample> OptimizerRun::best() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::optional<Sample> best;
+  for (const Sample& s : samples_)
+    if (std::isfinite(s.loss) && (!best || s.loss < best->loss)) best = s;
+  return best;
+}
+
+}  // namespace weft::editor

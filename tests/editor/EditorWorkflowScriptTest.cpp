@@ -1,0 +1,301 @@
+// The editor's workflows as a person runs them, driven by scripts through the real binary
+// (headless through OSMesa) and checked through state: importing a garment and adding obstacles,
+// the vertex inspector against the simulator's own trajectory, the optimiser on the system
+// identification scene (loss falls, apply, undo), final-frame targets (live loss, saved .npy,
+// reopened), one viewport golden image, and the frame-time benchmark mode.
+
+#include "../render/GoldenImage.h"
+#include "support/Process.h"
+#include "support/SceneBuilder.h"
+#include "support/TempDir.h"
+
+#include <weft/io/Npy.h>
+#include <weft/physics/Simulator.h>
+#include <weft/render/Image.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace weft::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions) {
+  const std::string script = dir.write("script.json", nlohmann::json{{"actions", actions}}.dump(2));
+  return runProcess({WEFT_EDITOR_BINARY, "--headless", "--script", script, "--size", "960x600"}, dir.path());
+}
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  EXPECT_TRUE(in) << path;
+  return nlohmann::json::parse(in);
+}
+
+Vec3 vec(const nlohmann::json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
+
+// A 2 x 1 strip of 6 vertices (4 triangles), in centimetres.
+std::string stripObj() {
+  return "v 200 0 100\nv 0 0 0\nv 100 0 100\nv 200 0 0\nv 0 0 100\nv 100 0 0\n"
+         "f 2 5 6\nf 6 5 3\nf 6 3 4\nf 4 3 1\n";
+}
+
+TEST(EditorWorkflow, ImportGarmentAndAddObstacles) {
+  TempDir dir;
+  const std::string scene = writeScene(dir.file("scene.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  fs::create_directories(dir.file("meshes"));
+  const std::string garment = dir.write("meshes/strip.obj", stripObj());
+  const std::string broken = dir.write("meshes/broken.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  const ProcessResult r = runEditor(
+      dir, {{{"open", scene}},
+            {{"import_garment", garment}, {"scale", 0.01}, {"translate", {0.0, 0.5, 0.3}}},
+            {{"import_garment", broken}, {"expect_error", "degenerate"}},
+            {{"write_state", dir.file("after-broken.json")}},
+            {{"import_garment", dir.file("meshes/none.fbx")}, {"expect_error", "file not found"}},
+            {{"add_obstacle", "sphere"}},
+            {{"add_obstacle", "box"}},
+            {{"add_obstacle", "cone"}, {"expect_error", "unknown obstacle shape"}},
+            {{"add_mesh_obstacle", garment}, {"fit", 0.5}, {"translate", {0.0, -0.3, 0.0}}},
+            {{"set", "obstacles.0.sphere.radius"}, {"value", 0.25}},
+            {{"expect", {{"valid", true}}}},
+            {{"save", true}},
+            {{"undo", true}},
+            {{"write_state", dir.file("after-undo.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  const nlohmann::json broke = readJson(dir.file("after-broken.json"));
+  EXPECT_TRUE(broke["message_is_error"]) << "the refusal is shown as an error";
+  EXPECT_NE(broke["message"].get<std::string>().find("broken.obj"), std::string::npos) << broke["message"];
+  EXPECT_EQ(broke["document"]["cloths"].size(), 2u) << "the broken mesh added nothing";
+
+  const nlohmann::json saved = readJson(scene);
+  ASSERT_EQ(saved["cloths"].size(), 2u);
+  const nlohmann::json& mesh = saved["cloths"][1]["mesh"];
+  EXPECT_EQ(mesh["file"], "meshes/strip.obj") << "relative to the scene's folder";
+  EXPECT_EQ(mesh["scale"], 0.01);
+  EXPECT_EQ(mesh["transform"]["translate"], nlohmann::json::array({0.0, 0.5, 0.3}));
+  ASSERT_EQ(saved["obstacles"].size(), 3u);
+  EXPECT_EQ(saved["obstacles"][0]["sphere"]["radius"], 0.25);
+  EXPECT_TRUE(saved["obstacles"][1].contains("box"));
+  EXPECT_EQ(saved["obstacles"][2]["mesh"]["file"], "meshes/strip.obj");
+  EXPECT_DOUBLE_EQ(saved["obstacles"][2]["mesh"]["scale"].get<double>(), 0.5 / 200.0);
+  // The saved scene simulates as saved: 25 + 6 cloth vertices.
+  EXPECT_EQ(loadScene(scene).vertexCount(), 31);
+
+  const nlohmann::json undone = readJson(dir.file("after-undo.json"));
+  EXPECT_EQ(undone["document"]["obstacles"][0]["sphere"]["radius"], 0.3) << "undo takes back the last edit";
+  EXPECT_TRUE(undone["dirty"]);
+}
+
+// A 0.6 m cloth of 8 x 8 quads dropped onto a sphere (the centre vertex lands on top).
+nlohmann::json dropOnSphere(int steps) {
+  nlohmann::json doc = gridScene(0.6, 8, 0.01, steps, 300.0, 1e-4, 0.2);
+  doc["gravity"] = {0.0, -9.8, 0.0};
+  doc["solver"] = {{"pd_iterations", 300}, {"pd_tolerance", 1e-6}};
+  doc["cloths"][0]["mesh"]["transform"] = {{"translate", {0.0, 0.205, 0.0}}};
+  doc["obstacles"] = {{{"sphere", {{"center", {0.0, 0.0, 0.0}}, {"radius", 0.2}}}, {"friction", 0.4}}};
+  return doc;
+}
+
+TEST(EditorWorkflow, InspectorShowsTheCachedTrajectory) {
+  TempDir dir;
+  const int steps = 10, state = 9, centre = 40, edge = 4;
+  const std::string scene = writeScene(dir.file("drop.json"), dropOnSphere(steps));
+  const ProcessResult r = runEditor(dir, {{{"open", scene}},
+                                          {{"simulate", true}},
+                                          {{"scrub", state}},
+                                          {{"panel", "inspect"}},
+                                          {{"force_arrows", true}},
+                                          {{"select", {centre}}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("centre.json")}},
+                                          {{"select", {edge, centre}}},
+                                          {{"write_state", dir.file("edge.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  const Scene parsed = parse(dropOnSphere(steps));
+  Simulator simulator(parsed);
+  Trajectory own;
+  simulator.run(steps, own);
+  for (const auto& [file, node] : {std::pair<std::string, int>{"centre.json", centre}, {"edge.json", edge}}) {
+    SCOPED_TRACE(file);
+    const nlohmann::json s = readJson(dir.file(file));
+    EXPECT_EQ(s["focus"], node);
+    EXPECT_EQ(s["panel"], "inspect");
+    EXPECT_EQ(s["plotted_steps"], steps);
+    const nlohmann::json& in = s["inspector"];
+    ASSERT_TRUE(in.is_object()) << s.dump(1);
+    EXPECT_EQ(in["node"], node);
+    EXPECT_EQ(in["state"], state);
+    EXPECT_LT((vec(in["position"]) - own.positions[state].row(node).transpose()).norm(), 1e-9);
+    EXPECT_LT((vec(in["velocity"]) - own.velocities[state].row(node).transpose()).norm(), 1e-7);
+    Vec3 impulse = Vec3::Zero();
+    int contacts = 0;
+    for (const ContactPoint& p : own.contacts[state - 1].points)
+      if (p.node == node) impulse += p.impulse, ++contacts;
+    ASSERT_EQ(in["contacts"].size(), std::size_t(contacts));
+    EXPECT_LT((vec(in["contact_impulse"]) - impulse).norm(), 1e-9);
+    EXPECT_LT((vec(in["contact_force"]) - impulse / parsed.time.dt).norm(), 1e-7);
+    if (node == centre) {
+      ASSERT_EQ(contacts, 1) << "the centre rests on the sphere";
+      EXPECT_EQ(in["contacts"][0]["obstacle"], 0);
+      EXPECT_EQ(in["branch"], in["contacts"][0]["branch"]);
+      EXPECT_NE(in["branch"], 0);
+    }
+  }
+}
+
+TEST(EditorWorkflow, OptimiserLowersTheLossThenApplyAndUndo) {
+  TempDir dir;
+  const ProcessResult r = runEditor(
+      dir, {{{"open", std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json"}},
+            {{"panel", "optimise"}},
+            {{"optimize", {{"method", "lbfgsb"}, {"paused", true}}}},
+            {{"optimize_step", 4}},
+            {{"write_state", dir.file("stepped.json")}},
+            {{"optimize_apply", true}},
+            {{"write_state", dir.file("applied.json")}},
+            {{"undo", true}},
+            {{"expect", {{"value", {{"path", "cloths.0.material.stretch"}, {"equals", 400.0}}}}}},
+            {{"expect", {{"value", {{"path", "wind.strength"}, {"equals", 1.5}}}}}},
+            {{"redo", true}},
+            {{"optimize_revert", true}},
+            {{"write_state", dir.file("reverted.json")}},
+            {{"optimize_cancel", true}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  const nlohmann::json stepped = readJson(dir.file("stepped.json"));
+  const nlohmann::json& opt = stepped["optimizer"];
+  EXPECT_EQ(opt["status"], "paused");
+  EXPECT_EQ(opt["method"], "lbfgsb");
+  EXPECT_EQ(opt["parameters"], nlohmann::json::array({"cloths.0.material.stretch", "wind.strength"}));
+  ASSERT_EQ(opt["evaluations"], 4);
+  const double first = opt["losses"][0], best = opt["best_loss"];
+  EXPECT_LT(best, 0.1 * first) << "the loss falls over four evaluations";
+  EXPECT_EQ(stepped["document"]["cloths"][0]["material"]["stretch"], 400.0) << "nothing applied yet";
+
+  const nlohmann::json applied = readJson(dir.file("applied.json"));
+  EXPECT_EQ(applied["document"]["cloths"][0]["material"]["stretch"], opt["best_values"][0]);
+  EXPECT_EQ(applied["document"]["wind"]["strength"], opt["best_values"][1]);
+  EXPECT_NE(applied["document"]["wind"]["strength"], 1.5);
+  EXPECT_TRUE(applied["can_undo"]);
+
+  const nlohmann::json reverted = readJson(dir.file("reverted.json"));
+  EXPECT_EQ(reverted["document"]["cloths"][0]["material"]["stretch"], 400.0);
+  EXPECT_EQ(reverted["document"]["wind"]["strength"], 1.5);
+}
+
+TEST(EditorWorkflow, TargetsGiveALiveLossAndAreSavedNextToTheScene) {
+  TempDir dir;
+  const std::string scene = writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 6, 500.0));
+  const ProcessResult run = runEditor(
+      dir, {{{"open", scene}},
+            {{"simulate", true}},
+            {{"scrub", 6}},
+            {{"select", {20, 24}}},
+            {{"set_targets", true}},
+            {{"write_state", dir.file("set.json")}},
+            {{"move_targets", {0.0, 0.1, 0.0}}},
+            {{"target", 24}, {"position", {0.5, 0.6, 0.0}}},
+            {{"panel", "targets"}},
+            {{"frames", 1}},
+            {{"write_state", dir.file("moved.json")}},
+            {{"save", true}},
+            {{"expect", {{"dirty", false}}}},
+            {{"target", 99}, {"position", {0.0, 0.0, 0.0}}, {"expect_error", "not a cloth vertex"}},
+            {{"undo", true}},
+            {{"write_state", dir.file("undone.json")}},
+            {{"open", scene}},
+            {{"write_state", dir.file("reopened.json")}},
+            {{"remove_targets", true}},
+            {{"write_state", dir.file("removed.json")}}});
+  ASSERT_EQ(run.exitCode, 0) << run.err << run.out;
+
+  // Set at the shown (final) positions: the final term is zero.
+  const nlohmann::json set = readJson(dir.file("set.json"));
+  ASSERT_TRUE(set["loss"].is_number()) << set["loss_note"];
+  EXPECT_EQ(set["loss"], 0.0);
+  const Vec3 start20 = vec(set["targets"]["20"]);
+
+  const nlohmann::json moved = readJson(dir.file("moved.json"));
+  EXPECT_EQ(moved["panel"], "targets");
+  const Vec3 target20 = vec(moved["targets"]["20"]), target24 = vec(moved["targets"]["24"]);
+  EXPECT_TRUE(target20.isApprox(start20 + Vec3(0, 0.1, 0), 1e-12));
+  EXPECT_EQ(target24, Vec3(0.5, 0.6, 0.0));
+  // The live loss is the final term against the cached last state: 0.1^2 for vertex 20, plus
+  // vertex 24's squared distance.
+  const Vec3 end24 = vec(set["targets"]["24"]);
+  const double expected = 0.01 + (end24 - target24).squaredNorm();
+  ASSERT_TRUE(moved["loss"].is_number()) << moved["loss_note"];
+  EXPECT_NEAR(moved["loss"].get<double>(), expected, 1e-12);
+  EXPECT_FALSE(moved["cache_stale"]) << "targets do not change the motion";
+
+  // Saved: the scene names the file, the file holds the targets (rest positions elsewhere).
+  const nlohmann::json saved = readJson(scene);
+  EXPECT_EQ(saved["task"]["loss"]["final"]["target"], "hang-final-target.npy");
+  EXPECT_EQ(saved["task"]["loss"]["final"]["vertices"], nlohmann::json::array({20, 24}));
+  const NpyArray npy = readNpy(dir.file("hang-final-target.npy"));
+  ASSERT_EQ(npy.shape, (std::vector<std::size_t>{25, 3}));
+  EXPECT_EQ(Vec3(npy.data[24 * 3], npy.data[24 * 3 + 1], npy.data[24 * 3 + 2]), target24);
+
+  const nlohmann::json undone = readJson(dir.file("undone.json"));
+  EXPECT_TRUE(vec(undone["targets"]["24"]).isApprox(end24 + Vec3(0, 0.1, 0), 1e-12)) << "undo: the typed position goes";
+
+  const nlohmann::json reopened = readJson(dir.file("reopened.json"));
+  EXPECT_EQ(vec(reopened["targets"]["24"]), target24) << "targets come back from the saved file";
+  EXPECT_EQ(reopened["targets"].size(), 2u);
+
+  const nlohmann::json removed = readJson(dir.file("removed.json"));
+  EXPECT_TRUE(removed["targets"].empty());
+  EXPECT_FALSE(removed["document"].contains("task")) << "no term left: no task";
+}
+
+// The golden viewport of the editing features: the rest state of a small hanging cloth with a
+// sphere and a box added from the menu and two final-frame targets (the purple markers) raised
+// above their vertices, from a fixed camera at 320x240. No simulation: the picture does not
+// depend on the solver. Tolerance: the render tests' default (a pixel may differ by 16/255 per
+// channel, within 1 pixel; at most 0.25 % of the pixels beyond that). Regenerate on purpose with
+// `weft_tests_editor --bless --gtest_filter=EditorWorkflow.ViewportMatchesGolden` and look at it.
+TEST(EditorWorkflow, ViewportMatchesGolden) {
+  TempDir dir;
+  const ProcessResult r = runEditor(
+      dir, {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 6, 0.01, 5, 500.0))}},
+            {{"add_obstacle", "sphere"}},
+            {{"set", "obstacles.0.sphere.center"}, {"value", {0.0, 0.2, 0.4}}},
+            {{"set", "obstacles.0.sphere.radius"}, {"value", 0.2}},
+            {{"add_obstacle", "box"}},
+            {{"set", "obstacles.1.box.center"}, {"value", {0.0, -0.2, 0.0}}},
+            {{"set", "obstacles.1.box.size"}, {"value", {1.2, 0.2, 0.8}}},
+            {{"select", {45, 48}}},
+            {{"set_targets", true}},
+            {{"move_targets", {0.0, 0.25, 0.3}}},
+            {{"camera", {{"yaw", 35}, {"pitch", 15}, {"distance", 3.6}, {"target", {0.0, 0.45, 0.1}}}}},
+            {{"frames", 1}},
+            {{"screenshot", dir.file("viewport.png")}, {"size", {320, 240}}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(matchesGolden("editor_viewport_targets", render::readPng(dir.file("viewport.png"))));
+}
+
+TEST(EditorWorkflow, BenchmarkModePrintsFrameTimes) {
+  TempDir dir;
+  const ProcessResult r = runProcess({WEFT_EDITOR_BINARY, "--bench", "--bench-grid", "6", "--bench-steps", "3",
+                                      "--bench-frames", "4", "--size", "640x400", "--bench-out", dir.file("bench")},
+                                     dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("49 cloth vertices, 4 cached states"), std::string::npos) << r.out;
+  for (const char* mode : {"| live |", "| scrub | 4 |", "| still | 4 |"}) EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
+  std::ifstream csv(dir.file("bench/editor-bench.csv"));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "mode,frame,ms");
+  const ProcessResult bad = runProcess({WEFT_EDITOR_BINARY, "--bench", "--bench-frames", "zero"}, dir.path());
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--bench-frames"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace weft::test

@@ -1,0 +1,181 @@
+// Importing garments and mesh obstacles: the entry added to the document names the file, keeps
+// the file's vertex count and order (through the engine's reader), carries scale and placement,
+// and every unusable file is a clear message rather than a broken document.
+
+#include <MeshImport.h>
+
+#include "support/TempDir.h"
+
+#include <weft/scene/SceneLoader.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+
+namespace weft::editor {
+namespace {
+
+using test::TempDir;
+
+// A 2 x 1 m strip in the XZ plane, six vertices listed out of order, four triangles.
+std::string stripObj() {
+  return "v 2 0 1\nv 0 0 0\nv 1 0 1\nv 2 0 0\nv 0 0 1\nv 1 0 0\n"
+         "f 2 5 6\nf 6 5 3\nf 6 3 4\nf 4 3 1\n";
+}
+
+std::string stripPly() {
+  return "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+         "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+         "2 0 1\n0 0 0\n1 0 1\n2 0 0\n0 0 1\n1 0 0\n3 1 4 5\n3 5 4 2\n3 5 2 3\n3 3 2 0\n";
+}
+
+// The same strip as glTF 2.0 with its buffer in a sibling .bin file.
+std::string writeStripGltf(const TempDir& dir) {
+  const float positions[6][3] = {{2, 0, 1}, {0, 0, 0}, {1, 0, 1}, {2, 0, 0}, {0, 0, 1}, {1, 0, 0}};
+  const std::uint16_t indices[12] = {1, 4, 5, 5, 4, 2, 5, 2, 3, 3, 2, 0};
+  std::ofstream bin(dir.file("strip.bin"), std::ios::binary);
+  bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
+  bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
+  bin.close();
+  return dir.write("strip.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
+    "buffers": [{"byteLength": 96, "uri": "strip.bin"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72},
+                    {"buffer": 0, "byteOffset": 72, "byteLength": 24}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 6, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [2, 0, 1]},
+                  {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}]})");
+}
+
+TEST(MeshImport, GarmentEntryKeepsTheFileAndItsPlacement) {
+  TempDir dir;
+  const std::string scene = dir.file("scene.json");
+  for (const std::string& file :
+       {dir.write("strip.obj", stripObj()), dir.write("strip.ply", stripPly()), writeStripGltf(dir)}) {
+    SCOPED_TRACE(file);
+    MeshImportOptions o;
+    o.file = file;
+    o.scale = 0.5;
+    o.rotateDeg = Vec3(90, 0, 0);
+    o.translate = Vec3(0, 1, 0);
+    const MeshImport r = prepareGarment(o, scene, dir.path());
+    ASSERT_TRUE(r.ok()) << r.error;
+    EXPECT_EQ(r.vertices, 6);
+    EXPECT_EQ(r.triangles, 4);
+    EXPECT_EQ(r.fileUpper, Vec3(2, 0, 1));
+    // Inside the scene's folder the file is named relative to it.
+    const nlohmann::json& mesh = r.entry.at("mesh");
+    EXPECT_EQ(mesh.at("file"), std::filesystem::path(file).filename().string());
+    EXPECT_EQ(mesh.at("scale"), 0.5);
+    EXPECT_EQ(mesh.at("transform").at("rotate_deg"), nlohmann::json::array({90.0, 0.0, 0.0}));
+    EXPECT_EQ(mesh.at("transform").at("translate"), nlohmann::json::array({0.0, 1.0, 0.0}));
+    EXPECT_TRUE(r.entry.contains("material"));
+    // The entry is a cloth the loader accepts as it is, with the file's vertices in order.
+    const Scene s = parseScene({{"time", {{"dt", 0.01}, {"steps", 1}}}, {"cloths", {r.entry}}}, scene, dir.path());
+    ASSERT_EQ(s.cloths[0].mesh.vertexCount(), 6);
+    // Vertex 0 of the file, (2, 0, 1): scaled by 0.5 to (1, 0, 0.5), turned 90 degrees about X
+    // (z to -y) to (1, -0.5, 0), lifted by 1.
+    EXPECT_NEAR(s.cloths[0].mesh.vertices(0, 0), 1.0, 1e-12);
+    EXPECT_NEAR(s.cloths[0].mesh.vertices(0, 1), 1.0 - 0.5, 1e-12);
+    EXPECT_NEAR(s.cloths[0].mesh.vertices(0, 2), 0.0, 1e-12);
+  }
+}
+
+TEST(MeshImport, FitScalesToTheSizeAndCentresTheMesh) {
+  TempDir dir;
+  // The strip in centimetres: 200 x 100.
+  const std::string file = dir.write("strip-cm.obj",
+                                     "v 200 0 100\nv 0 0 0\nv 100 0 100\nv 200 0 0\nv 0 0 100\nv 100 0 0\n"
+                                     "f 2 5 6\nf 6 5 3\nf 6 3 4\nf 4 3 1\n");
+  MeshImportOptions o;
+  o.file = file;
+  o.fit = true;
+  o.fitSize = 0.8;
+  o.translate = Vec3(0, 0.5, 0);
+  const MeshImport r = prepareGarment(o, "", dir.path());
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_DOUBLE_EQ(r.entry["mesh"]["scale"].get<double>(), 0.8 / 200.0);
+  EXPECT_NEAR((r.upper - r.lower).maxCoeff(), 0.8, 1e-12);
+  EXPECT_TRUE((0.5 * (r.lower + r.upper)).isApprox(Vec3(0, 0.5, 0), 1e-12));
+  EXPECT_TRUE(r.warnings.empty());
+  // A new document has no folder of its own: the file is named by its absolute path.
+  EXPECT_TRUE(std::filesystem::path(r.entry["mesh"]["file"].get<std::string>()).is_absolute());
+
+  // Without the fit, 2 m of centimetres is flagged as not metres (a warning, not an error).
+  o.fit = false;
+  const MeshImport unscaled = prepareGarment(o, "", dir.path());
+  ASSERT_TRUE(unscaled.ok()) << unscaled.error;
+  ASSERT_EQ(unscaled.warnings.size(), 1u);
+  EXPECT_NE(unscaled.warnings[0].find("not in metres"), std::string::npos) << unscaled.warnings[0];
+}
+
+TEST(MeshImport, UnusableFilesAreMessagesNamingTheFile) {
+  TempDir dir;
+  MeshImportOptions o;
+  o.file = dir.file("missing.obj");
+  MeshImport r = prepareGarment(o, "", dir.path());
+  EXPECT_NE(r.error.find("missing.obj: file not found"), std::string::npos) << r.error;
+
+  o.file = dir.write("garbage.ply", "this is not a mesh\n");
+  r = prepareGarment(o, "", dir.path());
+  EXPECT_NE(r.error.find("garbage.ply: cannot read the mesh"), std::string::npos) << r.error;
+
+  o.file = dir.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  r = prepareGarment(o, "", dir.path());
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.error.find("points.obj"), std::string::npos) << r.error;
+
+  // A degenerate triangle: the loader's message, which names the way out (repair) ...
+  // (vertices 2, 6 and 4 lie on one line).
+  o.file = dir.write("degenerate.obj", stripObj() + "f 2 6 4\n");
+  r = prepareGarment(o, "", dir.path());
+  EXPECT_NE(r.error.find("degenerate"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("repair"), std::string::npos) << r.error;
+  // ... and with repair the triangle is dropped, with a warning saying so.
+  o.repair = true;
+  r = prepareGarment(o, "", dir.path());
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_EQ(r.entry["mesh"]["repair"], true);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings[0].find("dropped degenerate triangles"), std::string::npos) << r.warnings[0];
+
+  o = MeshImportOptions();
+  o.file = dir.write("strip.obj", stripObj());
+  o.scale = -1.0;
+  r = prepareGarment(o, "", dir.path());
+  EXPECT_NE(r.error.find("scale"), std::string::npos) << r.error;
+}
+
+TEST(MeshImport, MeshObstacleEntry) {
+  TempDir dir;
+  MeshImportOptions o;
+  o.file = dir.write("strip.obj", stripObj());
+  o.smoothNormals = false;
+  o.translate = Vec3(0, -0.2, 0);
+  const MeshImport r = prepareMeshObstacle(o, dir.file("scene.json"), dir.path());
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_EQ(r.entry["mesh"]["file"], "strip.obj");
+  EXPECT_EQ(r.entry["mesh"]["smooth_normals"], false);
+  EXPECT_EQ(r.entry["mesh"]["transform"]["translate"], nlohmann::json::array({0.0, -0.2, 0.0}));
+  EXPECT_EQ(r.entry["friction"], 0.3);
+  EXPECT_FALSE(r.entry.contains("material"));
+
+  o.file = dir.file("nothing.ply");
+  EXPECT_FALSE(prepareMeshObstacle(o, "", dir.path()).ok());
+}
+
+TEST(MeshImport, PathsOutsideTheSceneFolderStayAbsolute) {
+  TempDir dir, other;
+  const std::string mesh = other.write("strip.obj", stripObj());
+  EXPECT_EQ(documentRelativePath(mesh, dir.file("scene.json"), dir.path()),
+            std::filesystem::weakly_canonical(mesh).generic_string());
+  std::filesystem::create_directories(dir.file("meshes"));
+  const std::string inside = dir.write("meshes/strip.obj", stripObj());
+  EXPECT_EQ(documentRelativePath(inside, dir.file("scene.json"), dir.path()), "meshes/strip.obj");
+}
+
+}  // namespace
+}  // namespace weft::editor

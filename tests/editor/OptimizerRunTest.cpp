@@ -1,0 +1,109 @@
+// The optimiser off the UI thread: it starts paused, runs exactly the evaluations it is allowed,
+// lowers the loss of the system identification scene, can be resumed and cancelled, and refuses
+// what it cannot run with a message instead of starting.
+
+#include <OptimizerRun.h>
+
+#include "support/SceneBuilder.h"
+
+#include <weft/scene/SceneLoader.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+namespace weft::editor {
+namespace {
+
+Scene windSysid() { return loadScene(std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json"); }
+
+// Waits (polling) until the run is paused or over. The bound only keeps a broken run from
+// hanging the suite; nothing is asserted about time.
+void settle(const OptimizerRun& run) {
+  for (int i = 0; i < 60000; ++i) {
+    const OptimizerRun::Status s = run.status();
+    if (s != OptimizerRun::Status::Running) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  FAIL() << "the optimiser neither paused nor finished";
+}
+
+TEST(OptimizerRun, MethodsComeFromTheEngine) {
+  const std::vector<std::string> methods = OptimizerRun::methods();
+  EXPECT_NE(std::find(methods.begin(), methods.end(), "lbfgsb"), methods.end());
+  EXPECT_NE(std::find(methods.begin(), methods.end(), "adam"), methods.end());
+}
+
+TEST(OptimizerRun, StepsOneEvaluationAtATimeAndLowersTheLoss) {
+  OptimizerRun run;
+  OptimizerRun::Setup setup;
+  setup.parameters = {"cloths.0.material.stretch", "wind.strength"};
+  setup.settings.maxEvaluations = 40;
+  ASSERT_EQ(run.start(windSysid(), setup, true), "");
+  settle(run);
+  EXPECT_EQ(run.status(), OptimizerRun::Status::Paused);
+  EXPECT_EQ(run.evaluations(), 0) << "a paused start evaluates nothing";
+  EXPECT_EQ(run.initialValues(), (std::vector<double>{400.0, 1.5}));
+
+  for (int expected = 1; expected <= 4; ++expected) {
+    run.step(1);
+    // The gate lets one evaluation through, then holds the next one.
+    for (int i = 0; i < 60000 && run.evaluations() < expected; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    settle(run);
+    EXPECT_EQ(run.evaluations(), expected);
+    EXPECT_EQ(run.status(), OptimizerRun::Status::Paused);
+  }
+  const std::vector<OptimizerRun::Sample> samples = run.samples();
+  ASSERT_EQ(samples.size(), 4u);
+  // The first evaluation is at the start (through the optimiser's coordinates and back).
+  EXPECT_NEAR(samples[0].values[0], 400.0, 1e-9);
+  EXPECT_NEAR(samples[0].values[1], 1.5, 1e-12);
+  EXPECT_LT(run.best()->loss, samples[0].loss) << "the loss falls";
+
+  // Resumed, it runs to its own stop and recovers the generating values (250 N/m, 2.0 N/m^2).
+  run.resume();
+  run.wait();
+  EXPECT_EQ(run.status(), OptimizerRun::Status::Finished) << run.error();
+  EXPECT_FALSE(run.stopReason().empty());
+  EXPECT_LT(run.best()->loss, 1e-6 * samples[0].loss);
+  EXPECT_NEAR(run.best()->values[0], 250.0, 1.0);
+  EXPECT_NEAR(run.best()->values[1], 2.0, 0.01);
+}
+
+TEST(OptimizerRun, CancelStopsAPausedRunAndKeepsItsSamples) {
+  OptimizerRun run;
+  OptimizerRun::Setup setup;
+  setup.method = "adam";
+  setup.parameters = {"wind.strength"};
+  ASSERT_EQ(run.start(windSysid(), setup, true), "");
+  run.step(2);
+  for (int i = 0; i < 60000 && run.evaluations() < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  settle(run);
+  run.cancel();
+  EXPECT_EQ(run.status(), OptimizerRun::Status::Cancelled);
+  EXPECT_EQ(run.evaluations(), 2);
+  EXPECT_EQ(run.parameters(), std::vector<std::string>{"wind.strength"});
+}
+
+TEST(OptimizerRun, RefusesWhatItCannotRun) {
+  OptimizerRun run;
+  OptimizerRun::Setup setup;
+  setup.parameters = {"wind.strength"};
+  setup.method = "simplex";
+  EXPECT_NE(run.start(windSysid(), setup, false).find("unknown optimisation method 'simplex'"), std::string::npos);
+  setup.method = "lbfgsb";
+  setup.parameters.clear();
+  EXPECT_NE(run.start(windSysid(), setup, false).find("choose at least one parameter"), std::string::npos);
+  setup.parameters = {"cloths.0.material.colour"};
+  EXPECT_FALSE(run.start(windSysid(), setup, false).empty());
+  // No task: nothing to minimise.
+  const Scene plain = test::parse(test::hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  setup.parameters = {"cloths.0.material.stretch"};
+  EXPECT_NE(run.start(plain, setup, false).find("no task"), std::string::npos);
+  EXPECT_EQ(run.status(), OptimizerRun::Status::Idle);
+}
+
+}  // namespace
+}  // namespace weft::editor
