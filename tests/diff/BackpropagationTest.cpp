@@ -29,16 +29,7 @@ TEST(Backpropagation, MatchesCentralFiniteDifferencesForEveryParameterKind) {
   const Scene scene = test::windTaskScene(dir, kAllParameters);
   const ParameterSet parameters = ParameterSet::fromTask(scene);
   ASSERT_EQ(parameters.size(), static_cast<int>(kAllParameters.size()));
-  GradientCheckOptions options;
-  options.backwardMethod = "direct";  // the solver-independent reference
-  const GradientCheckReport report = checkGradient(scene, parameters, options);
-  EXPECT_GT(report.loss, 0.0);
-  EXPECT_EQ(report.unconvergedSteps, 0);
-  for (const GradientCheckEntry& e : report.entries) {
-    SCOPED_TRACE(e.param);
-    EXPECT_NE(e.adjoint, 0.0);
-    EXPECT_LT(e.relativeError, 1e-4) << "adjoint " << e.adjoint << " fd " << e.finiteDifference;
-  }
+  test::expectAdjointMatchesFiniteDifferences(scene);
 }
 
 TEST(Backpropagation, FinalFrameLossOnChosenVertices) {

@@ -2,7 +2,10 @@
 
 #include <support/SceneBuilder.h>
 #include <weft/diff/ForwardPass.h>
+#include <weft/diff/GradientCheck.h>
 #include <weft/io/Npy.h>
+
+#include <gtest/gtest.h>
 
 namespace weft::test {
 
@@ -50,6 +53,21 @@ Scene withTrajectoryTask(const TempDir& dir, const nlohmann::json& document,
 
 Scene windTaskScene(const TempDir& dir, const std::vector<std::string>& parameters, int steps) {
   return withTrajectoryTask(dir, windClothScene(6, steps), parameters);
+}
+
+void expectAdjointMatchesFiniteDifferences(const Scene& scene) {
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  ASSERT_FALSE(parameters.empty());
+  GradientCheckOptions options;
+  options.backwardMethod = "direct";
+  const GradientCheckReport report = checkGradient(scene, parameters, options);
+  EXPECT_GT(report.loss, 0.0);
+  EXPECT_EQ(report.unconvergedSteps, 0);
+  for (const GradientCheckEntry& e : report.entries) {
+    SCOPED_TRACE(e.param);
+    EXPECT_NE(e.adjoint, 0.0);
+    EXPECT_LT(e.relativeError, 1e-4) << "adjoint " << e.adjoint << " fd " << e.finiteDifference;
+  }
 }
 
 }  // namespace weft::test

@@ -38,4 +38,9 @@ Scene withTrajectoryTask(const TempDir& dir, const nlohmann::json& document,
 // The wind scene with that task: what most adjoint tests differentiate.
 Scene windTaskScene(const TempDir& dir, const std::vector<std::string>& parameters, int steps = 25);
 
+// The adjoint (direct backward solve, the solver-independent reference) against central finite
+// differences for the task's parameters: every component nonzero and within 1e-4 relative, the
+// loss positive, every forward step converged.
+void expectAdjointMatchesFiniteDifferences(const Scene& scene);
+
 }  // namespace weft::test

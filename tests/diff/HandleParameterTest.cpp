@@ -147,20 +147,6 @@ TEST(HandleParameter, ResolvesTheTrajectoryKnotsAndStiffness) {
   }
 }
 
-void expectAdjointMatchesFiniteDifferences(const Scene& scene) {
-  const ParameterSet parameters = ParameterSet::fromTask(scene);
-  ASSERT_FALSE(parameters.empty());
-  GradientCheckOptions options;
-  options.backwardMethod = "direct";  // the solver-independent reference
-  const GradientCheckReport report = checkGradient(scene, parameters, options);
-  EXPECT_GT(report.loss, 0.0);
-  EXPECT_EQ(report.unconvergedSteps, 0);
-  for (const GradientCheckEntry& e : report.entries) {
-    SCOPED_TRACE(e.param);
-    EXPECT_NE(e.adjoint, 0.0);
-    EXPECT_LT(e.relativeError, 1e-4) << "adjoint " << e.adjoint << " fd " << e.finiteDifference;
-  }
-}
 
 // The Hat task in miniature: a final-frame target made by the same scene with another spline.
 TEST(HandleParameter, SplineGradientsMatchFiniteDifferencesForAFinalFrameTarget) {
@@ -176,7 +162,7 @@ TEST(HandleParameter, SplineGradientsMatchFiniteDifferencesForAFinalFrameTarget)
                 {s + "points.2.0", s + "points.2.1", s + "points.2.2", s + "points.1.2",
                  s + "tangents.0.0", s + "tangents.1.1", s + "tangents.1.2", s + "tangents.2.2",
                  kHandle + "stiffness", "cloths.0.attachments.0.stiffness"});
-  expectAdjointMatchesFiniteDifferences(test::parse(doc));
+  test::expectAdjointMatchesFiniteDifferences(test::parse(doc));
 }
 
 // The Sock task in miniature: keypoints at the middle and the end of the run, on keyframes.
@@ -200,7 +186,7 @@ TEST(HandleParameter, KeyframeGradientsMatchFiniteDifferencesForKeypoints) {
              {"positions", {{-0.2, 0.85, 0.1}}},
              {"weight", 3.0}}}}}}}},
       {"parameters", {k + "1.offset.0", k + "1.offset.2", k + "2.offset.1", k + "2.offset.2"}}};
-  expectAdjointMatchesFiniteDifferences(test::parse(doc));
+  test::expectAdjointMatchesFiniteDifferences(test::parse(doc));
 }
 
 // `weft gradcheck` resolves the new parameters and builds the new losses with no option of its

@@ -162,18 +162,6 @@ TEST(TaskLoss, SumsItsWeightedTerms) {
   EXPECT_NEAR(loss.value(t), expected, 1e-12 * expected);
 }
 
-void expectAdjointMatchesFiniteDifferences(const Scene& scene) {
-  GradientCheckOptions options;
-  options.backwardMethod = "direct";
-  const GradientCheckReport report = checkGradient(scene, ParameterSet::fromTask(scene), options);
-  EXPECT_GT(report.loss, 0.0);
-  EXPECT_EQ(report.unconvergedSteps, 0);
-  for (const GradientCheckEntry& e : report.entries) {
-    SCOPED_TRACE(e.param);
-    EXPECT_NE(e.adjoint, 0.0);
-    EXPECT_LT(e.relativeError, 1e-4) << "adjoint " << e.adjoint << " fd " << e.finiteDifference;
-  }
-}
 
 const std::vector<std::string> kMaterial = {"cloths.0.material.stretch", "cloths.0.material.bend",
                                             "cloths.0.material.density"};
@@ -181,13 +169,13 @@ const std::vector<std::string> kMaterial = {"cloths.0.material.stretch", "cloths
 TEST(KeypointLoss, AdjointMatchesFiniteDifferencesForTheMaterial) {
   nlohmann::json doc = test::windClothScene(6, 20);
   doc["task"] = {{"loss", {{"keypoints", keypointTerm()}}}, {"parameters", kMaterial}};
-  expectAdjointMatchesFiniteDifferences(test::parse(doc));
+  test::expectAdjointMatchesFiniteDifferences(test::parse(doc));
 }
 
 TEST(HemlineLoss, AdjointMatchesFiniteDifferencesForTheMaterial) {
   nlohmann::json doc = test::windClothScene(6, 20);
   doc["task"] = {{"loss", {{"hemline", hemlineTerm()}}}, {"parameters", kMaterial}};
-  expectAdjointMatchesFiniteDifferences(test::parse(doc));
+  test::expectAdjointMatchesFiniteDifferences(test::parse(doc));
 }
 
 TEST(KeypointLoss, TargetFromARecordedRunIsReadAtTheEntrysStep) {
