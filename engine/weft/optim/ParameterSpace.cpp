@@ -33,6 +33,13 @@ void applyDefaultBounds(SceneParameter& p) {
     case K::WindPhase:
       p.lower = -1e6, p.upper = 1e6;
       break;
+    case K::ObstacleFriction:
+    case K::SelfCollisionFriction:  // a Coulomb coefficient: >= 0, and no fabric holds beyond 10
+      p.lower = 0.0, p.upper = 10.0;
+      break;
+    case K::AttachmentStiffness:  // N/m, a spring: positive, spans decades like stretch
+      p.lower = 1e-3, p.upper = 1e12, p.logScale = true;
+      break;
     default:  // wind direction, gravity, initial velocity, nodal forces: any real value
       break;
   }
