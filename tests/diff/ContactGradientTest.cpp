@@ -28,18 +28,6 @@ namespace {
 
 using test::TempDir;
 
-nlohmann::json inclineScene() {
-  // 0.3 m x 0.1 m ribbon 1 mm above a 20 degree plane, mu = 0.2 < tan 20 deg: it slides (slip).
-  return nlohmann::json::parse(R"({
-    "name": "incline", "time": {"dt": 0.01, "steps": 30}, "gravity": [0, -9.8, 0],
-    "solver": {"pd_iterations": 200, "pd_tolerance": 1e-4},
-    "cloths": [{"mesh": {"grid": {"size": [0.3, 0.1], "resolution": [6, 2]},
-                         "transform": {"rotate_deg": [0, 0, 20], "translate": [0, 0.001, 0]}},
-                "material": {"density": 0.2, "stretch": 100.0, "bend": 0.001},
-                "initial_velocity": [-0.1, 0, 0.05]}],
-    "obstacles": [{"plane": {"point": [0, 0, 0], "normal": [-0.34202, 0.939693, 0]}, "friction": 0.2}]})");
-}
-
 nlohmann::json sphereScene(double friction, double speed) {
   // A soft, heavy 6 cm cloth laid on top of a 0.3 m sphere (h^2 k below the nodal mass, so the
   // forward's contact iteration converges tightly), pushed sideways.
@@ -110,7 +98,7 @@ GradientCheckOptions options(const char* method = nullptr) {
 
 TEST(ContactGradient, RibbonSlidingDownAnInclineSlipBranch) {
   TempDir dir;
-  const Scene scene = withTask(dir, inclineScene(),
+  const Scene scene = withTask(dir, test::inclineScene(),
                                {{"obstacles.0.friction", 0.25}, {"cloths.0.material.stretch", 120.0}},
                                {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.initial_velocity.2",
                                 "gravity.1", "cloths.0.material.density", "cloths.0.material.stretch"});
@@ -127,7 +115,7 @@ TEST(ContactGradient, EveryBackwardSolverGivesTheSameContactGradientAndTheFixedP
   // 1 - m / (h^2 k) there, and DiffCloth's fixed point stalls; the direct fallback must recover
   // the same gradient (issue: "a case built to make the fixed-point iteration diverge").
   TempDir dir;
-  const Scene scene = withTask(dir, inclineScene(), {{"obstacles.0.friction", 0.25}},
+  const Scene scene = withTask(dir, test::inclineScene(), {{"obstacles.0.friction", 0.25}},
                                {"obstacles.0.friction", "cloths.0.initial_velocity.0"});
   const Scene tight = withTightForwardSolver(scene, 1e-8);
   const ForwardPass pass = runForwardPass(tight);

@@ -70,4 +70,15 @@ void expectAdjointMatchesFiniteDifferences(const Scene& scene) {
   }
 }
 
+nlohmann::json inclineScene() {
+  return nlohmann::json::parse(R"({
+    "name": "incline", "time": {"dt": 0.01, "steps": 30}, "gravity": [0, -9.8, 0],
+    "solver": {"pd_iterations": 200, "pd_tolerance": 1e-4},
+    "cloths": [{"mesh": {"grid": {"size": [0.3, 0.1], "resolution": [6, 2]},
+                         "transform": {"rotate_deg": [0, 0, 20], "translate": [0, 0.001, 0]}},
+                "material": {"density": 0.2, "stretch": 100.0, "bend": 0.001},
+                "initial_velocity": [-0.1, 0, 0.05]}],
+    "obstacles": [{"plane": {"point": [0, 0, 0], "normal": [-0.34202, 0.939693, 0]}, "friction": 0.2}]})");
+}
+
 }  // namespace weft::test

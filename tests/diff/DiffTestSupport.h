@@ -38,6 +38,10 @@ Scene withTrajectoryTask(const TempDir& dir, const nlohmann::json& document,
 // The wind scene with that task: what most adjoint tests differentiate.
 Scene windTaskScene(const TempDir& dir, const std::vector<std::string>& parameters, int steps = 25);
 
+// A 0.3 m x 0.1 m ribbon (6 x 2 quads) 1 mm above a 20 degree plane with friction 0.2 < tan 20
+// deg: it slides, every node in the slip branch. 30 steps of 0.01 s, no task.
+nlohmann::json inclineScene();
+
 // The adjoint (direct backward solve, the solver-independent reference) against central finite
 // differences for the task's parameters: every component nonzero and within 1e-4 relative, the
 // loss positive, every forward step converged.

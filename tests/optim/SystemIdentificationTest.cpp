@@ -75,14 +75,7 @@ TEST(SystemIdentification, RecoversObstacleFrictionThroughTheContactAdjoint) {
   // A ribbon sliding down a 20 degree plane (every node in the slip branch): its motion is set by
   // mu (acceleration g (sin 20 - mu cos 20)), whose gradient comes through ContactAdjoint.
   test::TempDir dir;
-  const nlohmann::json doc = nlohmann::json::parse(R"({
-    "name": "incline", "time": {"dt": 0.01, "steps": 30}, "gravity": [0, -9.8, 0],
-    "solver": {"pd_iterations": 200, "pd_tolerance": 1e-4},
-    "cloths": [{"mesh": {"grid": {"size": [0.3, 0.1], "resolution": [6, 2]},
-                         "transform": {"rotate_deg": [0, 0, 20], "translate": [0, 0.001, 0]}},
-                "material": {"density": 0.2, "stretch": 100.0, "bend": 0.001},
-                "initial_velocity": [-0.1, 0, 0.05]}],
-    "obstacles": [{"plane": {"point": [0, 0, 0], "normal": [-0.34202, 0.939693, 0]}, "friction": 0.2}]})");
+  const nlohmann::json doc = test::inclineScene();
   nlohmann::json target = doc;
   target["obstacles"][0]["friction"] = 0.25;
   const Recovery r = recover(dir, doc, target, {"obstacles.0.friction"});
