@@ -190,24 +190,17 @@ void EditorDocument::commit(std::string label, std::string coalesceKey, nlohmann
   revalidate();
 }
 
-bool EditorDocument::undo() {
-  if (undo_.empty()) return false;
-  Step step = std::move(undo_.back());
-  undo_.pop_back();
-  redo_.push_back(Step{step.label, "", document_, sidecar_, state_});
-  document_ = std::move(step.before);
-  sidecar_ = std::move(step.sidecarBefore);
-  state_ = step.beforeState;
-  ++revision_;
-  revalidate();
-  return true;
-}
+bool EditorDocument::undo() { return restore(undo_, redo_); }
 
-bool EditorDocument::redo() {
-  if (redo_.empty()) return false;
-  Step step = std::move(redo_.back());
-  redo_.pop_back();
-  undo_.push_back(Step{step.label, "", document_, sidecar_, state_});
+bool EditorDocument::redo() { return restore(redo_, undo_); }
+
+bool EditorDocument::restore(std::vector<Step>& from, std::vector<Step>& to) {
+  // Undo and redo are one move: the newest step of one stack is restored, and the current state
+  // becomes the newest step of the other.
+  if (from.empty()) return false;
+  Step step = std::move(from.back());
+  from.pop_back();
+  to.push_back(Step{step.label, "", document_, sidecar_, state_});
   document_ = std::move(step.before);
   sidecar_ = std::move(step.sidecarBefore);
   state_ = step.beforeState;

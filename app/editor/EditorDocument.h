@@ -99,6 +99,7 @@ class EditorDocument {
   void commit(std::string label, std::string coalesceKey, nlohmann::json after, nlohmann::json sidecarAfter,
               bool coalesce);
   void revalidate();
+  bool restore(std::vector<Step>& from, std::vector<Step>& to);  // undo or redo
 
   nlohmann::json document_;
   nlohmann::json sidecar_ = nlohmann::json::object();

@@ -338,12 +338,4 @@ void ActiveContactSet::record(StepContacts& out) const {
   out.pairLayers = 0;
 }
 
-void ActiveContactSet::countBranches(StepStats& stats) const {
-  for (const Contact& c : contacts_) {
-    if (c.branch == ContactBranch::TakeOff) ++stats.takeoff;
-    else if (c.branch == ContactBranch::Stick) ++stats.stick;
-    else if (c.branch == ContactBranch::Slip) ++stats.slip;
-  }
-}
-
 }  // namespace weft

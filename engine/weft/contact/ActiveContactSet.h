@@ -83,7 +83,6 @@ class ActiveContactSet {
   int blocked() const { return blocked_; }
 
   void record(StepContacts& out) const;
-  void countBranches(StepStats& stats) const;
 
  private:
   struct Contact {

@@ -123,12 +123,4 @@ void ContactSolver::record(StepContacts& out) const {
   out.pairLayers = static_cast<int>(layerStart_.size()) - 1;
 }
 
-void ContactSolver::countBranches(StepStats& stats) const {
-  for (const Contact& c : contacts_) {
-    if (c.branch == ContactBranch::TakeOff) ++stats.takeoff;
-    else if (c.branch == ContactBranch::Stick) ++stats.stick;
-    else if (c.branch == ContactBranch::Slip) ++stats.slip;
-  }
-}
-
 }  // namespace weft

@@ -44,7 +44,6 @@ class ContactSolver {
 
   // The step's record (branch, frame, impulse, velocity per contact) and the counts per branch.
   void record(StepContacts& out) const;
-  void countBranches(StepStats& stats) const;
 
  private:
   struct Slot {  // one node that has contacts

@@ -9,7 +9,7 @@
 //   detectObstacles       contact set and frozen frames (module "contact_detection")
 //   detectSelfCollisions  pairs and their Gauss-Seidel layers (module "self_collision")
 //   then, with solver.contact = "pd", per PD iteration solve(f) and addImpulses (module
-//   "contact_solve") and finally record / countBranches; with "active_set", the Simulator drives
+//   "contact_solve") and finally record; with "active_set", the Simulator drives
 //   activeSet() (ActiveContactSet.h) instead.
 
 #include <weft/contact/ActiveContactSet.h>
@@ -56,7 +56,6 @@ class FrictionalContact {
   double lastSweepChange() const { return solver_.lastChange(); }
 
   void record(StepContacts& out) const { solver_.record(out); }
-  void countBranches(StepStats& stats) const { solver_.countBranches(stats); }
   int obstacleContactCount() const { return static_cast<int>(obstacleContacts_.size()); }
   int pairCount() const { return static_cast<int>(pairs_.size()); }
 

@@ -3,6 +3,7 @@
 // Trajectory keeps (steps 1..N), for the backward pass, the editor and the renderer.
 
 #include <weft/contact/ContactPoint.h>
+#include <weft/physics/StepStats.h>
 
 #include <vector>
 
@@ -19,5 +20,15 @@ struct StepContacts {
   double sweepChange = 0.0;
   int pairLayers = 0;  // Gauss-Seidel layers of the self-collision pairs
 };
+
+// Adds the step's contacts per branch to stats (takeoff, stick, slip): both contact solves
+// count from the record they leave.
+inline void countBranches(const StepContacts& contacts, StepStats& stats) {
+  for (const ContactPoint& p : contacts.points) {
+    if (p.branch == ContactBranch::TakeOff) ++stats.takeoff;
+    else if (p.branch == ContactBranch::Stick) ++stats.stick;
+    else if (p.branch == ContactBranch::Slip) ++stats.slip;
+  }
+}
 
 }  // namespace weft

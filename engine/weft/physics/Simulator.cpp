@@ -512,13 +512,9 @@ const StepStats& Simulator::step() {
     else if (newton) solveNewton();
     else solveWithContact();
     timed(contactSolveModule_, [&] {
-      if (newton) {
-        contact_->activeSet().countBranches(stats_);
-        contact_->activeSet().record(lastContacts_);
-      } else {
-        contact_->countBranches(stats_);
-        contact_->record(lastContacts_);
-      }
+      if (newton) contact_->activeSet().record(lastContacts_);
+      else contact_->record(lastContacts_);
+      countBranches(lastContacts_, stats_);
       lastContacts_.sweeps = stats_.contactSweeps;
     });
   } else if (solver.method == SolverMethod::Newton) {
