@@ -171,6 +171,24 @@ ScriptRunner::State ScriptRunner::update(EditorSession& session, EditorApp& app)
   return state_;
 }
 
+std::optional<bool> ScriptRunner::checkOutcome(const nlohmann::json& action, const std::string& error,
+                                               const std::string& succeeded) {
+  // An action that expects an error passes when the error names it; any other error fails the
+  // script. Empty: carry on with the action.
+  if (action.contains("expect_error")) {
+    const std::string expected = action["expect_error"].get<std::string>();
+    if (error.empty()) fail("expected an error containing \"" + expected + "\", but " + succeeded);
+    else if (error.find(expected) == std::string::npos)
+      fail("expected an error containing \"" + expected + "\", got: " + error);
+    return state_ == State::Running;
+  }
+  if (!error.empty()) {
+    fail(error);
+    return false;
+  }
+  return std::nullopt;
+}
+
 bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorApp& app) {
   if (!a.is_object()) {
     fail("an action must be an object such as {\"open\": \"scene.json\"}");
@@ -358,17 +376,7 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     else if (kind == "optimize_apply") done = "applied the optimised parameters (Ctrl+Z undoes)";
     else if (kind == "optimize_revert") done = "reverted to the values the run started from";
     app.report(error.empty() ? done : error, !error.empty());
-    if (a.contains("expect_error")) {
-      const std::string expected = a["expect_error"].get<std::string>();
-      if (error.empty()) fail("expected an error containing \"" + expected + "\", but it succeeded");
-      else if (error.find(expected) == std::string::npos)
-        fail("expected an error containing \"" + expected + "\", got: " + error);
-      return state_ == State::Running;
-    }
-    if (!error.empty()) {
-      fail(error);
-      return false;
-    }
+    if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
   } else if (kind == "panel") {
     PanelTab tab;
     if (!parsePanelTab(a.at(kind).get<std::string>(), tab))
@@ -392,17 +400,7 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     setup.settings.seed = o.value("seed", 0u);
     const std::string error = session.startOptimizer(setup, o.value("paused", true));
     app.report(error.empty() ? "optimiser started" : error, !error.empty());
-    if (o.contains("expect_error")) {
-      const std::string expected = o["expect_error"].get<std::string>();
-      if (error.empty()) fail("expected an error containing \"" + expected + "\", but the optimiser started");
-      else if (error.find(expected) == std::string::npos)
-        fail("expected an error containing \"" + expected + "\", got: " + error);
-      return state_ == State::Running;
-    }
-    if (!error.empty()) {
-      fail(error);
-      return false;
-    }
+    if (const std::optional<bool> next = checkOutcome(o, error, "the optimiser started")) return *next;
   } else if (kind == "optimize_step" || kind == "optimize_wait") {
     // Waits, one UI frame at a time, until N more evaluations are logged (step) or the run has
     // ended (wait), so the optimiser runs off the UI thread exactly as when clicked.

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 
 namespace weft::editor {
@@ -35,6 +36,10 @@ class ScriptRunner {
  private:
   bool run(const nlohmann::json& action, EditorSession& session, EditorApp& app);  // false: wait
   void fail(const std::string& what, int code = 2);
+  // What an action's `error` means given its optional expect_error: a value to return from the
+  // step (pass or fail), or nullopt to go on.
+  std::optional<bool> checkOutcome(const nlohmann::json& action, const std::string& error,
+                                   const std::string& succeeded);
 
   std::string file_;
   nlohmann::json actions_;
