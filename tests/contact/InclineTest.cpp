@@ -2,7 +2,7 @@
 // sticks when mu > tan(theta) and slides with acceleration g (sin theta - mu cos theta) when
 // mu < tan(theta). Every node is in one contact with the same frame, the ribbon moves rigidly,
 // and implicit Euler then gives v_n = n h a exactly, so the measured acceleration must match
-// Coulomb's law to the solver tolerance. Both contact solvers (solver.contact) are checked.
+// Coulomb's law to the solver tolerance. All three contact solvers (solver.contact) are checked.
 
 #include "ContactTestSupport.h"
 
@@ -65,6 +65,8 @@ void checkIncline(const InclineCase& c, const char* contactMethod) {
 TEST_P(Incline, SticksOrSlidesAsCoulombSays) { checkIncline(GetParam(), "pd"); }
 // The same law through the experimental active-set Newton contact solve (ActiveContactSet.h).
 TEST_P(Incline, ActiveSetSticksOrSlidesAsCoulombSays) { checkIncline(GetParam(), "active_set"); }
+// ... and through the semismooth Newton solve of the same fixed point (Simulator::solveContactNewton).
+TEST_P(Incline, NewtonSticksOrSlidesAsCoulombSays) { checkIncline(GetParam(), "newton"); }
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, Incline,

@@ -1,5 +1,6 @@
 #include <weft/contact/ContactSolver.h>
 
+#include <weft/contact/ContactLawJacobian.h>
 #include <weft/contact/SignoriniCoulomb.h>
 
 #include <algorithm>
@@ -22,7 +23,7 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
   auto slotFor = [&](int node) {
     if (slotOf_[node] < 0) {
       slotOf_[node] = static_cast<int>(slots_.size());
-      slots_.push_back(Slot{node, mass[node], Vec3::Zero(), Vec3::Zero()});
+      slots_.push_back(Slot{node, mass[node], Vec3::Zero(), Vec3::Zero(), Mat3::Zero()});
     }
     return slotOf_[node];
   };
@@ -33,7 +34,7 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
     if (!sameNode) groupStart_.push_back(static_cast<int>(contacts_.size()));
     coupled_ = coupled_ || sameNode;
     contacts_.push_back(Contact{slotFor(c.node), -1, c.obstacle, c.normal, c.reference, c.friction, mass[c.node],
-                                Vec3::Zero(), ContactBranch::TakeOff, c.sample, c.pathFraction});
+                                Vec3::Zero(), ContactBranch::TakeOff, c.sample, c.pathFraction, Mat3::Zero()});
   }
   groupStart_.push_back(static_cast<int>(contacts_.size()));
   pairBegin_ = static_cast<int>(contacts_.size());
@@ -41,21 +42,26 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
     const double ma = mass[c.node], mb = mass[c.partner];
     contacts_.push_back(Contact{slotFor(c.node), slotFor(c.partner), -1, c.normal, c.reference, c.friction,
                                 ma * mb / (ma + mb), Vec3::Zero(), ContactBranch::TakeOff, c.sample,
-                                c.pathFraction});
+                                c.pathFraction, Mat3::Zero()});
   }
   coupled_ = coupled_ || !pairs.empty();
   layerStart_ = layerStart;
 }
 
-double ContactSolver::update(Contact& c) {
+Vec3 ContactSolver::freeVelocity(const Contact& c) const {
   // Velocity of the contact without its own impulse (the other contacts' impulses included).
-  Slot& a = slots_[c.a];
+  const Slot& a = slots_[c.a];
   Vec3 free = a.freeVelocity + (a.impulse - c.impulse) / a.mass;
   if (c.b >= 0) {
     const Slot& b = slots_[c.b];
     free -= b.freeVelocity + (b.impulse + c.impulse) / b.mass;
   }
-  free -= c.reference;
+  return free - c.reference;
+}
+
+double ContactSolver::update(Contact& c) {
+  Slot& a = slots_[c.a];
+  const Vec3 free = freeVelocity(c);
   Vec3 change;
   c.branch = solveSignoriniCoulomb(c.normal, c.friction, free, change);  // DiffCloth Eq. 8 / Ly et al.
   const Vec3 impulse = c.effectiveMass * change;
@@ -94,6 +100,47 @@ int ContactSolver::solve(const NodeMatrix& freeMomentum, double tolerance, int m
 
 void ContactSolver::addImpulses(double scale, NodeMatrix& rhs) const {
   for (const Slot& s : slots_) rhs.row(s.node) += scale * s.impulse.transpose();
+}
+
+void ContactSolver::linearize() {
+  for (Slot& s : slots_) s.pinned.setZero();
+  for (Contact& c : contacts_) {
+    c.law = differentiateSignoriniCoulomb(c.branch, c.normal, c.friction, freeVelocity(c)).velocity;
+    if (c.b >= 0 || c.branch == ContactBranch::TakeOff) continue;
+    Mat3& pinned = slots_[c.a].pinned;
+    // A second prescribed direction on the node (two obstacles): pin it whole.
+    if (c.branch == ContactBranch::Stick || !pinned.isZero(0.0)) pinned.setIdentity();
+    else pinned = c.normal * c.normal.transpose();
+  }
+}
+
+void ContactSolver::addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const {
+  // r_c = m_eff du(w), w = f_a / m_a (- f_b / m_b) - reference (DiffCloth Eq. 12's per-node law).
+  const int groups = static_cast<int>(groupStart_.size()) - 1;
+#pragma omp parallel for schedule(static) if (groups > kParallelMinimum)
+  for (int g = 0; g < groups; ++g)
+    for (int k = groupStart_[g]; k < groupStart_[g + 1]; ++k) {
+      const Contact& c = contacts_[k];
+      const int node = slots_[c.a].node;
+      if (c.branch != ContactBranch::TakeOff) out.row(node) += (c.law * q.row(node).transpose()).transpose();
+    }
+  for (std::size_t k = pairBegin_; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    if (c.branch == ContactBranch::TakeOff) continue;
+    const Slot &a = slots_[c.a], &b = slots_[c.b];
+    const Vec3 w = q.row(a.node).transpose() / a.mass - q.row(b.node).transpose() / b.mass;
+    const Vec3 delta = c.effectiveMass * (c.law * w);
+    out.row(a.node) += delta.transpose();
+    out.row(b.node) -= delta.transpose();
+  }
+}
+
+void ContactSolver::pinnedVelocity(const NodeMatrix& r, NodeMatrix& z) const {
+  for (const Slot& s : slots_) z.row(s.node) = (s.pinned * r.row(s.node).transpose()).transpose() / s.mass;
+}
+
+void ContactSolver::removePinned(NodeMatrix& v) const {
+  for (const Slot& s : slots_) v.row(s.node) -= (s.pinned * v.row(s.node).transpose()).transpose();
 }
 
 void ContactSolver::record(StepContacts& out) const {

@@ -45,12 +45,28 @@ class ContactSolver {
   // The step's record (branch, frame, impulse, velocity per contact) and the counts per branch.
   void record(StepContacts& out) const;
 
+  // Linearisation of the last solve, for the semismooth Newton contact solve (Simulator):
+  // the impulses r(f) as a function of the free momentum f, differentiated in each contact's
+  // branch (ContactLawJacobian.h). Contacts sharing a node are differentiated one at a time
+  // (their Gauss-Seidel coupling is left out), which makes the Newton matrix inexact there but
+  // never the solution: the Newton solve stops on the true residual.
+  void linearize();
+  // out += h dr/df q for q = h df (impulse-per-momentum blocks; out and q are m x 3).
+  void addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const;
+  // The velocity directions each contact node's branches prescribe (stick: all three; slip: the
+  // normal), as a projector per node: z.row(node) = C r.row(node) / m for contact nodes
+  // (obstacle contacts only; pairs prescribe relative velocities and are left free).
+  void pinnedVelocity(const NodeMatrix& r, NodeMatrix& z) const;
+  // v.row(node) <- (I - C) v.row(node) for contact nodes.
+  void removePinned(NodeMatrix& v) const;
+
  private:
   struct Slot {  // one node that has contacts
     int node;
     double mass;
     Vec3 freeVelocity;  // f / m
     Vec3 impulse;       // total contact impulse on the node
+    Mat3 pinned;        // projector onto the prescribed velocity directions (linearize())
   };
   struct Contact {
     int a, b;  // slots (b = -1 for an obstacle contact)
@@ -61,7 +77,9 @@ class ContactSolver {
     ContactBranch branch;
     Vec3 sample;  // detection's surface sample (recorded for the backward pass)
     double pathFraction;
+    Mat3 law;  // d du / d w in the contact's branch (linearize())
   };
+  Vec3 freeVelocity(const Contact& c) const;  // w: the contact's velocity without its own impulse
   double update(Contact& c);  // one Gauss-Seidel update; returns |delta r| / m
 
   std::vector<int> slotOf_;  // per node

@@ -9,8 +9,9 @@
 //   detectObstacles       contact set and frozen frames (module "contact_detection")
 //   detectSelfCollisions  pairs and their Gauss-Seidel layers (module "self_collision")
 //   then, with solver.contact = "pd", per PD iteration solve(f) and addImpulses (module
-//   "contact_solve") and finally record; with "active_set", the Simulator drives
-//   activeSet() (ActiveContactSet.h) instead.
+//   "contact_solve") and finally record; with "newton", the same per iterate plus the
+//   linearisation of perNodeSolver(); with "active_set", the Simulator drives activeSet()
+//   (ActiveContactSet.h) instead.
 
 #include <weft/contact/ActiveContactSet.h>
 #include <weft/contact/ContactLayering.h>
@@ -54,6 +55,9 @@ class FrictionalContact {
   int solve(const NodeMatrix& freeMomentum, double sweepTolerance);
   void addImpulses(double scale, NodeMatrix& rhs) const { solver_.addImpulses(scale, rhs); }
   double lastSweepChange() const { return solver_.lastChange(); }
+  // The per-node solver itself, for the semismooth Newton contact solve (solver.contact =
+  // "newton"), which also needs its linearisation (ContactSolver::linearize).
+  ContactSolver& perNodeSolver() { return solver_; }
 
   void record(StepContacts& out) const { solver_.record(out); }
   int obstacleContactCount() const { return static_cast<int>(obstacleContacts_.size()); }

@@ -1,7 +1,7 @@
 #include <weft/diff/ContactAdjoint.h>
 
 #include <weft/core/Error.h>
-#include <weft/diff/ContactLawJacobian.h>
+#include <weft/contact/ContactLawJacobian.h>
 
 #include <cmath>
 #include <limits>

@@ -12,8 +12,7 @@
 // tolerance means the same as for the other two solvers.
 
 #include <weft/diff/AdjointLinearSolver.h>
-
-#include <vector>
+#include <weft/physics/Gmres.h>
 
 namespace weft {
 
@@ -28,8 +27,7 @@ class GmresSolver final : public AdjointLinearSolver {
   double tolerance_;
   int maxIterations_;
   int restart_;
-  std::vector<NodeMatrix> basis_, preconditioned_;  // V_j and P^{-1} V_j
-  NodeMatrix residual_, work_;
+  Gmres gmres_;
 };
 
 }  // namespace weft

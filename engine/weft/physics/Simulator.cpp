@@ -21,6 +21,10 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// Newton steps that fail to reduce the residual enough before the Newton contact solve hands the
+// step over to the PD iteration.
+constexpr int kNewtonFailuresBeforePd = 2;
+
 // A speed no cloth reaches unless the integration has blown up.
 constexpr double kBlowUpSpeed = 1e5;  // m/s
 
@@ -70,6 +74,7 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
 
   const int m = model_.nodeCount();
   inverseMass_ = model_.mass.cwiseInverse();
+  massRoot_ = model_.mass.cwiseSqrt();
   x_ = model_.rest.vertices;
   v_.resize(m, 3);
   for (std::size_t c = 0; c < scene.cloths.size(); ++c)
@@ -83,7 +88,7 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
     derivativeRows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
   if (contact_)
-    for (auto* buf : {&freeMomentum_, &plainIterate_, &fullResidual_}) buf->setZero(m, 3);
+    for (auto* buf : {&freeMomentum_, &plainIterate_, &fullResidual_, &lawInput_, &pinnedPart_}) buf->setZero(m, 3);
   totalMass_ = model_.mass.sum();
   if (scene.solver.acceleration == Acceleration::Anderson) anderson_.reset(3 * m, scene.solver.andersonWindow);
 
@@ -479,6 +484,130 @@ void Simulator::solveWithContact() {
   }
 }
 
+double Simulator::contactResidual(const NodeMatrix& x, NodeMatrix& residual) {
+  localStep(x);
+  timed(solverModule_, [&] {
+    rhs_ = massY_;
+    for (std::size_t c = 0; c < constraints_.size(); ++c)
+      if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
+    multiplySystem(x, residual);
+    // The free momentum of Eq. 12 at x (see contactGlobalStep).
+    freeMomentum_ = (rhs_ - residual + model_.mass.asDiagonal() * (x - x_)) / h_;
+  });
+  timed(contactSolveModule_, [&] {
+    stats_.contactSweeps += contact_->solve(freeMomentum_, 0.1 * scene_.solver.pdTolerance * h_);
+    stats_.contactSweepChange = contact_->lastSweepChange();
+    contact_->addImpulses(h_, rhs_);
+  });
+  double measure = 0.0;
+  timed(solverModule_, [&] {
+    residual -= rhs_;
+    measure = residualOf(residual);
+  });
+  return measure;
+}
+
+void Simulator::solveContactNewton() {
+  // Semismooth Newton on G(x) = P x - b(x) - h r(f(x)) = 0, the fixed point of the "pd" contact
+  // iteration x <- P^-1 (b(x) + h r(f(x))) (DiffCloth Eqs. 10-12): the same per-node law (Eq. 8)
+  // with the same lumped-mass free momentum f = (M (x - x_n) + b(x) - P x) / h, so the same
+  // solution, and the same convergence test (the mass-weighted RMS of G, residualOf). Its
+  // Jacobian, with K = P - Delta P (Sec. 4.1) and R' = dr/df from each contact's branch
+  // (ContactLawJacobian.h), is
+  //   J = K + R' (K - M),
+  // the transpose of the backward pass's operator (Eq. 29): forward and backward linearise the
+  // same equations. J is not symmetric (slip blocks), so J d = -G is solved by GMRES, right-
+  // preconditioned by B: velocities the branches prescribe (stick: all of u, slip: u_N) have
+  // rows M in J, so B inverts them exactly per node and solves the rest with P's factor
+  // restricted to the free directions. GMRES works on M^-1/2 J d = -M^-1/2 G, so that the norm it
+  // minimises is the convergence test's mass-weighted one. The Newton step is damped by
+  // backtracking on that norm. Where even a short step does not reduce it (a branch switch the
+  // linearisation keeps missing, as at the rim of a cloth settling on a sphere), the PD
+  // iteration (solveWithContact), which converges from anywhere, finishes the step.
+  ContactSolver& contacts = contact_->perNodeSolver();
+  const SolverSettings& solver = scene_.solver;
+  NodeMatrix& residual = cgResidual_;  // G at iterate_
+  NodeMatrix& trialResidual = cgProduct_;
+  NodeMatrix& step = direction_;
+  NodeMatrix& rhs = cgSearch_;
+  auto applyJacobian = [&](const NodeMatrix& in, NodeMatrix& out) {
+    multiplyNewtonMatrix(in, out);
+    timed(contactSolveModule_, [&] {
+      lawInput_ = out - model_.mass.asDiagonal() * in;
+      contacts.addLawJacobian(lawInput_, out);
+      out = massRoot_.cwiseInverse().asDiagonal() * out;
+    });
+  };
+  auto precondition = [&](const NodeMatrix& scaled, NodeMatrix& z) {
+    timed(solverModule_, [&] {
+      z.resize(scaled.rows(), 3);
+      lawInput_ = massRoot_.asDiagonal() * scaled;  // (a free buffer here)
+      const NodeMatrix& r = lawInput_;
+      pinnedPart_.setZero();
+      contacts.pinnedVelocity(r, pinnedPart_);
+      multiplySystem(pinnedPart_, z);
+      z = r - z;
+      contacts.removePinned(z);
+      cholesky_.solveInPlace(z);
+      contacts.removePinned(z);
+      z += pinnedPart_;
+    });
+    ++stats_.pdIterations;
+  };
+
+  double measure = contactResidual(iterate_, residual);
+  bool atIterate = true;  // rhs_ and the contact impulses belong to iterate_
+  double forcing = 0.1, previous = 0.0;
+  int failures = 0;  // Newton steps rejected or that did not halve the residual
+  while (true) {
+    stats_.residual = measure;
+    stats_.converged = measure < solver.pdTolerance;
+    if (stats_.converged || !std::isfinite(measure) || stats_.pdIterations >= solver.pdIterations) break;
+    if (failures >= kNewtonFailuresBeforePd) break;
+    for (std::size_t c = 0; c < constraints_.size(); ++c)
+      if (constraints_[c]->hasDerivative())
+        timed(constraintModule_[c], [&] { constraints_[c]->prepareDerivative(iterate_, false); });
+    timed(contactSolveModule_, [&] { contacts.linearize(); });
+    // Inexact Newton: the linear tolerance follows the residual's decrease (Eisenstat-Walker 2).
+    if (previous > 0.0) {
+      const double ratio = measure / previous;
+      forcing = std::min(0.1, std::max({0.9 * ratio * ratio, 1e-6, 0.25 * solver.pdTolerance / measure}));
+    }
+    previous = measure;
+    timed(solverModule_, [&] { rhs = -(massRoot_.cwiseInverse().asDiagonal() * residual); });
+    gmres_.solve(applyJacobian, precondition, rhs, step, forcing, std::max(1, solver.pdIterations - stats_.pdIterations),
+                 40);
+    bool accepted = false;
+    for (double alpha = 1.0; alpha > 0.1 && !accepted; alpha *= 0.5) {
+      timed(solverModule_, [&] { accelerated_ = iterate_ + alpha * step; });
+      const double trial = contactResidual(accelerated_, trialResidual);
+      accepted = trial <= (1.0 - 1e-4 * alpha) * measure;
+      atIterate = accepted;
+      if (accepted) {
+        iterate_.swap(accelerated_);
+        residual.swap(trialResidual);
+        measure = trial;
+      }
+    }
+    // A step that did not at least halve the residual counts as a failure too: Newton is then
+    // outside its region of fast convergence, where each of its steps costs several PD steps.
+    if (!accepted || measure > 0.5 * previous) ++failures;
+  }
+  if (!stats_.converged && failures >= kNewtonFailuresBeforePd && stats_.pdIterations < solver.pdIterations) {
+    // Newton stalled (a branch switch its linearisation keeps missing): the PD iteration, which
+    // converges from anywhere, finishes the step from the best iterate.
+    solveWithContact();
+    return;
+  }
+  if (!atIterate) contactResidual(iterate_, residual);
+  // The step's result, as in the PD iteration: one global solve past the checked iterate.
+  timed(solverModule_, [&] {
+    global_ = rhs_;
+    cholesky_.solveInPlace(global_);
+  });
+  ++stats_.pdIterations;
+}
+
 const StepStats& Simulator::step() {
   const double h2 = h_ * h_;
   const double t1 = time_ + h_;
@@ -510,6 +639,8 @@ const StepStats& Simulator::step() {
     const bool newton = solver.contact == ContactMethod::ActiveSet;
     if (newton && !contact_->activeSet().empty()) solveNewtonWithContact();
     else if (newton) solveNewton();
+    else if (solver.contact == ContactMethod::Newton && contact_->empty()) solveNewton();
+    else if (solver.contact == ContactMethod::Newton) solveContactNewton();
     else solveWithContact();
     timed(contactSolveModule_, [&] {
       if (newton) contact_->activeSet().record(lastContacts_);

@@ -16,12 +16,16 @@
 //    updates by Eq. 8, slip friction lagged. No contact ends a step on the wrong side of its
 //    constraint, whatever the iteration count; the lagged friction and branch cycling still
 //    make many steps reach the iteration cap.
+//  - "newton": semismooth Newton on the residual of the "pd" iteration's fixed point (see
+//    solveContactNewton): the same law and the same solution, reached in a few Newton steps
+//    where the PD iteration converges linearly.
 
 #include <weft/contact/FrictionalContact.h>
 #include <weft/core/Types.h>
 #include <weft/physics/AndersonAccelerator.h>
 #include <weft/physics/ClothModel.h>
 #include <weft/physics/ExternalForce.h>
+#include <weft/physics/Gmres.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SparseCholesky.h>
 #include <weft/physics/StepStats.h>
@@ -87,6 +91,10 @@ class Simulator {
   void detectContacts(double t0, double t1);
   void contactGlobalStep();
   void solveWithContact();
+  // G(x) = P x - b(x) - h r(f(x)) into `residual` (the contact impulses r from the per-node law
+  // at x, rhs_ = b(x) + h r); returns its mass-weighted RMS (residualOf's measure).
+  double contactResidual(const NodeMatrix& x, NodeMatrix& residual);
+  void solveContactNewton();
   void multiplySystem(const NodeMatrix& in, NodeMatrix& out) const;  // one-coordinate P, 3 columns
   void multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out);
   double residualOf(const NodeMatrix& systemTimesChange) const;  // fills projections_, returns energy g(x)
@@ -111,6 +119,7 @@ class Simulator {
   Eigen::SparseMatrix<double> system_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> systemRows_;  // the same, for row-parallel products
   Eigen::VectorXd inverseMass_;
+  Eigen::VectorXd massRoot_;  // M^1/2, the scaling of the Newton contact solve's residual
   SparseCholesky cholesky_;
   AndersonAccelerator anderson_;
 
@@ -124,6 +133,8 @@ class Simulator {
   NodeMatrix force_, y_, massY_, iterate_, global_, accelerated_, change_, rhs_, residualVector_;
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
   NodeMatrix freeMomentum_, plainIterate_, fullResidual_;  // contact scenes only
+  NodeMatrix lawInput_, pinnedPart_;                       // solver.contact = "newton" only
+  Gmres gmres_;
   std::vector<NodeMatrix> projections_, derivativeRows_;
   double totalMass_ = 0.0;
 };

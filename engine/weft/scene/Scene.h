@@ -35,8 +35,9 @@ enum class Acceleration { None, Anderson };
 enum class SolverMethod { Newton, ProjectiveDynamics };
 // Contact scenes (solver.contact): "pd" (default), DiffCloth's per-node Signorini-Coulomb solve
 // inside PD iterations (ContactSolver.h), whatever `method` says; "active_set" (experimental),
-// Newton-PCG with the contacts as an active set of constraints (ActiveContactSet.h).
-enum class ContactMethod { ProjectiveDynamics, ActiveSet };
+// Newton-PCG with the contacts as an active set of constraints (ActiveContactSet.h); "newton",
+// semismooth Newton on the fixed point of the PD contact iteration (same law, same solution).
+enum class ContactMethod { ProjectiveDynamics, ActiveSet, Newton };
 
 struct SolverSettings {
   SolverMethod method = SolverMethod::Newton;

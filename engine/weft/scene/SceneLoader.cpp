@@ -268,8 +268,12 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
   r.allowOnly({"method", "contact", "pd_iterations", "pd_tolerance", "acceleration", "anderson_window", "backward"});
   if (auto v = r.optional("method"))
     s.method = v->choice({"newton", "pd"}) == "pd" ? SolverMethod::ProjectiveDynamics : SolverMethod::Newton;
-  if (auto v = r.optional("contact"))
-    s.contact = v->choice({"pd", "active_set"}) == "active_set" ? ContactMethod::ActiveSet : ContactMethod::ProjectiveDynamics;
+  if (auto v = r.optional("contact")) {
+    const std::string c = v->choice({"pd", "active_set", "newton"});
+    s.contact = c == "active_set" ? ContactMethod::ActiveSet
+                : c == "newton"   ? ContactMethod::Newton
+                                  : ContactMethod::ProjectiveDynamics;
+  }
   if (auto v = r.optional("pd_iterations")) s.pdIterations = v->integer(1, 1000000);
   if (auto v = r.optional("pd_tolerance")) s.pdTolerance = v->positive();
   if (auto v = r.optional("acceleration"))

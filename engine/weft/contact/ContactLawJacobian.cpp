@@ -1,4 +1,4 @@
-#include <weft/diff/ContactLawJacobian.h>
+#include <weft/contact/ContactLawJacobian.h>
 
 namespace weft {
 

@@ -2,7 +2,7 @@
 // differences of the per-node closed-form solve (SignoriniCoulomb.h) in isolation, in each branch.
 
 #include <weft/contact/SignoriniCoulomb.h>
-#include <weft/diff/ContactLawJacobian.h>
+#include <weft/contact/ContactLawJacobian.h>
 
 #include <gtest/gtest.h>
 

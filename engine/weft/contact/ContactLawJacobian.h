@@ -1,7 +1,8 @@
 #pragma once
 // The derivatives of one contact's Signorini-Coulomb law (DiffCloth Eq. 8; the forward closed
 // form is engine/weft/contact/SignoriniCoulomb.h) within the branch it is in, as the backward
-// pass needs them (DiffCloth Eqs. 26-27; notes Sec. 3.2). The law maps the contact's free
+// pass needs them (DiffCloth Eqs. 26-27; notes Sec. 3.2), and the forward Newton contact solve
+// with them (Simulator::solveContactNewton). The law maps the contact's free
 // velocity w (what it would have without its own impulse) to the velocity change
 // du = L(w; n, mu), impulse = effective mass * du:
 //   take-off  du = 0                     all derivatives zero
