@@ -70,10 +70,11 @@ struct RunResult {
   std::vector<double> stepContacts, stepSolveSeconds;
 };
 
-RunResult runScene(const std::string& file, int quads, int steps) {
+RunResult runScene(const std::string& file, int quads, int steps, const std::string& contact) {
   const std::string res = "[" + std::to_string(quads) + "," + std::to_string(quads) + "]";
-  Scene scene = loadScene(
-      file, {{"cloths.0.mesh.grid.resolution", res}, {"time.steps", std::to_string(steps)}});
+  std::vector<SceneOverride> overrides = {{"cloths.0.mesh.grid.resolution", res}, {"time.steps", std::to_string(steps)}};
+  if (contact != "scene") overrides.push_back({"solver.contact", "\"" + contact + "\""});
+  Scene scene = loadScene(file, overrides);
   RunResult r;
   r.vertices = scene.vertexCount();
   Simulator sim(scene);
@@ -150,16 +151,24 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
     std::string file;
     int steps;  // full run; long enough for the cloth to reach its contact-rich phase
   };
-  const std::vector<Case> cases = {{"sphere", assetFile("scenes/sphere.json"), 150},
-                                   {"slope", assetFile("scenes/slope.json"), 100},
-                                   {"crumple", assetFile("scenes/crumple.json"), 150}};
+  const std::vector<Case> allCases = {{"sphere", assetFile("scenes/sphere.json"), 150},
+                                      {"slope", assetFile("scenes/slope.json"), 100},
+                                      {"crumple", assetFile("scenes/crumple.json"), 150}};
+  std::vector<Case> cases;
+  for (const std::string& name : benchNames(cl, "--scenes", "sphere,slope,crumple", {"sphere", "slope", "crumple"}))
+    for (const Case& c : allCases)
+      if (name == c.name) cases.push_back(c);
   const std::vector<int> resolutions =
-      quick ? std::vector<int>{8, 16} : std::vector<int>{24, 48, 96};
+      benchResolutions(cl, quick ? std::vector<int>{8, 16} : std::vector<int>{24, 48, 96});
+  // --contact pd,newton runs every case with each contact solve (solver.contact), so that their
+  // costs are compared in one command; "scene" (the default) keeps each scene's own setting.
+  const std::vector<std::string> contactMethods =
+      benchNames(cl, "--contact", "scene", {"scene", "pd", "newton", "active_set"});
   const int quickSteps = 40;  // the sphere and crumple cloths reach their obstacle by then
   const bool peakResets = resetPeakMemory();
 
   // clang-format off
-  BenchTable table({"scene", "quads", "vertices", "steps", "ms_per_step", "ms_pd", "ms_detection",
+  BenchTable table({"scene", "contact", "quads", "vertices", "steps", "ms_per_step", "ms_pd", "ms_detection",
                     "ms_self_collision", "ms_contact_solve", "contacts_mean", "contacts_max",
                     "takeoff_end", "stick_end", "slip_end", "us_solve_per_contact",
                     "ns_per_contact_sweep", "pd_iterations", "converged_steps", "peak_mb",
@@ -172,17 +181,19 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
     PlotSeries cost{std::string(c.name) + " contact ms", {}, {}};
     PlotSeries self{std::string(c.name) + " self-collision ms", {}, {}};
     std::vector<double> allContacts, allSolve;
-    for (int q : resolutions) {
+    for (int q : resolutions)
+    for (const std::string& contact : contactMethods) {
       const int steps = quick ? quickSteps : c.steps;
-      std::fprintf(stderr, "contact: %s %dx%d, %d steps\n", c.name, q, q, steps);
+      std::fprintf(stderr, "contact: %s %dx%d (%s), %d steps\n", c.name, q, q, contact.c_str(), steps);
       resetPeakMemory();
-      const RunResult r = runScene(c.file, q, steps);
+      const RunResult r = runScene(c.file, q, steps, contact);
       const double peak = peakResets ? peakMemoryMb() : 0.0;
       const double contactMs = 1e3 * (r.detection + r.selfCollision + r.contactSolve);
       // Positions and velocities of every state (2 x 3 doubles per vertex per state); the
       // recorded contacts come on top.
       const double trajectoryMb = 48.0 * r.vertices * (steps + 1) / (1024.0 * 1024.0);
       table.add({c.name,
+                 contact,
                  std::to_string(q),
                  std::to_string(r.vertices),
                  std::to_string(r.steps),
@@ -226,10 +237,11 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
       "Scenes assets/scenes/{sphere,slope,crumple}.json with the cloth grid overridden to n x n "
       "quads, each run for the listed steps from the scene's start, " +
       std::to_string(threads) +
-      " thread(s). ms_* are milliseconds per step by module: ms_pd is the PD solve with the "
+      " thread(s). contact: the contact solve (solver.contact; scene = the scene file's own: "
+      "newton for slope, pd for sphere and crumple). ms_* are milliseconds per step by module: ms_pd is the PD solve with the "
       "energies and forces it evaluates, ms_detection obstacle contact detection, "
       "ms_self_collision node-node self-collision detection, ms_contact_solve the "
-      "Signorini-Coulomb solve inside the global steps. Contacts count node-obstacle contacts and "
+      "Signorini-Coulomb solve (and, for newton, its linearisation). Contacts count node-obstacle contacts and "
       "self-collision pairs per step; ns_per_contact_sweep is the contact solve's time per "
       "contact per Gauss-Seidel sweep (its unit cost, apart from how many sweeps the PD "
       "iterations ask for). peak_mb: peak resident memory of the run (the process's VmHWM, reset "
