@@ -23,7 +23,7 @@ double secondsSince(Clock::time_point start) {
 
 // Newton steps that fail to reduce the residual enough before the Newton contact solve hands the
 // step over to the PD iteration.
-constexpr int kNewtonFailuresBeforePd = 2;
+constexpr int kNewtonFailuresBeforePd = 1;
 
 // A speed no cloth reaches unless the integration has blown up.
 constexpr double kBlowUpSpeed = 1e5;  // m/s
