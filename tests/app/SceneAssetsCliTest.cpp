@@ -109,7 +109,9 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
                                             "backward_s", "ms_per_step", "solve_ms_per_step", "rest_ms_per_step",
                                             "iterations_per_step", "max_iterations", "not_converged", "fallbacks",
                                             "fail_percent", "speedup_vs_direct", "gradient_rel_error",
-                                            "forward_ms_per_step", "forward_unconverged", "peak_rss_mb"};
+                                            "forward_ms_per_step", "forward_unconverged", "peak_rss_mb",
+                                            "delta_p_ms_per_step", "delta_r_ms_per_step", "fallback_ms_per_step",
+                                            "cpu_ms_per_step", "cpu_speedup_vs_direct"};
   EXPECT_EQ(rows[0], columns);
   // GMRES at tolerance 1e-6 gives the direct solve's gradient to about 6e-7 on Wind here (1e-5 in
   // the full 200-step run, where errors of the per-step solves accumulate); at 1e-4 about 1e-5.

@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -66,6 +67,14 @@ std::vector<BackwardCase> backwardCases(const std::vector<std::string>& names) {
   return cases;
 }
 
+// CPU seconds of this process (one thread: the benchmark's own work), so that the rows can be
+// compared on a machine shared with other jobs, where wall-clock time is inflated by waiting.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
 double peakRssMegabytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -95,7 +104,8 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
   BenchTable table({"scene", "quads", "vertices", "steps", "method", "tolerance", "backward_s", "ms_per_step",
                     "solve_ms_per_step", "rest_ms_per_step", "iterations_per_step", "max_iterations",
                     "not_converged", "fallbacks", "fail_percent", "speedup_vs_direct", "gradient_rel_error",
-                    "forward_ms_per_step", "forward_unconverged", "peak_rss_mb"});
+                    "forward_ms_per_step", "forward_unconverged", "peak_rss_mb", "delta_p_ms_per_step",
+                    "delta_r_ms_per_step", "fallback_ms_per_step", "cpu_ms_per_step", "cpu_speedup_vs_direct"});
   std::vector<PlotSeries> plot;
 
   const std::filesystem::path scratch =
@@ -114,7 +124,9 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
       std::fprintf(stderr, "backward: %s %dx%d target run...\n", c.name.c_str(), n, n);
       std::vector<SceneOverride> perturbed = base;
       perturbed.push_back(c.targetChange);
-      const ForwardPass target = runForwardPass(withTightForwardSolver(loadScene(c.file, perturbed), forwardTolerance));
+      // The target is data only (the loss's reference), so it is simulated with the scene's own
+      // solver settings: at 48^2 the tight solve would take minutes and change nothing measured.
+      const ForwardPass target = runForwardPass(loadScene(c.file, perturbed));
       const std::string targetPath = (scratch / (c.name + "_target_" + std::to_string(n) + ".npy")).string();
       const int vertices = target.trajectory.nodeCount();
       {
@@ -137,7 +149,7 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
         std::fprintf(stderr, "warning: %d forward steps did not reach %g\n", forward.unconvergedSteps, forwardTolerance);
 
       Eigen::VectorXd directGradient;
-      double directSeconds = 0.0;
+      double directSeconds = 0.0, directCpuSeconds = 0.0;
       for (std::size_t m = 0; m < methods.size(); ++m) {
         const Method& method = methods[m];
         std::fprintf(stderr, "backward: %s %dx%d %s\n", c.name.c_str(), n, n, method.label.c_str());
@@ -146,9 +158,11 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
         settings.tolerance = method.tolerance;
         settings.fallback = "direct";
         const auto start = std::chrono::steady_clock::now();
+        const double cpuStart = processCpuSeconds();
         const GradientResult g = backpropagate(scene, forward.trajectory, loss, parameters, settings);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (m == 0) directGradient = g.gradient, directSeconds = seconds;
+        const double cpuSeconds = processCpuSeconds() - cpuStart;
+        if (m == 0) directGradient = g.gradient, directSeconds = seconds, directCpuSeconds = cpuSeconds;
         const double relError = (g.gradient - directGradient).norm() / std::max(directGradient.norm(), 1e-300);
         const AdjointSolverStats& s = g.solver;
         const double perStep = 1e3 * seconds / steps;
@@ -162,7 +176,9 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
                    formatNumber(100.0 * s.fallbacks / std::max(1, s.solves), 3),
                    formatNumber(directSeconds / seconds, 3), formatNumber(relError, 3),
                    formatNumber(1e3 * forwardSeconds / steps), std::to_string(forward.unconvergedSteps),
-                   formatNumber(peakRssMegabytes())});
+                   formatNumber(peakRssMegabytes()), formatNumber(1e3 * g.deltaPSeconds / steps),
+                   formatNumber(1e3 * g.deltaRSeconds / steps), formatNumber(1e3 * s.fallbackSeconds / steps),
+                   formatNumber(1e3 * cpuSeconds / steps), formatNumber(directCpuSeconds / cpuSeconds, 3)});
         plot[firstSeries + m].x.push_back(n);
         plot[firstSeries + m].y.push_back(perStep);
       }
@@ -184,7 +200,13 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
       "forward run per scene and resolution (tolerance 1e-8 m/s^2; Newton-PCG for Wind, the PD contact solve for "
       "Slope) is recorded once; forward_unconverged counts its steps that stopped at the iteration cap. solve = "
       "time in the per-step adjoint linear solve (AdjointSolver, including any fallback), rest = the other "
-      "backward work (Delta P, the contact Jacobians, parameter partials). fail % = steps where the iterative "
+      "backward work (Delta P, the contact Jacobians, parameter partials). Split of those: delta_p = preparing "
+      "Delta P (the projections' derivatives at x_{n+1}; its products are inside the solve, which is "
+      "matrix-free), delta_r = preparing the contact part Delta R (law Jacobians, frames, coupling LU), both "
+      "part of rest; fallback = the direct LU after a failed iterative solve, part of solve. All these are "
+      "wall-clock; cpu_ms_per_step is the process's CPU time for the same backward pass (one thread: the "
+      "time it actually computed, without waiting for a shared core) and cpu_speedup_vs_direct its ratio "
+      "to the direct row's. The target run (data only) uses the scene's own solver settings. fail % = steps where the iterative "
       "method did not converge within its cap (200 iterations) and fell back to the direct LU. "
       "gradient_rel_error = |g - g_direct| / |g_direct|. peak_rss_mb = the process's peak resident set "
       "(getrusage maxrss) after that row: cumulative over all rows so far.";

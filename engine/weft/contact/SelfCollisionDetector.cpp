@@ -3,7 +3,11 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
 #include <numeric>
+#include <queue>
 
 namespace weft {
 
@@ -20,7 +24,7 @@ SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothMode
       nodes_.push_back(i);
     }
   }
-  // One-ring neighbours (nodes sharing a triangle), as sorted CSR lists.
+  // One-ring neighbours (nodes sharing a triangle), as sorted CSR lists: the rest-edge graph.
   std::vector<std::pair<int, int>> links;
   links.reserve(6 * model.rest.triangleCount());
   for (int t = 0; t < model.rest.triangleCount(); ++t)
@@ -29,19 +33,57 @@ SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothMode
         if (k != l) links.emplace_back(model.rest.triangles(t, k), model.rest.triangles(t, l));
   std::sort(links.begin(), links.end());
   links.erase(std::unique(links.begin(), links.end()), links.end());
-  neighbourStart_.assign(m + 1, 0);
-  for (const auto& l : links) ++neighbourStart_[l.first + 1];
-  std::partial_sum(neighbourStart_.begin(), neighbourStart_.end(), neighbourStart_.begin());
-  neighbours_.resize(links.size());
-  for (std::size_t k = 0; k < links.size(); ++k) neighbours_[k] = links[k].second;
+  std::vector<int> ringStart(m + 1, 0), ring(links.size());
+  for (const auto& l : links) ++ringStart[l.first + 1];
+  std::partial_sum(ringStart.begin(), ringStart.end(), ringStart.begin());
+  for (std::size_t k = 0; k < links.size(); ++k) ring[k] = links[k].second;
+
+  // Excluded partners of each colliding node: its one ring, and the nodes within the reach at rest
+  // that a path of rest edges no longer than kPathFactor times the reach joins to it (Dijkstra
+  // bounded by that length). Edges never leave a cloth, so nodes of other cloths are never found.
+  // Within one cloth the radius, hence the reach, is the same for every node, and path lengths
+  // are symmetric, so the lists are symmetric.
+  const auto restPoint = [&](int i) { return Vec3(model.rest.vertices.row(i)); };
+  std::vector<std::vector<int>> excluded(m);
+  std::vector<double> pathLength(m, std::numeric_limits<double>::infinity());
+  std::vector<int> touched;
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int i = 0; i < m; ++i) {
+    std::vector<int>& list = excluded[i];
+    list.assign(ring.begin() + ringStart[i], ring.begin() + ringStart[i + 1]);
+    if (distance_[i] <= 0.0) continue;
+    const double reach = (1.0 + kMarginFraction) * distance_[i];
+    const double longest = kPathFactor * reach;
+    pathLength[i] = 0.0;
+    touched.assign(1, i);
+    queue.emplace(0.0, i);
+    while (!queue.empty()) {
+      const auto [length, j] = queue.top();
+      queue.pop();
+      if (length > pathLength[j]) continue;
+      if (j != i && (restPoint(j) - restPoint(i)).norm() < reach) list.push_back(j);
+      for (int k = ringStart[j]; k < ringStart[j + 1]; ++k) {
+        const int next = ring[k];
+        const double through = length + (restPoint(next) - restPoint(j)).norm();
+        if (through > longest || through >= pathLength[next]) continue;
+        if (std::isinf(pathLength[next])) touched.push_back(next);
+        pathLength[next] = through;
+        queue.emplace(through, next);
+      }
+    }
+    for (int j : touched) pathLength[j] = std::numeric_limits<double>::infinity();
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  excludedStart_.assign(m + 1, 0);
+  for (int i = 0; i < m; ++i) excludedStart_[i + 1] = excludedStart_[i] + static_cast<int>(excluded[i].size());
+  excluded_.reserve(excludedStart_[m]);
+  for (const std::vector<int>& list : excluded) excluded_.insert(excluded_.end(), list.begin(), list.end());
 }
 
 bool SelfCollisionDetector::excluded(int a, int b) const {
-  if (std::binary_search(neighbours_.begin() + neighbourStart_[a],
-                         neighbours_.begin() + neighbourStart_[a + 1], b))
-    return true;
-  const double rest = (model_.rest.vertices.row(a) - model_.rest.vertices.row(b)).norm();
-  return rest < (1.0 + kMarginFraction) * collisionDistance(a, b);
+  return std::binary_search(excluded_.begin() + excludedStart_[a], excluded_.begin() + excludedStart_[a + 1], b);
 }
 
 void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,

@@ -3,8 +3,13 @@
 // cloths ask for it. Two nodes of self-colliding cloths collide when their predicted paths over
 // the step come closer than the collision distance (plus a margin): the minimum over
 // tau in [0, 1] of |dx + tau dd| for the relative position dx and relative displacement dd.
-// Pairs that share a triangle are never tested, nor pairs closer than the collision distance in
-// the rest mesh (they would start in contact). The frame comes from the pair's relative
+// Pairs that share a triangle are never tested, nor mesh neighbours that start within the
+// collision distance (plus the margin) in the rest mesh: nodes of the same cloth joined by a path
+// of rest edges no longer than kPathFactor times that distance. Such nodes are held apart by the
+// cloth's own stretching; a contact between them would fight it from the first step. Nodes of
+// different cloths, and nodes of one cloth far apart along its mesh (two layers of a cloth laid
+// folded), are never excluded however close they start: they are separate layers, and excluding
+// them by their rest distance alone would let them pass through each other. The frame comes from the pair's relative
 // position at the start of the step, n = (x_a - x_b)/|x_a - x_b|, a < b (ContactConstraint.h).
 //
 // Broad phase: each node's swept box in a SpatialHashGrid, so the cost grows linearly with
@@ -30,16 +35,22 @@ class SelfCollisionDetector {
   // The scene's `radius` is the collision distance: node pairs are kept at least this far apart.
   double collisionDistance(int a, int b) const { return 0.5 * (distance_[a] + distance_[b]); }
   bool collides(int node) const { return distance_[node] > 0.0; }
-  bool excluded(int a, int b) const;  // shares a triangle, or starts within the collision distance
+  // Shares a triangle, or is a mesh neighbour (same cloth, rest path <= kPathFactor times the
+  // reach) that starts within the reach (1 + kMarginFraction) * collisionDistance(a, b).
+  bool excluded(int a, int b) const;
   // Detection margin: pairs are taken into the contact set this much before they touch.
   static constexpr double kMarginFraction = 0.5;  // of the collision distance
+  // How much longer than their straight rest distance a path of rest edges between two mesh
+  // neighbours may be: 2 covers the detours of a regular grid (at most sqrt 2, across the
+  // diagonals its triangles do not have) and of reasonably shaped triangles.
+  static constexpr double kPathFactor = 2.0;
   int lastCandidateCount() const { return lastCandidates_; }
 
  private:
   const ClothModel& model_;
   std::vector<double> distance_;   // per node: the cloth's radius, 0 for cloths without self-collision
   std::vector<double> friction_;   // per node: the cloth's self-collision friction
-  std::vector<int> neighbourStart_, neighbours_;  // nodes sharing a triangle (CSR, sorted)
+  std::vector<int> excludedStart_, excluded_;     // per node, the partners excluded() names (CSR, sorted)
   std::vector<int> nodes_;                        // the nodes that collide
   SpatialHashGrid grid_;
   std::vector<Vec3> lower_, upper_;

@@ -36,7 +36,9 @@ void AdjointSolver::solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatr
     if (settings_.fallback == "direct") {
       if (!direct_) direct_ = std::make_unique<DirectLuSolver>();
       ++stats_.fallbacks;
+      const auto fallbackStart = std::chrono::steady_clock::now();
       r = direct_->solve(system, rhs, z);
+      stats_.fallbackSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - fallbackStart).count();
     } else {
       char what[160];
       std::snprintf(what, sizeof what,

@@ -25,6 +25,7 @@ struct AdjointSolverStats {
   int fallbacks = 0;          // steps solved again by the direct LU
   double maxResidual = 0.0;   // largest relative residual accepted
   double seconds = 0.0;
+  double fallbackSeconds = 0.0;  // of `seconds`, spent in the direct fallback after a failed solve
 };
 
 class AdjointSolver {

@@ -39,8 +39,12 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
     const double t1 = trajectory.steps[n].time;
     rhs = dLdx[n + 1] + dLdvNext / h;
     const bool touching = contact && !trajectory.contacts[n].points.empty();
+    const auto prepareStart = std::chrono::steady_clock::now();
     if (touching) contact->prepare(trajectory.contacts[n], x0, t1 - h, t1, n + 1);
+    const auto contactDone = std::chrono::steady_clock::now();
     system.prepare(x1, touching ? contact.get() : nullptr);
+    result.deltaRSeconds += std::chrono::duration<double>(contactDone - prepareStart).count();
+    result.deltaPSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - contactDone).count();
     solver.solve(system, rhs, z, n + 1);
     // wbar = R'^T z: what the contact impulses pass on of z (zero without contact).
     if (system.hasContact()) contact->applyTransposed(z, wbar, y);
