@@ -4,6 +4,7 @@
 
 #include <weft/physics/BendingConstraint.h>
 #include <weft/physics/StretchConstraint.h>
+#include <weft/physics/WindForce.h>
 
 #include <cmath>
 
@@ -45,7 +46,7 @@ void ParameterPartials::accumulate(const NodeMatrix& x0, const NodeMatrix& v0, c
       phi = 0.5 * (std::sin(arg) + 1.0);
       dphi = 0.5 * std::cos(arg);  // d phi / d(argument)
     }
-    areaZ = (z.transpose() * area);  // sum_i area_i z_i
+    areaZ = z.transpose() * windCoefficients(w, area);  // sum_i k_i z_i (k: area or falloff)
     areaZDotD = areaZ.dot(w.direction);
   }
   for (std::size_t k = 0; k < parameters_.size(); ++k) {

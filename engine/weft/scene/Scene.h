@@ -114,6 +114,13 @@ struct Wind {
   // DiffCloth's model: f = strength * area * 0.5 * (sin(2 pi frequency t + phase) + 1) * direction
   // ("sinusoid"), or without the time factor ("constant").
   bool constant = false;
+  // The Flag's wind (DiffCloth Appendix B.4, Eq. 35: f_ext = 0.5 (sin(w t + phi) + 1) k d^T, k_i a
+  // node's inverse distance to the flag centre at the first time step): with a falloff centre c,
+  // node i's coefficient is k_i = 1 / |X_i - c| (1/m, X_i its initial position) in place of its
+  // lumped area, and strength is in N m. `coefficients` holds k in scene order (the loader fills
+  // it when falloffCenter is set; empty otherwise).
+  std::optional<Vec3> falloffCenter;
+  Eigen::VectorXd coefficients;
 };
 
 struct Task {

@@ -252,8 +252,8 @@ Obstacle readObstacle(const JsonReader& r, const std::string& directory) {
   return o;
 }
 
-Wind readWind(const JsonReader& r) {
-  r.allowOnly({"direction", "strength", "frequency", "phase", "model"});
+Wind readWind(const JsonReader& r, const std::vector<Cloth>& cloths) {
+  r.allowOnly({"direction", "strength", "frequency", "phase", "model", "falloff"});
   Wind w;
   w.direction = r.at("direction").vec3();
   if (!(w.direction.norm() > 0.0)) r.at("direction").fail("must be a nonzero vector");
@@ -261,6 +261,24 @@ Wind readWind(const JsonReader& r) {
   w.frequency = r.number("frequency", 0.0, 0.0, 1e6);
   w.phase = r.number("phase", 0.0, -1e6, 1e6);
   if (auto m = r.optional("model")) w.constant = m->choice({"sinusoid", "constant"}) == "constant";
+  if (auto f = r.optional("falloff")) {
+    // Eq. 35's k: each node's inverse distance to the centre at the initial state (the rest mesh).
+    f->object().allowOnly({"center"});
+    w.falloffCenter = f->at("center").vec3();
+    int count = 0;
+    for (const Cloth& c : cloths) count += c.mesh.vertexCount();
+    w.coefficients.resize(count);
+    int node = 0;
+    for (const Cloth& c : cloths)
+      for (int i = 0; i < c.mesh.vertexCount(); ++i, ++node) {
+        const double d = (c.mesh.vertices.row(i).transpose() - *w.falloffCenter).norm();
+        // A node at the centre would receive an unbounded force.
+        if (!(d >= 1e-6))
+          f->at("center").fail("vertex " + std::to_string(node) +
+                               " lies at the centre (closer than 1e-6 m): its inverse distance is unbounded");
+        w.coefficients[node] = 1.0 / d;
+      }
+  }
   return w;
 }
 
@@ -457,7 +475,7 @@ Scene parseScene(const nlohmann::json& document, const std::string& file, const 
   if (auto obs = root.optional("obstacles"))
     for (std::size_t i = 0; i < obs->size(); ++i)
       scene.obstacles.push_back(readObstacle((*obs)[i].object(), directory));
-  if (auto w = root.optional("wind")) scene.wind = readWind(w->object());
+  if (auto w = root.optional("wind")) scene.wind = readWind(w->object(), scene.cloths);
   if (auto t = root.optional("task"))
     scene.task = readTask(t->object(), document, directory, scene.time.steps, scene.vertexCount());
   return scene;
