@@ -41,8 +41,8 @@ namespace weft::cli {
 namespace {
 
 // The tasks, one line each: the name --tasks takes, the scene below assets/, and the budget of
-// simulated steps per run (the same for every method), normally and under --quick. Contact tasks
-// (Sphere mu, T-shirt, Hat, Sock) join this list once gradients through contact land.
+// simulated steps per run (the same for every method), normally and under --quick. The T-shirt
+// task is not written yet.
 struct ApplicationTask {
   const char* name;
   const char* scene;
@@ -59,6 +59,11 @@ const ApplicationTask kTasks[] = {
     // 24800 and 10000); quick: 6 and 6 gradient evaluations.
     {"flag", "scenes/flag.json", 7200, 1200},
     {"dress", "scenes/dress.json", 6000, 1500},
+    // Sec. 6.1-6.2 (Table 3: L-BFGS-B converged in 2450, 11200 and 17600 steps). The Sock's forward
+    // contact solve does not converge once the sock reaches the foot (README, "Tasks").
+    {"sphere_sysid", "scenes/sphere_sysid.json", 7000, 1400},
+    {"hat", "scenes/hat.json", 12000, 1600},
+    {"sock", "scenes/sock.json", 17600, 1600},
 };
 const char* const kQuickTask = "napkin_4x4";
 

@@ -1,0 +1,91 @@
+#pragma once
+// Shared checks of the paper's task scenes (Sphere, Hat, Sock; DiffCloth Sec. 6): loading an
+// asset scene with `--set`-style overrides, the contact set of a tightly converged run, and the
+// adjoint-vs-finite-difference agreement test used through contact.
+//
+// Why the contact set: the loss is a smooth function of the parameters only while every contact
+// stays in its Signorini-Coulomb branch (DiffCloth Sec. 5.1): a node that lands, takes off, or
+// switches between stick and slip between the two finite-difference runs makes a jump or a kink
+// that no derivative describes. The gradient checks therefore run at reduced sizes where the
+// contact set is the same at theta - d, theta and theta + d, and assert that it is.
+
+#include <weft/diff/ForwardPass.h>
+#include <weft/diff/GradientCheck.h>
+#include <weft/scene/SceneLoader.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace weft::test {
+
+inline std::string assetScene(const std::string& name) {
+  return std::string(WEFT_ASSET_DIR) + "/scenes/" + name + ".json";
+}
+
+// The asset scene `name` with `overrides` applied exactly as `weft ... --set PATH=VALUE` does.
+inline Scene loadAssetScene(const std::string& name,
+                            const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
+  std::vector<SceneOverride> list;
+  for (const auto& [path, value] : overrides) list.push_back({path, value});
+  return loadScene(assetScene(name), list);
+}
+
+// Every contact of every step of the run (as GradientCheck runs it: Newton-PCG to 1e-8 m/s^2):
+// (step, node, obstacle or -1, partner or -1, branch).
+using ContactKey = std::tuple<int, int, int, int, int>;
+inline std::vector<ContactKey> contactSet(const Scene& scene, int* active = nullptr) {
+  const ForwardPass pass = runForwardPass(withTightForwardSolver(scene, 1e-8));
+  std::vector<ContactKey> keys;
+  int stickOrSlip = 0;
+  for (std::size_t n = 0; n < pass.trajectory.contacts.size(); ++n)
+    for (const ContactPoint& p : pass.trajectory.contacts[n].points) {
+      keys.emplace_back(static_cast<int>(n), p.node, p.obstacle, p.partner, static_cast<int>(p.branch));
+      if (p.branch == ContactBranch::Stick || p.branch == ContactBranch::Slip) ++stickOrSlip;
+    }
+  std::sort(keys.begin(), keys.end());
+  if (active) *active = stickOrSlip;
+  return keys;
+}
+
+// The contact set is the same at theta +- d for each of `paths` (d as GradientCheck takes it:
+// eps |theta|, or eps when theta = 0), i.e. the finite differences see no contact event.
+inline void expectContactSetUnchanged(const Scene& scene, const std::vector<std::string>& paths,
+                                      double eps) {
+  const std::vector<ContactKey> base = contactSet(scene);
+  const ParameterSet parameters = ParameterSet::fromPaths(scene, paths);
+  const Eigen::VectorXd values = parameters.values(scene);
+  for (int i = 0; i < parameters.size(); ++i) {
+    const double d = values[i] != 0.0 ? eps * std::abs(values[i]) : eps;
+    for (double sign : {-1.0, 1.0}) {
+      Eigen::VectorXd moved = values;
+      moved[i] += sign * d;
+      EXPECT_TRUE(contactSet(parameters.withValues(scene, moved)) == base)
+          << paths[i] << (sign > 0 ? " + d" : " - d") << ": the contact set changes";
+    }
+  }
+}
+
+// |adjoint - fd| <= relative max(|adjoint|, |fd|) + floor max_k |adjoint_k| for every component:
+// a relative error below `relative` on every component that is not negligible against the
+// gradient's largest (those carry the forward tolerance's noise in their finite differences).
+// Every forward run converged; the largest component is nonzero.
+inline void expectGradientAgreement(const GradientCheckReport& report, double relative, double floor) {
+  double largest = 0.0;
+  for (const GradientCheckEntry& e : report.entries) largest = std::max(largest, std::abs(e.adjoint));
+  ASSERT_GT(largest, 0.0);
+  EXPECT_EQ(report.unconvergedSteps, 0);
+  for (const GradientCheckEntry& e : report.entries) {
+    SCOPED_TRACE(e.param);
+    const double allowed = relative * std::max(std::abs(e.adjoint), std::abs(e.finiteDifference)) + floor * largest;
+    EXPECT_LE(std::abs(e.adjoint - e.finiteDifference), allowed)
+        << "adjoint " << e.adjoint << " fd " << e.finiteDifference << " (largest component " << largest << ")";
+  }
+}
+
+}  // namespace weft::test
