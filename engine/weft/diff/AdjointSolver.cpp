@@ -6,6 +6,7 @@
 #include <weft/diff/FixedPointSolver.h>
 #include <weft/diff/GmresSolver.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -15,7 +16,12 @@ std::unique_ptr<AdjointLinearSolver> makeAdjointLinearSolver(const BackwardSetti
   if (settings.method == "fixed_point")
     return std::make_unique<FixedPointSolver>(settings.tolerance, settings.maxIterations);
   if (settings.method == "direct") return std::make_unique<DirectLuSolver>();
-  return std::make_unique<GmresSolver>(settings.tolerance, settings.maxIterations);
+  // No restart below 200 iterations: on stretched cloth GMRES preconditioned by P needs 100-200
+  // iterations per step at 1e-6, and restarting at 50 loses the Krylov space it needs (Wind
+  // 24^2: 43.5 % fallbacks with restarts at 50, 4 % without; docs/benchmarks.md). The basis
+  // costs 2 x 200 x 3m doubles (23 MB at 48^2).
+  return std::make_unique<GmresSolver>(settings.tolerance, settings.maxIterations,
+                                       std::min(settings.maxIterations, 200));
 }
 
 AdjointSolver::AdjointSolver(const BackwardSettings& settings)
