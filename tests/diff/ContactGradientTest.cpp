@@ -76,19 +76,6 @@ BranchCounts branchesOf(const Scene& scene) {
   return counts;
 }
 
-void expectAgreement(const GradientCheckReport& report, double relative = 1e-4, double floor = 1e-6) {
-  double largest = 0.0;
-  for (const GradientCheckEntry& e : report.entries) largest = std::max(largest, std::abs(e.adjoint));
-  ASSERT_GT(largest, 0.0);
-  EXPECT_EQ(report.unconvergedSteps, 0);
-  for (const GradientCheckEntry& e : report.entries) {
-    SCOPED_TRACE(e.param);
-    const double allowed = relative * std::max(std::abs(e.adjoint), std::abs(e.finiteDifference)) + floor * largest;
-    EXPECT_LE(std::abs(e.adjoint - e.finiteDifference), allowed)
-        << "adjoint " << e.adjoint << " fd " << e.finiteDifference << " (largest component " << largest << ")";
-  }
-}
-
 GradientCheckOptions options(const char* method = nullptr) {
   GradientCheckOptions o;
   o.eps = 1e-3;  // above the forward tolerance's noise, below any contact-set change
@@ -106,7 +93,7 @@ TEST(ContactGradient, RibbonSlidingDownAnInclineSlipBranch) {
   EXPECT_EQ(branches.stick, 0);
   EXPECT_GT(branches.slip, 30 * 15);  // nearly every node slips on every step
   const GradientCheckReport report = checkGradient(scene, ParameterSet::fromTask(scene), options());
-  expectAgreement(report);
+  test::expectGradientAgreement(report);
   EXPECT_GT(std::abs(report.entries[0].adjoint), 0.1);  // friction decides the motion
 }
 
@@ -152,7 +139,7 @@ TEST(ContactGradient, ClothRestingOnASphereStickBranchWithCurvedFrames) {
   // same comparison agrees to 1e-7 on most components (`weft gradcheck` with
   // --forward-tolerance 1e-11, 40 s: too slow for the suite), so the bound here is 1e-3, and the
   // friction derivative (zero: nothing slips) is compared to 1e-5 of the largest component.
-  expectAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()), 1e-3, 1e-5);
+  test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()), 1e-3, 1e-5);
 }
 
 TEST(ContactGradient, ClothSlidingOverASphere) {
@@ -164,7 +151,7 @@ TEST(ContactGradient, ClothSlidingOverASphere) {
   const BranchCounts branches = branchesOf(scene);
   EXPECT_EQ(branches.stick, 0);
   EXPECT_GT(branches.slip, 3 * 15);
-  expectAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()));
+  test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()));
 }
 
 TEST(ContactGradient, NodesTouchingTwoObstaclesCoupleTheirContacts) {
@@ -188,7 +175,7 @@ TEST(ContactGradient, NodesTouchingTwoObstaclesCoupleTheirContacts) {
   EXPECT_GE(doubled, 3);
   for (const char* method : {"gmres", "direct"}) {
     SCOPED_TRACE(method);
-    expectAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options(method)));
+    test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options(method)));
   }
 }
 
@@ -209,7 +196,7 @@ TEST(ContactGradient, NewtonForwardStickBranchAgreesToTheTightTolerance) {
   GradientCheckOptions o = options();
   o.forwardTolerance = 1e-11;
   o.eps = 1e-4;
-  expectAgreement(checkGradient(scene, ParameterSet::fromTask(scene), o), 1e-4, 1e-6);
+  test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), o), 1e-4, 1e-6);
 }
 
 TEST(ContactGradient, NewtonForwardSlipAndCoupledContacts) {
@@ -225,7 +212,7 @@ TEST(ContactGradient, NewtonForwardSlipAndCoupledContacts) {
                : withTask(dir, doc, {{"obstacles.0.friction", 0.25}, {"cloths.0.material.stretch", 120.0}},
                           {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.material.density",
                            "cloths.0.material.stretch"});
-    expectAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()));
+    test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()));
   }
 }
 

@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace weft::test {
 
 nlohmann::json windClothScene(int quads, int steps) {
@@ -67,6 +70,19 @@ void expectAdjointMatchesFiniteDifferences(const Scene& scene) {
     SCOPED_TRACE(e.param);
     EXPECT_NE(e.adjoint, 0.0);
     EXPECT_LT(e.relativeError, 1e-4) << "adjoint " << e.adjoint << " fd " << e.finiteDifference;
+  }
+}
+
+void expectGradientAgreement(const GradientCheckReport& report, double relative, double floor) {
+  double largest = 0.0;
+  for (const GradientCheckEntry& e : report.entries) largest = std::max(largest, std::abs(e.adjoint));
+  ASSERT_GT(largest, 0.0);
+  EXPECT_EQ(report.unconvergedSteps, 0);
+  for (const GradientCheckEntry& e : report.entries) {
+    SCOPED_TRACE(e.param);
+    const double allowed = relative * std::max(std::abs(e.adjoint), std::abs(e.finiteDifference)) + floor * largest;
+    EXPECT_LE(std::abs(e.adjoint - e.finiteDifference), allowed)
+        << "adjoint " << e.adjoint << " fd " << e.finiteDifference << " (largest component " << largest << ")";
   }
 }
 

@@ -4,6 +4,7 @@
 // simulated from the same scene with other parameter values.
 
 #include <support/TempDir.h>
+#include <weft/diff/GradientCheck.h>
 #include <weft/scene/Scene.h>
 
 #include <nlohmann/json.hpp>
@@ -46,5 +47,10 @@ nlohmann::json inclineScene();
 // differences for the task's parameters: every component nonzero and within 1e-4 relative, the
 // loss positive, every forward step converged.
 void expectAdjointMatchesFiniteDifferences(const Scene& scene);
+
+// A checked gradient: every component within `relative` of its finite difference plus `floor`
+// times the largest component (components negligible against it carry the forward tolerance's
+// noise in their finite differences); every forward run converged; the largest is nonzero.
+void expectGradientAgreement(const GradientCheckReport& report, double relative = 1e-4, double floor = 1e-6);
 
 }  // namespace weft::test

@@ -1,7 +1,7 @@
 #pragma once
 // Shared checks of the paper's task scenes (Sphere, Hat, Sock; DiffCloth Sec. 6): loading an
 // asset scene with `--set`-style overrides, the contact set of a tightly converged run, and the
-// adjoint-vs-finite-difference agreement test used through contact.
+// adjoint-vs-finite-difference agreement (expectGradientAgreement, DiffTestSupport.h).
 //
 // Why the contact set: the loss is a smooth function of the parameters only while every contact
 // stays in its Signorini-Coulomb branch (DiffCloth Sec. 5.1): a node that lands, takes off, or
@@ -9,6 +9,7 @@
 // that no derivative describes. The gradient checks therefore run at reduced sizes where the
 // contact set is the same at theta - d, theta and theta + d, and assert that it is.
 
+#include <diff/DiffTestSupport.h>
 #include <weft/diff/ForwardPass.h>
 #include <weft/diff/GradientCheck.h>
 #include <weft/scene/SceneLoader.h>
@@ -68,23 +69,6 @@ inline void expectContactSetUnchanged(const Scene& scene, const std::vector<std:
       EXPECT_TRUE(contactSet(parameters.withValues(scene, moved)) == base)
           << paths[i] << (sign > 0 ? " + d" : " - d") << ": the contact set changes";
     }
-  }
-}
-
-// |adjoint - fd| <= relative max(|adjoint|, |fd|) + floor max_k |adjoint_k| for every component:
-// a relative error below `relative` on every component that is not negligible against the
-// gradient's largest (those carry the forward tolerance's noise in their finite differences).
-// Every forward run converged; the largest component is nonzero.
-inline void expectGradientAgreement(const GradientCheckReport& report, double relative, double floor) {
-  double largest = 0.0;
-  for (const GradientCheckEntry& e : report.entries) largest = std::max(largest, std::abs(e.adjoint));
-  ASSERT_GT(largest, 0.0);
-  EXPECT_EQ(report.unconvergedSteps, 0);
-  for (const GradientCheckEntry& e : report.entries) {
-    SCOPED_TRACE(e.param);
-    const double allowed = relative * std::max(std::abs(e.adjoint), std::abs(e.finiteDifference)) + floor * largest;
-    EXPECT_LE(std::abs(e.adjoint - e.finiteDifference), allowed)
-        << "adjoint " << e.adjoint << " fd " << e.finiteDifference << " (largest component " << largest << ")";
   }
 }
 

@@ -410,30 +410,34 @@ void Simulator::detectContacts(double t0, double t1) {
   });
 }
 
-void Simulator::contactGlobalStep() {
-  // Velocity-form global step with contact (DiffCloth Eqs. 10-12; notes Sec. 2.1). In positions,
-  // P v = b_hat + r with b_hat = (b - P x_n)/h is P x = b + h r.
+void Simulator::assembleContactRhs(const NodeMatrix& x, NodeMatrix& systemTimesX) {
+  // rhs_ = b(x) + h r(f(x)) (DiffCloth Eqs. 10-12; notes Sec. 2.1) from the last local step's
+  // projections, and P x. In positions, P v = b_hat + r is P x = b + h r.
   timed(solverModule_, [&] {
     rhs_ = massY_;
     for (std::size_t c = 0; c < constraints_.size(); ++c)
       if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
+    multiplySystem(x, systemTimesX);
   });
-  if (!contact_->empty()) {
-    timed(solverModule_, [&] {
-      // Free momentum f = b_hat - (P - M) v^k = M (x^k - x_n)/h + (b - P x^k)/h, which equals
-      // M v_n + h (f_ext + f_int(x^k)): the momentum each node would have without contact,
-      // predicted with the diagonal M as in Eq. 12.
-      multiplySystem(iterate_, freeMomentum_);
-      freeMomentum_ = (rhs_ - freeMomentum_ + model_.mass.asDiagonal() * (iterate_ - x_)) / h_;
-    });
-    timed(contactSolveModule_, [&] {
-      // Sweeps stop when no impulse changes by more than a tenth of what the PD tolerance allows
-      // over one step (as a velocity); see ContactSolver.h.
-      stats_.contactSweeps += contact_->solve(freeMomentum_, 0.1 * scene_.solver.pdTolerance * h_);
-      stats_.contactSweepChange = contact_->lastSweepChange();
-      contact_->addImpulses(h_, rhs_);
-    });
-  }
+  if (contact_->empty()) return;
+  timed(solverModule_, [&] {
+    // Free momentum f = b_hat - (P - M) v^k = M (x^k - x_n)/h + (b - P x^k)/h, which equals
+    // M v_n + h (f_ext + f_int(x^k)): the momentum each node would have without contact,
+    // predicted with the diagonal M as in Eq. 12.
+    freeMomentum_ = (rhs_ - systemTimesX + model_.mass.asDiagonal() * (x - x_)) / h_;
+  });
+  timed(contactSolveModule_, [&] {
+    // Sweeps stop when no impulse changes by more than a tenth of what the PD tolerance allows
+    // over one step (as a velocity); see ContactSolver.h.
+    stats_.contactSweeps += contact_->solve(freeMomentum_, 0.1 * scene_.solver.pdTolerance * h_);
+    stats_.contactSweepChange = contact_->lastSweepChange();
+    contact_->addImpulses(h_, rhs_);
+  });
+}
+
+void Simulator::contactGlobalStep() {
+  // Velocity-form global step with contact (DiffCloth Eqs. 10-12): x = P^-1 (b + h r).
+  assembleContactRhs(iterate_, fullResidual_);  // (P x in fullResidual_, scratch on this path)
   timed(solverModule_, [&] {
     global_ = rhs_;
     cholesky_.solveInPlace(global_);
@@ -486,19 +490,7 @@ void Simulator::solveWithContact() {
 
 double Simulator::contactResidual(const NodeMatrix& x, NodeMatrix& residual) {
   localStep(x);
-  timed(solverModule_, [&] {
-    rhs_ = massY_;
-    for (std::size_t c = 0; c < constraints_.size(); ++c)
-      if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
-    multiplySystem(x, residual);
-    // The free momentum of Eq. 12 at x (see contactGlobalStep).
-    freeMomentum_ = (rhs_ - residual + model_.mass.asDiagonal() * (x - x_)) / h_;
-  });
-  timed(contactSolveModule_, [&] {
-    stats_.contactSweeps += contact_->solve(freeMomentum_, 0.1 * scene_.solver.pdTolerance * h_);
-    stats_.contactSweepChange = contact_->lastSweepChange();
-    contact_->addImpulses(h_, rhs_);
-  });
+  assembleContactRhs(x, residual);
   double measure = 0.0;
   timed(solverModule_, [&] {
     residual -= rhs_;

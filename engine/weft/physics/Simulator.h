@@ -89,6 +89,8 @@ class Simulator {
   void solveNewton() { iterateNewton(); }
   void solveNewtonWithContact();
   void detectContacts(double t0, double t1);
+  // rhs_ = b(x) + h r(f(x)) with the contact solve at x, and P x into systemTimesX.
+  void assembleContactRhs(const NodeMatrix& x, NodeMatrix& systemTimesX);
   void contactGlobalStep();
   void solveWithContact();
   // G(x) = P x - b(x) - h r(f(x)) into `residual` (the contact impulses r from the per-node law
