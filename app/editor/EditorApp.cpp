@@ -480,7 +480,14 @@ void EditorApp::effectsPanel() {
   if (doc.find("wind")) {
     static const double x[3] = {1.0, 0.0, 0.0};
     vectorField("direction", "wind.direction", x);
-    numberField("strength (N/m^2)", "wind.strength", 0.0);
+    // With a falloff centre (DiffCloth Eq. 35) the per-vertex factor is an inverse distance (1/m)
+    // instead of an area (m^2), so strength is in N m instead of a pressure.
+    const bool falloff = doc.find("wind.falloff") != nullptr;
+    numberField(falloff ? "strength (N m, falloff)" : "strength (N/m^2)", "wind.strength", 0.0);
+    if (falloff) {
+      static const double origin[3] = {0.0, 0.0, 0.0};
+      vectorField("falloff centre (m)", "wind.falloff.center", origin);
+    }
     numberField("frequency (Hz)", "wind.frequency", 0.0);
     numberField("phase (rad)", "wind.phase", 0.0);
     static const char* models[] = {"sinusoid", "constant"};
