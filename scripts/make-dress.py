@@ -58,6 +58,11 @@ import json
 import math
 import os
 import sys
+import functools
+
+import scenefiles
+
+dump = functools.partial(scenefiles.dump, pack_numbers=True)
 
 SCRIPT = "scripts/make-dress.py"
 PLEATS = 16            # pleats around the skirt: 2 PLEATS vertices a ring
@@ -132,28 +137,6 @@ def write_obj(path, vertices, triangles):
             f.write("v %s %s %s\n" % tuple(fmt(c) for c in v))
         for t in triangles:
             f.write("f %d %d %d\n" % tuple(i + 1 for i in t))
-
-
-def dump(value, indent=0):
-    """JSON with objects one key a line and anything that fits in 100 columns on one line."""
-    flat = json.dumps(value)
-    if not isinstance(value, (dict, list)) or len(flat) + indent <= 100:
-        return flat
-    pad = " " * (indent + 2)
-    if isinstance(value, list) and all(isinstance(v, (int, float)) for v in value):
-        lines, line = [], ""
-        for v in value:  # numbers packed into lines of at most 100 columns
-            item = json.dumps(v)
-            if line and len(pad) + len(line) + len(item) + 2 > 100:
-                lines.append(line + ",")
-                line = ""
-            line += (", " if line else "") + item
-        return "[\n" + "\n".join(pad + l for l in lines + [line]) + "\n" + " " * indent + "]"
-    if isinstance(value, list):
-        items = [pad + dump(v, indent + 2) for v in value]
-        return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
-    items = [pad + json.dumps(k) + ": " + dump(v, indent + 2) for k, v in value.items()]
-    return "{\n" + ",\n".join(items) + "\n" + " " * indent + "}"
 
 
 def scene():

@@ -58,6 +58,11 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import functools
+
+import scenefiles
+
+dump = functools.partial(scenefiles.dump, pack_numbers=True)
 
 SCRIPT = "scripts/make-flag.py"
 QUADS = (26, 19)      # along the flag's length (X), along its height
@@ -98,29 +103,6 @@ BOUNDS = {
     "wind.direction.2": [-1.5, 1.5],
 }
 PARAMETERS = list(START)
-
-
-def dump(value, indent=0):
-    """JSON with objects one key a line and anything that fits in 100 columns on one line;
-    lists of numbers packed into lines."""
-    flat = json.dumps(value)
-    if not isinstance(value, (dict, list)) or len(flat) + indent <= 100:
-        return flat
-    pad = " " * (indent + 2)
-    if isinstance(value, list) and all(isinstance(v, (int, float)) for v in value):
-        lines, line = [], ""
-        for v in value:
-            item = json.dumps(v)
-            if line and len(pad) + len(line) + len(item) + 2 > 100:
-                lines.append(line + ",")
-                line = ""
-            line += (", " if line else "") + item
-        return "[\n" + "\n".join(pad + l for l in lines + [line]) + "\n" + " " * indent + "]"
-    if isinstance(value, list):
-        items = [pad + dump(v, indent + 2) for v in value]
-        return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
-    items = [pad + json.dumps(k) + ": " + dump(v, indent + 2) for k, v in value.items()]
-    return "{\n" + ",\n".join(items) + "\n" + " " * indent + "}"
 
 
 def hidden_overrides():

@@ -77,8 +77,9 @@ files byte for byte. Python 3 standard library only.
 import json
 import math
 import os
-import struct
 import sys
+
+from scenefiles import dump, write_npy
 
 SCRIPT = "scripts/make-garments.py"
 
@@ -227,29 +228,6 @@ def read_obj_vertices(path):
     """The vertices as written (6 decimals): the targets are built from what the loader reads."""
     with open(path) as f:
         return [tuple(float(v) for v in line.split()[1:4]) for line in f if line.startswith("v ")]
-
-
-def write_npy(path, rows):
-    """A float64 [len(rows), 3] .npy (format version 1.0)."""
-    header = "{'descr': '<f8', 'fortran_order': False, 'shape': (%d, 3), }" % len(rows)
-    header += " " * ((64 - (10 + len(header) + 1) % 64) % 64) + "\n"
-    with open(path, "wb") as f:
-        f.write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode("latin1"))
-        for row in rows:
-            f.write(struct.pack("<3d", *row))
-
-
-def dump(value, indent=0):
-    """JSON with objects one key a line and anything that fits in 100 columns on one line."""
-    flat = json.dumps(value)
-    if not isinstance(value, (dict, list)) or len(flat) + indent <= 100:
-        return flat
-    pad = " " * (indent + 2)
-    if isinstance(value, list):
-        items = [pad + dump(v, indent + 2) for v in value]
-        return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
-    items = [pad + json.dumps(k) + ": " + dump(v, indent + 2) for k, v in value.items()]
-    return "{\n" + ",\n".join(items) + "\n" + " " * indent + "}"
 
 
 def nearest_on_ring(ring, angle, count):

@@ -28,8 +28,9 @@ Python 3 standard library only.
 
 import json
 import os
-import struct
 import sys
+
+from scenefiles import dump, write_npy
 
 SCRIPT = "scripts/make-napkins.py"
 SIZES = (4, 5, 7, 10)
@@ -57,29 +58,6 @@ def rest_positions(k):
     q = k - 1
     return [(-0.5 * EXTENT + EXTENT * i / q, HEIGHT, -0.5 * EXTENT + EXTENT * j / q)
             for j in range(k) for i in range(k)]
-
-
-def write_npy(path, rows):
-    """A float64 [len(rows), 3] .npy (format version 1.0)."""
-    header = "{'descr': '<f8', 'fortran_order': False, 'shape': (%d, 3), }" % len(rows)
-    header += " " * ((64 - (10 + len(header) + 1) % 64) % 64) + "\n"
-    with open(path, "wb") as f:
-        f.write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode("latin1"))
-        for row in rows:
-            f.write(struct.pack("<3d", *row))
-
-
-def dump(value, indent=0):
-    """JSON with objects one key a line and anything that fits in 100 columns on one line."""
-    flat = json.dumps(value)
-    if not isinstance(value, (dict, list)) or len(flat) + indent <= 100:
-        return flat
-    pad = " " * (indent + 2)
-    if isinstance(value, list):
-        items = [pad + dump(v, indent + 2) for v in value]
-        return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
-    items = [pad + json.dumps(k) + ": " + dump(v, indent + 2) for k, v in value.items()]
-    return "{\n" + ",\n".join(items) + "\n" + " " * indent + "}"
 
 
 def scene(k):
