@@ -515,7 +515,7 @@ void Simulator::solveContactNewton() {
   // minimises is the convergence test's mass-weighted one. The Newton step is damped by
   // backtracking on that norm. Where even a short step does not reduce it (a branch switch the
   // linearisation keeps missing, as at the rim of a cloth settling on a sphere), the PD
-  // iteration (solveWithContact), which converges from anywhere, finishes the step.
+  // iteration (solveWithContact), which needs no linearisation, finishes the step.
   ContactSolver& contacts = contact_->perNodeSolver();
   const SolverSettings& solver = scene_.solver;
   NodeMatrix& residual = cgResidual_;  // G at iterate_
@@ -587,7 +587,7 @@ void Simulator::solveContactNewton() {
   }
   if (!stats_.converged && failures >= kNewtonFailuresBeforePd && stats_.pdIterations < solver.pdIterations) {
     // Newton stalled (a branch switch its linearisation keeps missing): the PD iteration, which
-    // converges from anywhere, finishes the step from the best iterate.
+    // needs no linearisation, finishes the step from the best iterate.
     solveWithContact();
     return;
   }
