@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <string>
 
 namespace weft::editor {
@@ -43,7 +44,7 @@ bool keyChord(bool ctrl, bool shift, int key) {
 
 // GLFW's key codes for letters are their upper-case ASCII codes; ImGui 1.86 indexes
 // io.KeysDown by the platform's codes.
-constexpr int kKeyN = 'N', kKeyO = 'O', kKeyS = 'S', kKeyQ = 'Q', kKeyF = 'F', kKeyI = 'I';
+constexpr int kKeyN = 'N', kKeyO = 'O', kKeyS = 'S', kKeyQ = 'Q', kKeyF = 'F', kKeyI = 'I', kKeyK = 'K';
 
 }  // namespace
 
@@ -133,12 +134,17 @@ void EditorApp::handleShortcuts() {
   if (keyChord(true, true, ImGui::GetKeyIndex(ImGuiKey_Z)) ||
       keyChord(true, false, ImGui::GetKeyIndex(ImGuiKey_Y)))
     doRedo();
-  const int available = session_.availableFrames();
+  const int available = session_.timelineFrames();
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Space))) session_.playback().toggle();
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_RightArrow))) session_.playback().step(1, available);
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) session_.playback().step(-1, available);
   if (keyChord(false, false, kKeyF))
     session_.frameCamera(float(viewportWidth_) / float(std::max(viewportHeight_, 1)));
+  if (keyChord(false, false, kKeyK) && session_.activeObject().kind == EditorObject::Kind::Handle) {
+    const std::string error = session_.setKey();
+    report(error.empty() ? "key set" : error, !error.empty());
+  }
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)) && !draggingGizmo_) session_.setActiveObject("");
 }
 
 void EditorApp::doOpen(const std::string& file) {
@@ -407,7 +413,10 @@ void EditorApp::clothPanel() {
   for (std::size_t c = 0; c < cloths->size(); ++c) {
     const std::string base = "cloths." + std::to_string(c);
     ImGui::PushID(int(c));
-    if (ImGui::TreeNodeEx("cloth", ImGuiTreeNodeFlags_DefaultOpen, "Cloth %zu", c)) {
+    const bool open = ImGui::TreeNodeEx("cloth", ImGuiTreeNodeFlags_DefaultOpen, "Cloth %zu", c);
+    ImGui::SameLine();
+    placeButton(base);
+    if (open) {
       static const double zero[3] = {0, 0, 0};
       if (const nlohmann::json* file = session_.document().find(base + ".mesh.file")) {
         ImGui::TextDisabled("mesh: %s", file->is_string() ? file->get<std::string>().c_str() : "?");
@@ -446,6 +455,10 @@ void EditorApp::clothPanel() {
           const std::string kind = at.value("kind", std::string("fixed"));
           ImGui::PushID(int(a));
           ImGui::Text("attachment %zu: %s, %zu vertices", a, kind.c_str(), n);
+          if (kind == "handle") {
+            ImGui::SameLine();
+            placeButton(base + ".attachments." + std::to_string(a));
+          }
           ImGui::SameLine();
           if (ImGui::SmallButton("remove"))
             applyEdit(session_.document().removeValue(base + ".attachments." + std::to_string(a)));
@@ -509,6 +522,8 @@ void EditorApp::obstaclePanel() {
     ImGui::PushID(int(i));
     const bool open = ImGui::TreeNodeEx("obstacle", ImGuiTreeNodeFlags_DefaultOpen, "%zu: %s", i, shape.c_str());
     ImGui::SameLine();
+    placeButton(base);
+    ImGui::SameLine();
     bool removed = false;
     if (ImGui::SmallButton("remove")) {
       applyEdit(doc.removeValue(base));
@@ -556,6 +571,20 @@ void EditorApp::obstaclePanel() {
   if (ImGui::SmallButton("mesh...")) importDialog_->open(MeshImportDialog::Kind::Obstacle);
 }
 
+void EditorApp::placeButton(const std::string& path) {
+  // Toggles which object the viewport's gizmo places; the active one's button is orange (one
+  // label for both states keeps the attachment rows inside the panel).
+  const bool active = session_.activeObject().path() == path;
+  ImGui::PushID(("place " + path).c_str());
+  if (active) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.85f, 0.60f, 0.10f, 1.0f));
+  if (ImGui::SmallButton("gizmo")) {
+    const std::string error = session_.setActiveObject(active ? "" : path);
+    if (!error.empty()) report(error, true);
+  }
+  if (active) ImGui::PopStyleColor();
+  ImGui::PopID();
+}
+
 void EditorApp::selectionPanel() {
   const auto& nodes = session_.selection().nodes();
   ImGui::Text("%zu vertices selected", nodes.size());
@@ -571,12 +600,21 @@ void EditorApp::selectionPanel() {
     report(error.empty() ? "pinned " + std::to_string(nodes.size()) + " vertices" : error, !error.empty());
   }
   ImGui::SameLine();
+  if (ImGui::Button("Make handle")) {
+    const std::string error = session_.makeHandle();
+    report(error.empty() ? "made a handle of " + std::to_string(nodes.size()) +
+                               " vertices: drag it with the gizmo, then Set key on the timeline"
+                         : error,
+           !error.empty());
+  }
+  ImGui::SameLine();
   if (ImGui::Button("Clear")) session_.selection().clear();
   ImGui::EndDisabled();
   ImGui::TextDisabled("Click: pick (and inspect) a vertex; drag: box");
   ImGui::TextDisabled("select; Shift adds. Right drag: orbit; middle:");
   ImGui::TextDisabled("pan; wheel: zoom; F: frame the scene; Alt+drag:");
-  ImGui::TextDisabled("move the selected vertices' targets.");
+  ImGui::TextDisabled("move the selected vertices' targets. \"gizmo\"");
+  ImGui::TextDisabled("(Obstacles, Cloth): drag its arrows and rings.");
 }
 
 void EditorApp::drawViewport(float left, float top, float width, float height) {
@@ -592,8 +630,14 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   viewportHeight_ = std::max(1, int(size.y));
   renderViewport();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
+  // The picture is opaque: drawn without blending, which on a software GL saves reading back
+  // every pixel under it (Dear ImGui blends everything it draws; the reset callback restores its
+  // state for what follows).
+  ImDrawList* drawList = ImGui::GetWindowDrawList();
+  drawList->AddCallback([](const ImDrawList*, const ImDrawCmd*) { weftEditorGl.Disable(GL_BLEND); }, nullptr);
   ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(viewport_->colorTexture())),
                ImVec2(float(viewportWidth_), float(viewportHeight_)), ImVec2(0, 1), ImVec2(1, 0));
+  drawList->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
   ImGui::SetCursorScreenPos(origin);
   ImGui::InvisibleButton("viewport-input", ImVec2(float(viewportWidth_), float(viewportHeight_)),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
@@ -601,7 +645,12 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   const ImGuiIO& io = ImGui::GetIO();
   const bool hovered = ImGui::IsItemHovered();
   const ImVec2 mouse(io.MousePos.x - origin.x, io.MousePos.y - origin.y);
+  viewportX_ = int(origin.x);
+  viewportY_ = int(origin.y);
   render::Camera& camera = session_.camera();
+  // The gizmo comes first: a press on one of its handles drags it rather than selecting.
+  const GizmoHandle hoveredHandle =
+      hovered && !draggingGizmo_ ? session_.pickGizmo(mouse.x, mouse.y, viewportWidth_, viewportHeight_) : GizmoHandle::None;
   if (hovered && io.MouseWheel != 0.0f) camera.zoom(std::pow(0.9f, io.MouseWheel));
   if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Right))
     camera.orbit(-io.MouseDelta.x * 0.4f, io.MouseDelta.y * 0.4f);
@@ -610,7 +659,12 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
     camera.pan(-io.MouseDelta.x * scale, io.MouseDelta.y * scale);
   }
   if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-    if (io.KeyAlt && !session_.targets().empty()) {
+    if (hoveredHandle != GizmoHandle::None) {
+      const std::string error =
+          session_.beginGizmoDrag(hoveredHandle, mouse.x, mouse.y, viewportWidth_, viewportHeight_);
+      if (error.empty()) draggingGizmo_ = true;
+      else report(error, true);
+    } else if (io.KeyAlt && !session_.targets().empty()) {
       // Alt + drag moves the selected vertices' targets in the view plane (one undo step).
       draggingTargets_ = true;
       ++dragCount_;
@@ -628,6 +682,16 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
       if (!error.empty()) report(error, true), draggingTargets_ = false;
     }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) draggingTargets_ = false;
+  }
+  if (draggingGizmo_) {
+    if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) {
+      const std::string error = session_.dragGizmo(mouse.x, mouse.y);
+      if (!error.empty()) report(error, true);
+    }
+    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) || session_.draggedHandle() == GizmoHandle::None) {
+      session_.endGizmoDrag();
+      draggingGizmo_ = false;
+    }
   }
   ImDrawList* draw = ImGui::GetWindowDrawList();
   if (boxSelecting_) {
@@ -669,10 +733,47 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
       }
     }
   }
+  drawGizmo(draw, origin.x, origin.y, hoveredHandle);
   if (!session_.document().valid())
     draw->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(230, 80, 70, 255),
                   "The scene does not validate: showing the last valid state (see the Scene panel).");
   ImGui::End();
+}
+
+void EditorApp::drawGizmo(ImDrawList* draw, float originX, float originY, GizmoHandle hovered) {
+  const auto gizmo = session_.gizmo(viewportWidth_, viewportHeight_);
+  if (!gizmo) return;
+  const GizmoHandle active = session_.draggedHandle() != GizmoHandle::None ? session_.draggedHandle() : hovered;
+  const ImU32 axisColours[3] = {IM_COL32(225, 60, 50, 255), IM_COL32(60, 175, 60, 255), IM_COL32(50, 100, 230, 255)};
+  const ImU32 highlight = IM_COL32(255, 200, 40, 255), outline = IM_COL32(20, 20, 24, 200);
+  auto at = [&](const Eigen::Vector2f& p) { return ImVec2(originX + p.x(), originY + p.y()); };
+  // Rings under the arrows; every handle has a dark outline so it reads on light and dark.
+  for (GizmoHandle h : {GizmoHandle::RotateX, GizmoHandle::RotateY, GizmoHandle::RotateZ, GizmoHandle::TranslateX,
+                        GizmoHandle::TranslateY, GizmoHandle::TranslateZ}) {
+    if (!gizmo->has(h)) continue;
+    const std::vector<Eigen::Vector2f> line = gizmo->screenPolyline(h);
+    if (line.size() < 2) continue;
+    const ImU32 colour = h == active ? highlight : axisColours[gizmoAxis(h)];
+    std::vector<ImVec2> points;
+    for (const Eigen::Vector2f& p : line) points.push_back(at(p));
+    const bool ring = isRotation(h);
+    draw->AddPolyline(points.data(), int(points.size()), outline, 0, ring ? 4.5f : 5.5f);
+    draw->AddPolyline(points.data(), int(points.size()), colour, 0, ring ? 2.5f : 3.5f);
+    if (!ring) {
+      // The arrow head, in screen space along the shaft's image.
+      const Eigen::Vector2f tip = line.back(), along = line.back() - line.front();
+      if (along.norm() > 1.0f) {
+        const Eigen::Vector2f d = along.normalized(), n(-d.y(), d.x());
+        const Eigen::Vector2f base = tip - 12.0f * d;
+        draw->AddTriangleFilled(at(tip + 3.0f * d), at(base + 6.5f * n), at(base - 6.5f * n), outline);
+        draw->AddTriangleFilled(at(tip), at(base + 5.0f * n), at(base - 5.0f * n), colour);
+      }
+    }
+  }
+  if (const auto centre = projectToPixel(session_.camera(), gizmo->origin(), viewportWidth_, viewportHeight_)) {
+    draw->AddCircleFilled(at(*centre), 4.5f, outline);
+    draw->AddCircleFilled(at(*centre), 3.0f, IM_COL32(250, 250, 250, 255));
+  }
 }
 
 bool EditorApp::ViewportState::operator==(const ViewportState& o) const {
@@ -773,19 +874,26 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
   }
 
   Playback& playback = session_.playback();
-  ImGui::BeginDisabled(available == 0);
-  if (ImGui::Button("|<")) playback.step(-1, available);
+  // The timeline spans the scene's steps even before they are simulated (keys can be set
+  // anywhere); beyond the cache the viewport keeps the last cached state.
+  const int frames = session_.timelineFrames();
+  ImGui::BeginDisabled(frames <= 1);
+  if (ImGui::Button("|<")) playback.step(-1, frames);
   ImGui::SameLine();
+  ImGui::BeginDisabled(available == 0);
   if (ImGui::Button(playback.playing() ? "Pause" : "Play")) {
     if (!playback.playing() && playback.frame() >= available - 1 && !cache.running()) playback.scrub(0, available);
     playback.toggle();
   }
+  ImGui::EndDisabled();
   ImGui::SameLine();
-  if (ImGui::Button(">|")) playback.step(1, available);
+  if (ImGui::Button(">|")) playback.step(1, frames);
   ImGui::SameLine();
   int k = playback.frame();
   ImGui::SetNextItemWidth(std::max(100.0f, ImGui::GetContentRegionAvail().x - 260.0f));
-  if (ImGui::SliderInt("##frame", &k, 0, std::max(available - 1, 0), "state %d")) playback.scrub(k, available);
+  if (ImGui::SliderInt("##frame", &k, 0, std::max(frames - 1, 0), k < available ? "state %d" : "state %d (not simulated)"))
+    playback.scrub(k, frames);
+  drawKeyTicks(frames);
   ImGui::EndDisabled();
   ImGui::SameLine();
   const auto scene = cache.scene();
@@ -795,10 +903,66 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
     ImGui::Text("contacts: take-off %d, stick %d, slip %d   PD iterations %d, residual %.3g m/s^2",
                 f->stats.takeoff, f->stats.stick, f->stats.slip, f->stats.pdIterations, f->stats.residual);
   } else {
-    ImGui::TextDisabled("no frames: press Simulate");
+    ImGui::Text("t = %.4f s", session_.timelineTime());
+    ImGui::TextDisabled(available == 0 ? "no frames: press Simulate" : "not simulated this far: the view shows the last cached state");
   }
-  ImGui::TextDisabled("Space: play/pause   Left/Right: step one state");
+  if (session_.activeObject().kind == EditorObject::Kind::Handle)
+    keyControls();
+  else
+    ImGui::TextDisabled("Space: play/pause   Left/Right: step one state");
   ImGui::End();
+}
+
+void EditorApp::drawKeyTicks(int frames) {
+  // The active handle's keys as ticks on the slider just drawn, where its grab would stand at
+  // the key's frame (Dear ImGui 1.86 SliderBehaviorT: 2 px padding, a grab of
+  // max(width / (range + 1), GrabMinSize) whose centre travels the rest).
+  const std::vector<HandleKey> keys = session_.keys();
+  const EditorDocument& doc = session_.document();
+  if (keys.empty() || frames <= 1 || !doc.valid()) return;
+  const double dt = doc.scene()->time.dt;
+  const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
+  const float padding = 2.0f, width = high.x - low.x - 2.0f * padding;
+  const float grab = std::min(std::max(width / float(frames), ImGui::GetStyle().GrabMinSize), width);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  for (const HandleKey& key : keys) {
+    const double frame = key.time / dt;
+    if (frame < -0.5 || frame > frames - 0.5) continue;
+    const float x = low.x + padding + 0.5f * grab + float(frame / double(frames - 1)) * (width - grab);
+    draw->AddTriangleFilled(ImVec2(x, high.y - 6.0f), ImVec2(x - 4.0f, high.y + 1.0f), ImVec2(x + 4.0f, high.y + 1.0f),
+                            IM_COL32(255, 200, 40, 255));
+    draw->AddLine(ImVec2(x, low.y), ImVec2(x, high.y), IM_COL32(255, 200, 40, 160), 1.0f);
+  }
+}
+
+void EditorApp::keyControls() {
+  // The active handle at the playback frame: its offset (dragged with the gizmo or typed here),
+  // and its keys.
+  const auto offset = session_.handleOffset();
+  ImGui::AlignTextToFramePadding();
+  ImGui::Text("%s", session_.activeObject().path().c_str());
+  ImGui::SameLine();
+  double v[3] = {0, 0, 0};
+  if (offset) v[0] = offset->x(), v[1] = offset->y(), v[2] = offset->z();
+  ImGui::SetNextItemWidth(230.0f);
+  // "###": one widget identity whatever the label says, so typing is not cut off when the first
+  // keystroke makes the offset pending.
+  if (ImGui::InputScalarN(session_.handleOffsetPending() ? "offset (m, not keyed)###offset" : "offset (m)###offset",
+                          ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g")) {
+    const std::string error = session_.setHandleOffset(Vec3(v[0], v[1], v[2]));
+    if (!error.empty()) report(error, true);
+  }
+  auto action = [&](const char* label, const std::function<std::string()>& run, const char* done) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton(label)) {
+      const std::string error = run();
+      report(error.empty() ? done : error, !error.empty());
+    }
+  };
+  action("Set key (K)", [&] { return session_.setKey(); }, "key set");
+  action("Delete key", [&] { return session_.deleteKey(); }, "key deleted");
+  action("< key", [&] { return session_.jumpToKey(-1); }, "previous key");
+  action("key >", [&] { return session_.jumpToKey(1); }, "next key");
 }
 
 void EditorApp::drawFileDialog() {

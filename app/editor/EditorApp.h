@@ -14,6 +14,8 @@
 #include <memory>
 #include <string>
 
+struct ImDrawList;
+
 namespace weft::render {
 class Renderer;
 }
@@ -52,6 +54,9 @@ class EditorApp {
   // Viewport size in pixels as laid out by the last frame.
   int viewportWidth() const { return viewportWidth_; }
   int viewportHeight() const { return viewportHeight_; }
+  // Where the viewport's top-left pixel lies in the window, as laid out by the last frame.
+  int viewportX() const { return viewportX_; }
+  int viewportY() const { return viewportY_; }
   render::RenderStyle& style() { return style_; }
 
   // Closing: a dirty document asks first (Save / Discard / Cancel).
@@ -77,6 +82,10 @@ class EditorApp {
   void drawClosePrompt();
   void handleShortcuts();
   void renderViewport();
+  void drawGizmo(ImDrawList* draw, float originX, float originY, GizmoHandle hovered);
+  void keyControls();
+  void drawKeyTicks(int frames);
+  void placeButton(const std::string& path);
 
   void doOpen(const std::string& file);
   void doSave();
@@ -112,9 +121,10 @@ class EditorApp {
   std::unique_ptr<MeshImportDialog> importDialog_;
   PanelTab tab_ = PanelTab::Scene, requestedTab_ = PanelTab::Scene;
   bool tabRequested_ = false;
-  int viewportWidth_ = 1, viewportHeight_ = 1;
+  int viewportWidth_ = 1, viewportHeight_ = 1, viewportX_ = 0, viewportY_ = 0;
   bool boxSelecting_ = false;
   bool draggingTargets_ = false;
+  bool draggingGizmo_ = false;
   int dragCount_ = 0;  // numbers target drags, so each drag is one undo step
   float boxStart_[2] = {0, 0};
   // What the viewport texture shows now; it is drawn again only when this changes.

@@ -4,8 +4,11 @@
 // modes: `live` while the simulation runs on its worker thread and the viewport follows the
 // newest state; `scrub` through the finished cache, a different state every frame (the worst
 // case for the viewport: new geometry each time); `still` on one state (the UI alone). A frame
-// is timed from its start until the GL work is finished (glFinish). Prints a Markdown table
-// and, with an output folder, writes editor-bench.csv (every frame) and editor-bench.md.
+// is timed from its start until the GL work is finished (glFinish), in wall time and in CPU
+// time of the whole process (every thread: the UI, the software rasterizer's threads, and in
+// `live` the simulation), which a machine shared with other jobs inflates far less. Prints a
+// Markdown table and, with an output folder, writes editor-bench.csv (every frame) and
+// editor-bench.md.
 // The editor binary owns this mode, not `weft bench`: the `weft` tool does not link ImGui.
 
 #include <weft/render/HeadlessContext.h>

@@ -14,10 +14,22 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
 #include <unistd.h>
 
 namespace weft::editor {
+namespace {
+
+// The entry at `path` of a document copy being edited; throws when it is gone (an undo during a
+// drag can take it away), which the document turns into the edit's error text.
+nlohmann::json& entryAt(nlohmann::json& document, const std::string& path) {
+  nlohmann::json* entry = findJsonPath(document, path);
+  if (!entry) throw std::runtime_error(path + " is no longer in the scene");
+  return *entry;
+}
+
+}  // namespace
 
 EditorSession::EditorSession(const std::string& recentStore) : recent_(recentStore) {
   lastValidScene_ = document_.sharedScene();
@@ -45,6 +57,9 @@ void EditorSession::afterDocumentReplaced() {
   // Final targets of an opened scene become editable (their positions come from its .npy).
   if (const Scene* scene = document_.scene()) document_.resetSidecar(readFinalTargets(*scene));
   selection_.clear();
+  active_ = EditorObject();
+  drag_.reset();
+  pending_.reset();
   playback_ = Playback();
   documentBuilder_.reset();
   cacheBuilder_.reset();
@@ -131,6 +146,18 @@ std::string EditorSession::simulate(int steps) {
 
 int EditorSession::availableFrames() const { return cache_.frameCount(); }
 
+int EditorSession::timelineFrames() const {
+  const Scene* scene = document_.valid() ? document_.scene() : lastValidScene_.get();
+  return std::max(cache_.frameCount(), scene ? scene->time.steps + 1 : 1);
+}
+
+double EditorSession::timelineTime() const {
+  const Scene* scene = document_.valid() ? document_.scene() : lastValidScene_.get();
+  // Rounded to 1e-12 s so that a key written at frame 3 of dt = 0.0111 reads 0.0333 in the file
+  // rather than 0.033299999999999996; far below any time step the simulator compares against.
+  return scene ? std::round(playback_.frame() * scene->time.dt * 1e12) / 1e12 : 0.0;
+}
+
 std::string EditorSession::selectNodes(const std::vector<int>& nodes, bool add) {
   const Scene* scene = lastValidScene_.get();
   const int count = scene ? scene->vertexCount() : 0;
@@ -181,6 +208,255 @@ std::string EditorSession::pinSelection() {
   });
 }
 
+std::string EditorSession::makeHandle() {
+  if (selection_.empty()) return "select the vertices the handle holds first";
+  const Scene* scene = document_.scene();
+  if (!scene) return "the scene does not validate: " + document_.validationError();
+  const ClothModel model = buildClothModel(*scene);
+  const std::vector<int> nodes = selection_.nodes();
+  const auto clothOf = [&](int node) {
+    return int(std::upper_bound(model.vertexOffset.begin(), model.vertexOffset.end(), node) - model.vertexOffset.begin()) - 1;
+  };
+  const int cloth = clothOf(nodes.front());
+  if (cloth < 0 || nodes.back() >= model.vertexOffset.back()) return "the selection is not cloth vertices";
+  if (clothOf(nodes.back()) != cloth) return "a handle holds vertices of one cloth: select vertices of one cloth only";
+  std::vector<int> local;
+  for (int n : nodes) local.push_back(n - model.vertexOffset[std::size_t(cloth)]);
+  const std::string base = "cloths." + std::to_string(cloth);
+  const nlohmann::json* attachments = document_.find(base + ".attachments");
+  const int index = attachments && attachments->is_array() ? int(attachments->size()) : 0;
+  const std::string error = document_.edit("Make a handle of " + std::to_string(nodes.size()) + " vertices",
+                                           [&](nlohmann::json& doc) {
+                                             nlohmann::json& c = doc.at("cloths").at(std::size_t(cloth));
+                                             if (!c.contains("attachments")) c["attachments"] = nlohmann::json::array();
+                                             c["attachments"].push_back(newHandleAttachment(local));
+                                           });
+  if (!error.empty()) return error;
+  return setActiveObject(base + ".attachments." + std::to_string(index));
+}
+
+std::string EditorSession::setActiveObject(const std::string& path) {
+  EditorObject object;
+  const std::string error = findEditorObject(document_.document(), path, object);
+  if (!error.empty()) return error;
+  if (object != active_) endGizmoDrag();
+  active_ = object;
+  return "";
+}
+
+void EditorSession::dropStaleActiveObject() {
+  // An undo or a removal can take the active object away (or turn a handle into a fixed pin).
+  EditorObject still;
+  if (active_.kind != EditorObject::Kind::None &&
+      !findEditorObject(document_.document(), active_.path(), still).empty()) {
+    active_ = EditorObject();
+    drag_.reset();
+  }
+}
+
+std::optional<Vec3> EditorSession::objectOrigin() const {
+  const Scene* scene = document_.scene();
+  if (!scene) return std::nullopt;
+  auto boundsCentre = [](const NodeMatrix& v) -> std::optional<Vec3> {
+    if (v.rows() == 0) return std::nullopt;
+    return Vec3(0.5 * (v.colwise().minCoeff() + v.colwise().maxCoeff()).transpose());
+  };
+  switch (active_.kind) {
+    case EditorObject::Kind::None: return std::nullopt;
+    case EditorObject::Kind::Obstacle: {
+      if (active_.index >= int(scene->obstacles.size())) return std::nullopt;
+      const Obstacle& o = scene->obstacles[std::size_t(active_.index)];
+      switch (o.shape) {
+        case Obstacle::Shape::Plane: return o.point;
+        case Obstacle::Shape::Sphere:
+        case Obstacle::Shape::Box: return o.center;
+        case Obstacle::Shape::Capsule:
+        case Obstacle::Shape::Cylinder: return Vec3(0.5 * (o.a + o.b));
+        case Obstacle::Shape::Mesh: return boundsCentre(o.mesh.vertices);
+      }
+      return std::nullopt;
+    }
+    case EditorObject::Kind::Cloth:
+      if (active_.index >= int(scene->cloths.size())) return std::nullopt;
+      return boundsCentre(scene->cloths[std::size_t(active_.index)].mesh.vertices);
+    case EditorObject::Kind::Handle: {
+      if (active_.index >= int(scene->cloths.size())) return std::nullopt;
+      const Cloth& cloth = scene->cloths[std::size_t(active_.index)];
+      if (active_.attachment >= int(cloth.attachments.size())) return std::nullopt;
+      const Attachment& a = cloth.attachments[std::size_t(active_.attachment)];
+      if (a.vertices.empty()) return std::nullopt;
+      Vec3 centroid = Vec3::Zero();
+      for (int v : a.vertices) centroid += cloth.mesh.vertices.row(v).transpose();
+      centroid /= double(a.vertices.size());
+      // Where the trajectory puts the centroid now, with the offset being edited in place of its own.
+      const double t = timelineTime();
+      const auto offset = handleOffset();
+      return Vec3(a.trajectory.target(centroid, t) - a.trajectory.offset(t) + offset.value_or(a.trajectory.offset(t)));
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<Gizmo> EditorSession::gizmo(int width, int height) const {
+  const auto origin = objectOrigin();
+  if (!origin || !origin->allFinite()) return std::nullopt;
+  return Gizmo(origin->cast<float>(), objectRotates(document_.document(), active_), camera_, width, height);
+}
+
+GizmoHandle EditorSession::pickGizmo(float x, float y, int width, int height) const {
+  const auto g = gizmo(width, height);
+  return g ? g->pickPixel(x, y) : GizmoHandle::None;
+}
+
+std::string EditorSession::beginGizmoDrag(GizmoHandle handle, float x, float y, int width, int height) {
+  endGizmoDrag();
+  const auto g = gizmo(width, height);
+  if (!g) {
+    if (active_.kind == EditorObject::Kind::None) return "nothing to move: choose an obstacle, a cloth or a handle first";
+    return "the scene does not validate: " + document_.validationError();
+  }
+  if (!g->has(handle)) return std::string("this object has no ") + gizmoHandleName(handle) + " handle";
+  if (active_.kind == EditorObject::Kind::Handle && !handleError().empty()) return handleError();
+  auto drag = GizmoDrag::begin(*g, handle, Eigen::Vector2f(x, y));
+  if (!drag)
+    return isRotation(handle) ? "press on the ring, away from the gizmo's centre"
+                              : "this axis points at the camera: turn the view to drag along it";
+  const char* axes = "XYZ";
+  DragState state{*drag, active_, nlohmann::json(), Vec3(g->origin().cast<double>()), Vec3::Zero(), "", ""};
+  if (active_.kind == EditorObject::Kind::Handle) {
+    state.startOffset = handleOffset().value_or(Vec3::Zero());
+  } else {
+    const nlohmann::json* entry = document_.find(active_.path());
+    if (!entry) return active_.path() + " is no longer in the scene";
+    state.start = *entry;
+    // The exact centre from the scene, not the gizmo's single-precision copy.
+    state.centre = objectOrigin().value_or(state.centre);
+  }
+  state.label = std::string(isRotation(handle) ? "Turn " : "Move ") + active_.path() +
+                (isRotation(handle) ? " about " : " along ") + axes[gizmoAxis(handle)];
+  state.coalesceKey = "gizmo drag " + std::to_string(++dragCount_);
+  drag_ = std::move(state);
+  return "";
+}
+
+std::string EditorSession::dragGizmo(float x, float y) {
+  if (!drag_) return "no gizmo drag in progress";
+  if (drag_->object != active_) {
+    drag_.reset();
+    return "the object being moved has gone";
+  }
+  const double amount = drag_->drag.update(Eigen::Vector2f(x, y));
+  const GizmoHandle handle = drag_->drag.handle();
+  const int axis = gizmoAxis(handle);
+  if (active_.kind == EditorObject::Kind::Handle) {
+    Vec3 offset = drag_->startOffset;
+    offset[axis] += amount;
+    pending_ = PendingOffset{active_, playback_.frame(), offset};
+    return "";
+  }
+  nlohmann::json entry = drag_->start;
+  try {
+    if (isRotation(handle))
+      rotateObject(entry, active_.kind, axis, amount, drag_->centre);
+    else
+      translateObject(entry, active_.kind, axis, amount);
+  } catch (const std::exception& e) {
+    return active_.path() + ": " + e.what();
+  }
+  const std::string path = active_.path();
+  // One undo step per drag: every move of the same drag merges into the step it started.
+  return document_.editWithSidecar(
+      drag_->label, [&](nlohmann::json& doc, nlohmann::json&) { entryAt(doc, path) = entry; }, drag_->coalesceKey);
+}
+
+void EditorSession::endGizmoDrag() { drag_.reset(); }
+
+std::string EditorSession::handleError() const {
+  if (active_.kind != EditorObject::Kind::Handle) return "choose a handle first (make one from a selection)";
+  if (!document_.valid()) return "the scene does not validate: " + document_.validationError();
+  const nlohmann::json* attachment = document_.find(active_.path());
+  if (!attachment || !hasKeyframes(*attachment))
+    return "this handle follows a Hermite spline: edit its knots and tangents in the scene file";
+  return "";
+}
+
+std::vector<HandleKey> EditorSession::keys() const {
+  if (active_.kind != EditorObject::Kind::Handle) return {};
+  const nlohmann::json* attachment = document_.find(active_.path());
+  return attachment ? handleKeys(*attachment) : std::vector<HandleKey>{};
+}
+
+std::optional<Vec3> EditorSession::handleOffset() const {
+  if (active_.kind != EditorObject::Kind::Handle) return std::nullopt;
+  if (handleOffsetPending()) return pending_->offset;
+  const Scene* scene = document_.scene();
+  if (!scene || active_.index >= int(scene->cloths.size())) return std::nullopt;
+  const Cloth& cloth = scene->cloths[std::size_t(active_.index)];
+  if (active_.attachment >= int(cloth.attachments.size())) return std::nullopt;
+  return cloth.attachments[std::size_t(active_.attachment)].trajectory.offset(timelineTime());
+}
+
+bool EditorSession::handleOffsetPending() const {
+  return pending_ && active_.kind == EditorObject::Kind::Handle && pending_->object == active_ &&
+         pending_->frame == playback_.frame();
+}
+
+std::string EditorSession::setHandleOffset(const Vec3& offset) {
+  const std::string error = handleError();
+  if (!error.empty()) return error;
+  if (!offset.allFinite()) return "the offset must be finite";
+  pending_ = PendingOffset{active_, playback_.frame(), offset};
+  return "";
+}
+
+std::string EditorSession::setKey() {
+  std::string error = handleError();
+  if (!error.empty()) return error;
+  const auto offset = handleOffset();
+  if (!offset) return "the handle has no offset here";
+  const double t = timelineTime();
+  const double dt = document_.scene()->time.dt;
+  const std::string path = active_.path();
+  char label[64];
+  std::snprintf(label, sizeof label, "Set key at t = %.4g s", t);
+  error = document_.edit(label, [&](nlohmann::json& doc) { setHandleKey(entryAt(doc, path), t, *offset, 0.5 * dt); });
+  if (error.empty()) pending_.reset();
+  return error;
+}
+
+std::string EditorSession::deleteKey() {
+  std::string error = handleError();
+  if (!error.empty()) return error;
+  const double t = timelineTime();
+  const double dt = document_.scene()->time.dt;
+  const std::vector<HandleKey> list = keys();
+  bool here = false;
+  for (const HandleKey& k : list) here = here || std::abs(k.time - t) < 0.5 * dt;
+  if (!here) return "there is no key at this frame";
+  if (list.size() == 1) return "a handle needs at least one key: remove the attachment instead";
+  const std::string path = active_.path();
+  char label[64];
+  std::snprintf(label, sizeof label, "Delete key at t = %.4g s", t);
+  error = document_.edit(label, [&](nlohmann::json& doc) { deleteHandleKey(entryAt(doc, path), t, 0.5 * dt); });
+  if (error.empty()) pending_.reset();
+  return error;
+}
+
+std::string EditorSession::jumpToKey(int direction) {
+  const Scene* scene = document_.valid() ? document_.scene() : lastValidScene_.get();
+  if (active_.kind != EditorObject::Kind::Handle || !scene) return "choose a handle first";
+  const int frame = playback_.frame();
+  int best = -1;
+  for (const HandleKey& k : keys()) {
+    const int f = int(std::llround(k.time / scene->time.dt));
+    if (direction > 0 ? f > frame && (best < 0 || f < best) : f < frame && f >= 0 && (best < 0 || f > best)) best = f;
+  }
+  if (best < 0) return direction > 0 ? "no key after this frame" : "no key before this frame";
+  playback_.scrub(best, timelineFrames());
+  playback_.pause();
+  return "";
+}
+
 void EditorSession::frameCamera(float aspect, render::NamedView view) {
   const render::RenderScene* scene = viewportScene();
   render::Bounds bounds;
@@ -206,8 +482,10 @@ void EditorSession::tick(double seconds) {
   const int available = cache_.frameCount();
   const Scene* scene = cache_.scene().get();
   playback_.advance(seconds, scene ? scene->time.dt : 0.01, available, cache_.running());
-  if (playback_.frame() >= available) playback_.scrub(playback_.frame(), available);
+  const int frames = timelineFrames();
+  if (playback_.frame() >= frames) playback_.scrub(playback_.frame(), frames);
   stepSeries_.update(cache_);
+  dropStaleActiveObject();
 }
 
 const render::RenderScene* EditorSession::viewportScene() {

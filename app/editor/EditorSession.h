@@ -6,9 +6,11 @@
 
 #include "EditorDocument.h"
 #include "FinalTargets.h"
+#include "Gizmo.h"
 #include "LiveLoss.h"
 #include "MeshImport.h"
 #include "OptimizerRun.h"
+#include "Placement.h"
 #include "Selection.h"
 #include "SimulationCache.h"
 #include "StepStatsSeries.h"
@@ -64,7 +66,13 @@ class EditorSession {
   // Returns an error text when the document does not validate.
   std::string simulate(int steps = -1);
   bool cacheStale() const { return cache_.staleFor(document_.document()); }
-  int availableFrames() const;  // frames the timeline can show
+  int availableFrames() const;  // frames the cache holds
+  // States the timeline spans: the scene's time.steps + 1, or more when the cache holds more. A
+  // state not simulated yet can be shown (the viewport keeps the last cached state) so that keys
+  // can be set anywhere on the timeline before simulating.
+  int timelineFrames() const;
+  // The time of the playback frame: frame * dt of the scene being edited, in seconds.
+  double timelineTime() const;
 
   // Selection in viewport pixels of a width x height view (x right, y down).
   std::optional<int> clickSelect(float x, float y, int width, int height, bool add);
@@ -73,6 +81,41 @@ class EditorSession {
   std::string selectNodes(const std::vector<int>& nodes, bool add);
   // Adds a fixed attachment holding the selected vertices (one undo step). Error text or "".
   std::string pinSelection();
+
+  // Adds a handle attachment holding the selected vertices (of one cloth), still until keyed,
+  // and makes it the object the gizmo places (one undo step). Error text or "".
+  std::string makeHandle();
+
+  // The transform gizmo (Gizmo.h). The active object is what it places: an obstacle, a cloth or
+  // a handle ("obstacles.N", "cloths.N", "cloths.N.attachments.M"; "" for none). Obstacles and
+  // cloths move in the document, each drag one undo step; a handle's drag moves its offset at
+  // the playback frame, which setKey() then records.
+  const EditorObject& activeObject() const { return active_; }
+  std::string setActiveObject(const std::string& path);
+  // The gizmo of the active object in a width x height view; nullopt when there is none or the
+  // scene does not validate (its placement is read from the validated scene).
+  std::optional<Gizmo> gizmo(int width, int height) const;
+  GizmoHandle pickGizmo(float x, float y, int width, int height) const;
+  // A drag from pixel (x, y) of the handle, then the mouse's positions, then the release.
+  std::string beginGizmoDrag(GizmoHandle handle, float x, float y, int width, int height);
+  std::string dragGizmo(float x, float y);
+  void endGizmoDrag();
+  GizmoHandle draggedHandle() const { return drag_ ? drag_->drag.handle() : GizmoHandle::None; }
+
+  // Keys of the active handle (attachments.M.trajectory.keyframes, or a Hermite spline's knots).
+  std::vector<HandleKey> keys() const;
+  // The active handle's offset at the playback frame: the one dragged or typed there (pending,
+  // until setKey records it), else the trajectory's. nullopt without an active handle or a
+  // valid scene.
+  std::optional<Vec3> handleOffset() const;
+  bool handleOffsetPending() const;
+  std::string setHandleOffset(const Vec3& offset);  // typed: pending, like a drag
+  // Records the handle's offset as a key at the playback frame's time (replacing a key within
+  // half a step of it), or deletes that key; one undo step each, and the cache goes stale.
+  std::string setKey();
+  std::string deleteKey();
+  // Moves the playback frame to the next (+1) or previous (-1) key of the active handle.
+  std::string jumpToKey(int direction);
 
   // Frames the camera on what the viewport shows, for an image of the given aspect.
   void frameCamera(float aspect, render::NamedView view = render::NamedView::Auto);
@@ -137,6 +180,10 @@ class EditorSession {
                           const std::string& coalesceKey = "");
   std::optional<Vec3> shownPosition(int node);  // double precision, unlike the render frame
   std::string setParameterValues(const std::string& label, const std::vector<double>& values);
+  // Where the active object's gizmo sits, from the validated scene; nullopt when it cannot.
+  std::optional<Vec3> objectOrigin() const;
+  std::string handleError() const;  // why keys cannot be edited now ("" when they can)
+  void dropStaleActiveObject();
 
   EditorDocument document_;
   SimulationCache cache_;
@@ -163,6 +210,24 @@ class EditorSession {
   bool frameValid_ = false;
   long frameVersion_ = 0;
   StepStatsSeries stepSeries_;
+  EditorObject active_;
+  struct DragState {
+    GizmoDrag drag;
+    EditorObject object;
+    nlohmann::json start;  // the object's entry when the drag began
+    Vec3 centre = Vec3::Zero();
+    Vec3 startOffset = Vec3::Zero();  // a handle's offset when the drag began
+    std::string label, coalesceKey;
+  };
+  std::optional<DragState> drag_;
+  int dragCount_ = 0;  // numbers gizmo drags, so each drag is one undo step
+  // A handle offset dragged or typed but not keyed yet: it belongs to one handle at one frame.
+  struct PendingOffset {
+    EditorObject object;
+    int frame = -1;
+    Vec3 offset = Vec3::Zero();
+  };
+  std::optional<PendingOffset> pending_;
   LiveLoss liveLoss_;
   OptimizerRun optimizer_;
 };

@@ -26,7 +26,8 @@ std::string kindOf(const nlohmann::json& action) {
                         "panel", "contact_colours", "force_arrows", "set_targets", "target", "move_targets",
                         "drag_targets", "remove_targets", "load_target_motion", "remove_target_motion",
                         "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
-                        "optimize_cancel", "optimize_apply", "optimize_revert"})
+                        "optimize_cancel", "optimize_apply", "optimize_revert", "gizmo", "gizmo_drag",
+                        "make_handle", "handle_offset", "set_key", "delete_key", "jump_key"})
     if (action.contains(k)) return k;
   return action.begin().key();
 }
@@ -87,6 +88,14 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
   nlohmann::json terms = nlohmann::json::object();
   for (const auto& [name, value] : loss.terms) terms[name] = value;
   const char* tabs[] = {"scene", "inspect", "targets", "optimise"};
+  nlohmann::json gizmo = nullptr;
+  if (const auto g = session.gizmo(app.viewportWidth(), app.viewportHeight()))
+    gizmo = {{"origin", vec(g->origin().cast<double>())},
+             {"rotates", g->rotates()},
+             {"dragging", gizmoHandleName(session.draggedHandle())}};
+  nlohmann::json keys = nlohmann::json::array();
+  for (const HandleKey& k : session.keys()) keys.push_back({{"time", k.time}, {"offset", vec(k.offset)}});
+  const auto offset = session.handleOffset();
   return {{"file", doc.file()},
           {"dirty", doc.dirty()},
           {"valid", doc.valid()},
@@ -109,6 +118,14 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"message", app.message()},
           {"message_is_error", app.messageIsError()},
           {"panel", tabs[static_cast<int>(app.tab())]},
+          {"viewport", {app.viewportWidth(), app.viewportHeight()}},
+          {"timeline_frames", session.timelineFrames()},
+          {"time", session.timelineTime()},
+          {"active_object", session.activeObject().path()},
+          {"gizmo", gizmo},
+          {"keys", keys},
+          {"handle_offset", offset ? vec(*offset) : nlohmann::json(nullptr)},
+          {"key_pending", session.handleOffsetPending()},
           {"document", doc.document()}};
 }
 
@@ -187,6 +204,46 @@ std::optional<bool> ScriptRunner::checkOutcome(const nlohmann::json& action, con
     return false;
   }
   return std::nullopt;
+}
+
+std::string ScriptRunner::startGizmoDrag(const nlohmann::json& a, EditorSession& session, EditorApp& app) {
+  GizmoHandle handle;
+  if (!parseGizmoHandle(a.at("gizmo_drag").get<std::string>(), handle))
+    throw std::invalid_argument("gizmo_drag takes translate_x, translate_y, translate_z, rotate_x, rotate_y or rotate_z");
+  const auto by = a.at("by").get<std::vector<float>>();
+  if (by.size() != 2) throw std::invalid_argument("by takes [dx, dy] in viewport pixels");
+  gizmoBy_ = Eigen::Vector2f(by[0], by[1]);
+  const int w = app.viewportWidth(), h = app.viewportHeight();
+  const auto g = session.gizmo(w, h);
+  if (!g)
+    return session.activeObject().kind == EditorObject::Kind::None
+               ? "nothing to move: choose an object with {\"gizmo\": PATH}"
+               : "the gizmo is not shown (the scene does not validate)";
+  if (!g->has(handle)) return std::string("this object has no ") + gizmoHandleName(handle) + " handle";
+  // The press: at a given pixel, at an offset from the gizmo's centre on screen, or where the
+  // handle can be grabbed.
+  bool inView = true;
+  if (a.contains("from") || a.contains("from_centre")) {
+    const std::string key = a.contains("from") ? "from" : "from_centre";
+    const auto f = a[key].get<std::vector<float>>();
+    if (f.size() != 2) throw std::invalid_argument(key + " takes [x, y] in viewport pixels");
+    gizmoFrom_ = Eigen::Vector2f(f[0], f[1]);
+    if (key == "from_centre") {
+      const auto centre = projectToPixel(session.camera(), g->origin(), w, h);
+      inView = centre.has_value();
+      if (centre) gizmoFrom_ += *centre;
+    }
+  } else {
+    const auto grab = g->grabPixel(handle);
+    inView = grab.has_value();
+    if (grab) gizmoFrom_ = *grab;
+  }
+  if (!inView) return std::string("the ") + gizmoHandleName(handle) + " handle is not in view";
+  const GizmoHandle picked = g->pickPixel(gizmoFrom_.x(), gizmoFrom_.y());
+  if (picked != handle)
+    return "the press at (" + std::to_string(gizmoFrom_.x()) + ", " + std::to_string(gizmoFrom_.y()) + ") grabs " +
+           gizmoHandleName(picked) + ", not " + gizmoHandleName(handle);
+  return session.beginGizmoDrag(handle, gizmoFrom_.x(), gizmoFrom_.y(), w, h);
 }
 
 bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorApp& app) {
@@ -276,9 +333,9 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
   } else if (kind == "cancel") {
     session.cache().cancel();
   } else if (kind == "scrub") {
-    session.playback().scrub(a.at("scrub").get<int>(), session.availableFrames());
+    session.playback().scrub(a.at("scrub").get<int>(), session.timelineFrames());
   } else if (kind == "step") {
-    session.playback().step(a.at("step").get<int>(), session.availableFrames());
+    session.playback().step(a.at("step").get<int>(), session.timelineFrames());
   } else if (kind == "play") {
     session.playback().play();
   } else if (kind == "pause") {
@@ -310,6 +367,18 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
         cam.target = render::Vec3f(t[0], t[1], t[2]);
       }
     }
+  } else if (kind == "screenshot" && a.value("overlays", false)) {
+    // The viewport as the window shows it, with what the editor draws over the picture (the
+    // gizmo, the selection, target lines): cut from the last drawn window, so at its size.
+    if (a.contains("size")) throw std::invalid_argument("a screenshot with overlays has the viewport's own size");
+    const render::Image window = app.windowImage();
+    render::Image image(app.viewportWidth(), app.viewportHeight());
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const int wx = std::min(app.viewportX() + x, window.width - 1), wy = std::min(app.viewportY() + y, window.height - 1);
+        std::copy(window.at(wx, wy), window.at(wx, wy) + 3, image.at(x, y));
+      }
+    render::writePng(a.at("screenshot").get<std::string>(), image);
   } else if (kind == "screenshot") {
     int w = app.viewportWidth(), h = app.viewportHeight();
     if (a.contains("size")) {
@@ -377,6 +446,42 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     else if (kind == "optimize_revert") done = "reverted to the values the run started from";
     app.report(error.empty() ? done : error, !error.empty());
     if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
+  } else if (kind == "gizmo" || kind == "make_handle" || kind == "handle_offset" || kind == "set_key" ||
+             kind == "delete_key" || kind == "jump_key") {
+    std::string error;
+    if (kind == "gizmo") error = session.setActiveObject(a.at(kind).is_null() ? "" : a[kind].get<std::string>());
+    else if (kind == "make_handle") error = session.makeHandle();
+    else if (kind == "handle_offset") error = session.setHandleOffset(vec3Of(a.at(kind), "handle_offset"));
+    else if (kind == "set_key") error = session.setKey();
+    else if (kind == "delete_key") error = session.deleteKey();
+    else error = session.jumpToKey(a.at(kind).get<int>());
+    app.report(error.empty() ? kind + " done" : error, !error.empty());
+    if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
+  } else if (kind == "gizmo_drag") {
+    // A mouse drag over several UI frames: pressed on the handle (found by the same ray pick as
+    // a click), moved in `steps` equal moves to `by` pixels away, released.
+    const int steps = std::max(1, a.value("steps", 4));
+    if (gizmoStep_ == 0) {
+      const std::string error = startGizmoDrag(a, session, app);
+      if (!error.empty()) app.report(error, true);
+      if (const std::optional<bool> next = checkOutcome(a, error, "the drag started")) return *next;
+      gizmoStep_ = 1;
+      return false;
+    }
+    const Eigen::Vector2f at = gizmoFrom_ + gizmoBy_ * (float(gizmoStep_) / float(steps));
+    const std::string error = session.dragGizmo(at.x(), at.y());
+    if (!error.empty()) {
+      session.endGizmoDrag();
+      gizmoStep_ = 0;
+      fail(error);
+      return false;
+    }
+    if (gizmoStep_ < steps) {
+      ++gizmoStep_;
+      return false;
+    }
+    session.endGizmoDrag();
+    gizmoStep_ = 0;
   } else if (kind == "panel") {
     PanelTab tab;
     if (!parsePanelTab(a.at(kind).get<std::string>(), tab))

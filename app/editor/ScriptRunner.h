@@ -10,6 +10,7 @@
 // A failing action stops the script with an error naming the script, the action's index and
 // kind, and what went wrong.
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -36,6 +37,8 @@ class ScriptRunner {
  private:
   bool run(const nlohmann::json& action, EditorSession& session, EditorApp& app);  // false: wait
   void fail(const std::string& what, int code = 2);
+  // Presses the mouse on the gizmo handle a gizmo_drag action names; error text or "".
+  std::string startGizmoDrag(const nlohmann::json& action, EditorSession& session, EditorApp& app);
   // What an action's `error` means given its optional expect_error: a value to return from the
   // step (pass or fail), or nullopt to go on.
   std::optional<bool> checkOutcome(const nlohmann::json& action, const std::string& error,
@@ -48,6 +51,8 @@ class ScriptRunner {
   bool waitingForSimulation_ = false;
   bool waitingForOptimizer_ = false;
   int optimizerTarget_ = 0;  // evaluations an optimize_step waits for
+  int gizmoStep_ = 0;        // mouse moves of a gizmo_drag done so far (0: not started)
+  Eigen::Vector2f gizmoFrom_ = Eigen::Vector2f::Zero(), gizmoBy_ = Eigen::Vector2f::Zero();
   double waitStarted_ = 0.0;
   double timeout_ = 300.0;
   std::string error_;

@@ -291,7 +291,7 @@ TEST(EditorWorkflow, BenchmarkModePrintsFrameTimes) {
   std::ifstream csv(dir.file("bench/editor-bench.csv"));
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "mode,frame,ms");
+  EXPECT_EQ(header, "mode,frame,ms,cpu_ms");
   const ProcessResult bad = runProcess({WEFT_EDITOR_BINARY, "--bench", "--bench-frames", "zero"}, dir.path());
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("--bench-frames"), std::string::npos) << bad.err;
