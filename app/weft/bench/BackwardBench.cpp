@@ -90,6 +90,7 @@ double peakRssMegabytes() {
 struct Method {
   std::string label, method;
   double tolerance;
+  std::string preconditioner = "p";  // GMRES's (solver.backward.preconditioner)
 };
 
 }  // namespace
@@ -105,7 +106,9 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
                                        {"fixed_point 1e-4", "fixed_point", 1e-4},
                                        {"fixed_point 1e-6", "fixed_point", 1e-6},
                                        {"gmres 1e-4", "gmres", 1e-4},
-                                       {"gmres 1e-6", "gmres", 1e-6}};
+                                       {"gmres 1e-6", "gmres", 1e-6},
+                                       {"gmres+hessian 1e-4", "gmres", 1e-4, "hessian"},
+                                       {"gmres+hessian 1e-6", "gmres", 1e-6, "hessian"}};
   BenchTable table({"scene", "quads", "vertices", "steps", "method", "tolerance", "backward_s", "ms_per_step",
                     "solve_ms_per_step", "rest_ms_per_step", "iterations_per_step", "max_iterations",
                     "not_converged", "fallbacks", "fail_percent", "speedup_vs_direct", "gradient_rel_error",
@@ -161,6 +164,7 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
         BackwardSettings settings = scene.solver.backward;
         settings.method = method.method;
         settings.tolerance = method.tolerance;
+        settings.preconditioner = method.preconditioner;
         settings.fallback = "direct";
         const auto start = std::chrono::steady_clock::now();
         const double cpuStart = processCpuSeconds();
@@ -173,7 +177,8 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
         const double perStep = 1e3 * seconds / steps;
         const double solvePerStep = 1e3 * s.seconds / steps;
         const bool iterative = method.method != "direct";
-        table.add({c.name, std::to_string(n), std::to_string(vertices), std::to_string(steps), method.method,
+        const std::string methodName = method.preconditioner == "p" ? method.method : method.method + "+" + method.preconditioner;
+        table.add({c.name, std::to_string(n), std::to_string(vertices), std::to_string(steps), methodName,
                    iterative ? formatNumber(method.tolerance, 1) : "-", formatNumber(seconds), formatNumber(perStep),
                    formatNumber(solvePerStep), formatNumber(perStep - solvePerStep),
                    iterative ? formatNumber(double(s.iterations) / std::max(1, s.solves)) : "-",

@@ -71,6 +71,7 @@ void AdjointSystem::buildColouring() {
 }
 
 void AdjointSystem::prepare(const NodeMatrix& x, const ContactAdjoint* contact) {
+  preparedX_ = x;  // kept for factorClampedHessian (same size every step: no allocation)
   for (auto& c : constraints_)
     if (c->hasDerivative()) c->prepareDerivative(x, false);  // exact derivative (Eq. 18), not clamped
   contact_ = contact && contact->size() > 0 ? contact : nullptr;
@@ -121,6 +122,22 @@ void AdjointSystem::multiplyCoupling(const NodeMatrix& in, NodeMatrix& out) cons
 }
 
 void AdjointSystem::solveP(NodeMatrix& inOut) { cholesky_.solveInPlace(inOut); }
+
+bool AdjointSystem::factorClampedHessian() {
+  if (preparedX_.rows() != nodeCount()) return false;
+  for (auto& c : constraints_)
+    if (c->hasDerivative()) c->prepareDerivative(preparedX_, true);
+  const Eigen::SparseMatrix<double> clamped = assembleK();
+  // Back to the exact derivative: K's products must stay those of Eq. 19.
+  for (auto& c : constraints_)
+    if (c->hasDerivative()) c->prepareDerivative(preparedX_, false);
+  return hessianCholesky_.factorize(clamped);
+}
+
+void AdjointSystem::solveClampedHessian(NodeMatrix& inOut) {
+  // NodeMatrix storage is column-major: its data is the flat 3m vector assembleK indexes.
+  hessianCholesky_.solveInPlace(inOut.data(), 1);
+}
 
 Eigen::SparseMatrix<double> AdjointSystem::assembleK() const {
   const int m = nodeCount();

@@ -55,6 +55,18 @@ class AdjointSystem {
   void multiplyK(const NodeMatrix& in, NodeMatrix& out) const;         // out = K in
   void multiplyCoupling(const NodeMatrix& in, NodeMatrix& out) const;  // out = (P - K) in (Eq. 30's (Delta P + Delta R)^T)
   void solveP(NodeMatrix& inOut);                                      // inOut = P^{-1} inOut (CHOLMOD factor)
+  // A preconditioner closer to K than P (solver.backward.preconditioner "hessian"): H = P minus
+  // Delta P with every projection derivative clamped as the Newton forward clamps it
+  // (prepareDerivative(x, true)), i.e. h^2 times the implicit-Euler Hessian with each element's
+  // indefinite part removed: symmetric positive definite (M > 0), equal to K wherever no element
+  // is compressed. P keeps the transverse and rotational stiffness that Delta P takes away from a
+  // cloth in tension, which is why GMRES preconditioned by P needs 100-200 iterations per step on
+  // Wind; H needs a handful. Its factor is not reused: K changes too fast from step to step
+  // (a factor one step old already needs 2-3x the iterations, docs/benchmarks.md).
+  // factorClampedHessian assembles H at the prepared state (coloured probing, as assembleK) and
+  // factorises it with CHOLMOD (3m x 3m, symbolic analysis kept); false if that fails.
+  bool factorClampedHessian();
+  void solveClampedHessian(NodeMatrix& inOut);  // inOut = H^{-1} inOut
   // K assembled as a 3m x 3m sparse matrix (flat index = coordinate * m + node), Delta P found by
   // coloured probing (Curtis-Powell-Reid): nodes of one colour share no constraint row, so one
   // product per colour and coordinate recovers all their columns.
@@ -73,6 +85,8 @@ class AdjointSystem {
   std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
   Eigen::SparseMatrix<double> system_;
   SparseCholesky cholesky_;
+  SparseCholesky hessianCholesky_;
+  NodeMatrix preparedX_;
   bool anyDerivative_ = false;
   mutable std::vector<NodeMatrix> rows_;  // per-constraint derivative rows (work buffers)
   const ContactAdjoint* contact_ = nullptr;

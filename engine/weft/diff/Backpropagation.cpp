@@ -30,7 +30,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
 
   std::vector<NodeMatrix> dLdx = loss.gradient(trajectory);
   NodeMatrix dLdvNext = NodeMatrix::Zero(m, 3);  // dL/dv_{n+1} through the steps after n+1
-  NodeMatrix rhs(m, 3), z(m, 3), wbar = NodeMatrix::Zero(m, 3), dLdv(m, 3);
+  NodeMatrix rhs(m, 3), z = NodeMatrix::Zero(m, 3), wbar = NodeMatrix::Zero(m, 3), dLdv(m, 3);
   Eigen::MatrixX3d y;
   for (int n = steps - 1; n >= 0; --n) {
     const NodeMatrix& x0 = trajectory.positions[n];

@@ -5,12 +5,18 @@
 namespace weft {
 
 LinearSolveResult GmresSolver::solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) {
+  // Without Delta P the clamped Hessian is P itself.
+  const bool hessian =
+      preconditioner_ == Preconditioner::ClampedHessian && system.hasDeltaP() && system.factorClampedHessian();
   const GmresResult r = gmres_.solve([&](const NodeMatrix& in, NodeMatrix& out) { system.multiplyK(in, out); },
                                      [&](const NodeMatrix& in, NodeMatrix& out) {
                                        out = in;
-                                       system.solveP(out);
+                                       if (hessian)
+                                         system.solveClampedHessian(out);
+                                       else
+                                         system.solveP(out);
                                      },
-                                     rhs, z, tolerance_, maxIterations_, restart_);
+                                     rhs, z, tolerance_, maxIterations_, restart_, warmStart_);
   LinearSolveResult result;
   result.converged = r.converged;
   result.iterations = r.iterations;

@@ -23,15 +23,17 @@ struct GmresResult {
 
 class Gmres {
  public:
-  // z is overwritten (the iteration starts from zero). Stops when |b - A z| < tolerance |b|,
-  // after maxIterations products, or on stagnation.
+  // z is overwritten. The iteration starts from zero, or with `warmStart` from the z passed in
+  // (when it has b's shape and is finite). Stops when |b - A z| < tolerance |b|, after
+  // maxIterations products, or on stagnation.
   template <class Apply, class Precondition>
   GmresResult solve(Apply&& apply, Precondition&& precondition, const NodeMatrix& b, NodeMatrix& z,
-                    double tolerance, int maxIterations, int restart = 50) {
+                    double tolerance, int maxIterations, int restart = 50, bool warmStart = false) {
     GmresResult result;
     const int m = static_cast<int>(b.rows());
     const double bNorm = b.norm();
-    z.setZero(m, 3);
+    const bool fromGuess = warmStart && z.rows() == m && z.cols() == 3 && z.allFinite() && bNorm > 0.0;
+    if (!fromGuess) z.setZero(m, 3);
     if (bNorm == 0.0) {
       result.converged = true;
       return result;
@@ -44,8 +46,18 @@ class Gmres {
     // Operators may write through raw pointers: every output is sized before use.
     work_.resize(m, 3);
     for (NodeMatrix& p : preconditioned_) p.resize(m, 3);
-    residual_ = b;  // b - A z_0 with z_0 = 0
-    double residualNorm = bNorm;
+    if (fromGuess) {
+      apply(z, work_);
+      residual_ = b - work_;
+    } else {
+      residual_ = b;  // b - A z_0 with z_0 = 0
+    }
+    double residualNorm = residual_.norm();
+    result.residual = residualNorm / bNorm;
+    if (fromGuess && result.residual < tolerance) {
+      result.converged = true;
+      return result;
+    }
     Eigen::MatrixXd h = Eigen::MatrixXd::Zero(restart + 1, restart);
     Eigen::VectorXd cs(restart), sn(restart), s(restart + 1);
     while (result.iterations < maxIterations) {

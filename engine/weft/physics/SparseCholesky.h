@@ -40,6 +40,7 @@ class SparseCholesky {
  private:
   cholmod_common_struct* common_;
   cholmod_factor_struct* factor_ = nullptr;
+  cholmod_factor_struct* symbolic_ = nullptr;  // cholmod_analyze's result, kept while the pattern is
   cholmod_dense_struct *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;
   template <int W>
   void solveBlock(double* data);
