@@ -12,12 +12,15 @@
 #include <diff/DiffTestSupport.h>
 #include <weft/diff/ForwardPass.h>
 #include <weft/diff/GradientCheck.h>
+#include <weft/diff/ParameterSet.h>
+#include <weft/optim/SimulationObjective.h>
 #include <weft/scene/SceneLoader.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -69,6 +72,23 @@ inline void expectContactSetUnchanged(const Scene& scene, const std::vector<std:
       EXPECT_TRUE(contactSet(parameters.withValues(scene, moved)) == base)
           << paths[i] << (sign > 0 ? " + d" : " - d") << ": the contact set changes";
     }
+  }
+}
+
+// A system-identification task is well posed for its test: every parameter has a finite box
+// that holds the hidden value, and the scene's start is more than 15 % away from it.
+inline void expectHiddenValuesInsideBoxesAndAwayFromStart(const Scene& scene, const ParameterSet& parameters,
+                                                          const std::map<std::string, double>& hiddenByPath) {
+  const SimulationObjective objective(scene, parameters);
+  const Eigen::VectorXd start = parameters.values(scene);
+  for (int i = 0; i < parameters.size(); ++i) {
+    const SceneParameter& p = objective.space().parameters()[i];
+    SCOPED_TRACE(p.path);
+    const double hidden = hiddenByPath.at(p.path);
+    EXPECT_TRUE(std::isfinite(p.lower) && std::isfinite(p.upper));
+    EXPECT_GT(hidden, p.lower);
+    EXPECT_LT(hidden, p.upper);
+    EXPECT_GT(std::abs(start[i] - hidden), 0.15 * std::abs(hidden));
   }
 }
 
