@@ -79,7 +79,7 @@ import math
 import os
 import sys
 
-from scenefiles import dump, write_npy
+from scenefiles import dump, require_nondegenerate, write_npy
 
 SCRIPT = "scripts/make-garments.py"
 
@@ -189,12 +189,7 @@ def check_mesh(name, vertices, triangles, open_rings):
     directions, boundary edges (the open rings) in one; no degenerate triangle."""
     directed = {}
     for tri in triangles:
-        a, b, c = (vertices[i] for i in tri)
-        ab = [b[k] - a[k] for k in range(3)]
-        ac = [c[k] - a[k] for k in range(3)]
-        cross = (ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0])
-        if math.sqrt(sum(x * x for x in cross)) < 1e-10:
-            raise SystemExit(f"{name}: degenerate triangle {tri}")
+        require_nondegenerate(name, vertices, tri)
         for k in range(3):
             edge = (tri[k], tri[(k + 1) % 3])
             directed[edge] = directed.get(edge, 0) + 1

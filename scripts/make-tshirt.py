@@ -294,12 +294,7 @@ def check_mesh(name, vertices, triangles):
     hem, cuffs) and Euler characteristic -2."""
     directed = set()
     for tri in triangles:
-        a, b, c = (vertices[i] for i in tri)
-        ab = [b[k] - a[k] for k in range(3)]
-        ac = [c[k] - a[k] for k in range(3)]
-        cross = (ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0])
-        if math.sqrt(sum(x * x for x in cross)) < 1e-10:
-            raise SystemExit(f"{name}: degenerate triangle {tri}")
+        scenefiles.require_nondegenerate(name, vertices, tri)
         for k in range(3):
             edge = (tri[k], tri[(k + 1) % 3])
             if edge in directed:

@@ -4,6 +4,7 @@ the committed scene and target files byte for byte. Python 3 standard library on
 """
 
 import json
+import math
 import struct
 
 
@@ -39,3 +40,13 @@ def dump(value, indent=0, pack_numbers=False):
         return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
     items = [pad + json.dumps(k) + ": " + dump(v, indent + 2, pack_numbers) for k, v in value.items()]
     return "{\n" + ",\n".join(items) + "\n" + " " * indent + "}"
+
+
+def require_nondegenerate(name, vertices, tri):
+    """Exits naming the mesh when triangle `tri` (three indices into `vertices`) has no area."""
+    a, b, c = (vertices[i] for i in tri)
+    ab = [b[k] - a[k] for k in range(3)]
+    ac = [c[k] - a[k] for k in range(3)]
+    cross = (ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0])
+    if math.sqrt(sum(x * x for x in cross)) < 1e-10:
+        raise SystemExit(f"{name}: degenerate triangle {tri}")
