@@ -4,7 +4,7 @@
 # apt-get line that is needed and exits non-zero.
 WEFT_PACKAGES=(
   build-essential cmake pkg-config
-  libeigen3-dev libsuitesparse-dev libomp-dev libopenblas0-openmp
+  libeigen3-dev libsuitesparse-dev libomp-dev
   nlohmann-json3-dev libtinyobjloader-dev libassimp-dev liblbfgspp-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libimgui-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev

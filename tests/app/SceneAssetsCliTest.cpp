@@ -104,7 +104,8 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
   const auto r = runWeft({"bench", "backward", "--quick", "--resolutions", "12", "--out", out});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   const auto rows = readCsv(out + "/backward.csv");
-  ASSERT_EQ(rows.size(), 1u + 2 * 5);  // Wind and Slope: direct, fixed point and GMRES at 1e-4 and 1e-6
+  // Wind and Slope: direct, then fixed point, GMRES (P) and GMRES (clamped Hessian) at 1e-4 and 1e-6.
+  ASSERT_EQ(rows.size(), 1u + 2 * 7);
   const std::vector<std::string> columns = {"scene", "quads", "vertices", "steps", "method", "tolerance",
                                             "backward_s", "ms_per_step", "solve_ms_per_step", "rest_ms_per_step",
                                             "iterations_per_step", "max_iterations", "not_converged", "fallbacks",
@@ -118,11 +119,11 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
   // Slope goes through the contact adjoint (every node slipping).
   int gmres = 0;
   for (std::size_t i = 1; i < rows.size(); ++i)
-    if (rows[i][4] == "gmres" && rows[i][5] == "1e-06") {
+    if ((rows[i][4] == "gmres" || rows[i][4] == "gmres+hessian") && rows[i][5] == "1e-06") {
       ++gmres;
       EXPECT_LT(std::stod(rows[i][16]), 1e-5) << rows[i][0] << ": GMRES gradient vs direct, row " << i;
     }
-  EXPECT_EQ(gmres, 2);
+  EXPECT_EQ(gmres, 4);
   EXPECT_TRUE(fs::exists(out + "/backward.md"));
 }
 
