@@ -27,7 +27,8 @@ int benchCommand(const std::vector<std::string>& args) {
   for (const char* option : {"--tasks", "--seeds", "--budget"})
     if (cl.has(option)) cl.fail(option, "applies to the applications benchmark only");
   if (name == "contact") return contactBenchmark(cl, out);
-  if (cl.has("--contact")) cl.fail("--contact", "applies to the contact benchmark only");
+  if (cl.has("--contact") && name != "continuity")
+    cl.fail("--contact", "applies to the contact and continuity benchmarks only");
   if (name == "forward") return forwardBenchmark(cl, out);
   if (name == "backward") return backwardBenchmark(cl, out);
   if (cl.has("--resolutions")) cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+
 namespace weft {
 namespace {
 
@@ -145,10 +146,14 @@ TEST(SelfCollisionDetector, ExcludesOnlyMeshNeighboursThatStartWithinTheReach) {
   EXPECT_TRUE(cloths) << "the stacked cloths were not paired";
 }
 
-// KNOWN FAILURE, disabled until the contact iteration converges (see the report of the contact
-// tests issue): on steps that hit solver.pd_iterations, the PD + contact fixed point (Eq. 12
-// with the lumped-mass predictor) is not converged, and the final P solve leaves contact nodes
-// up to 9 mm behind a wall.
+// KNOWN FAILURE, disabled until the contact iteration converges here. The wall check used to
+// include the initial state, which the scene places 9.3 mm across the x = -0.2 wall (now it
+// starts at state 1 and checks that the scene still starts across). What remains is
+// convergence: with the PD iteration (lumped-mass predictor, Eq. 12) the steps run out of
+// solver.pd_iterations and a node ends 12.6 mm behind the x wall; with the Newton contact solve
+// (solver.contact = "newton", set below) about half of the 80 steps still end unconverged with
+// the self-collision pairs (whose Gauss-Seidel coupling the Newton matrix leaves out), and the
+// outcome (pass, or a node 0.6-2.2 mm through a wall) changes with details of the iteration.
 TEST(SelfCollision, DISABLED_ClothCrumpledIntoACornerKeepsNodesApart) {
   nlohmann::json doc = test::clothScene(0.5, 12, Vec3(0.05, 0.25, 0.05), 0.01, 300.0, 1e-4, 0.2);
   doc["cloths"][0]["mesh"]["transform"]["rotate_deg"] = {20, 0, 30};
@@ -157,13 +162,19 @@ TEST(SelfCollision, DISABLED_ClothCrumpledIntoACornerKeepsNodesApart) {
   test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.4);
   test::addObstacle(doc, "plane", {{"point", {-0.2, 0, 0}}, {"normal", {1, 0, 0}}}, 0.4);
   test::addObstacle(doc, "plane", {{"point", {0, 0, -0.2}}, {"normal", {0, 0, 1}}}, 0.4);
+  doc["solver"]["contact"] = "newton";
   const test::ContactRun run = test::runScene(doc, 80);
   expectFiniteAndPairsApart(run, "corner");
-  // Held by the walls and the floor (1 mm skin each), within a millimetre.
-  for (const NodeMatrix& x : run.trajectory.positions) {
-    ASSERT_GT(x.col(0).minCoeff(), -0.2 + 1e-3 - 1e-3);
-    ASSERT_GT(x.col(1).minCoeff(), 1e-3 - 1e-3);
-    ASSERT_GT(x.col(2).minCoeff(), -0.2 + 1e-3 - 1e-3);
+  // Held by the walls and the floor (1 mm skin each), within a millimetre, from the first step
+  // on: the tilted cloth starts with a corner 9.3 mm across the x = -0.2 wall (state 0), which
+  // the first step's contact pushes back out.
+  const Trajectory& t = run.trajectory;
+  ASSERT_LT(t.positions.front().col(0).minCoeff(), -0.2) << "the scene no longer starts across the wall";
+  for (int n = 1; n <= t.stepCount(); ++n) {
+    const NodeMatrix& x = t.positions[n];
+    ASSERT_GT(x.col(0).minCoeff(), -0.2 + 1e-3 - 1e-3) << "state " << n;
+    ASSERT_GT(x.col(1).minCoeff(), 1e-3 - 1e-3) << "state " << n;
+    ASSERT_GT(x.col(2).minCoeff(), -0.2 + 1e-3 - 1e-3) << "state " << n;
   }
 }
 

@@ -53,6 +53,37 @@ TEST(SignoriniCoulomb, RandomInputsSatisfyTheClaimedBranch) {
   EXPECT_GT(count[3], 1000);
 }
 
+// The law's mass is a free parameter of the iteration, not of the solution (ContactSolver::
+// setContacts): a pair (r, u) the law returns with one mass m1 is returned unchanged with any
+// other m2 from the free velocity w2 = u - r / m2, in the same branch. The Newton contact solve
+// relies on it to solve with sqrt(m P_ii) and record with the lumped mass.
+TEST(SignoriniCoulomb, SolutionDoesNotDependOnTheMassItIsSolvedWith) {
+  std::mt19937 rng(2);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double frictions[] = {0.0, 0.1, 0.5, 1.0, 3.0};
+  int switched = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 n = Vec3(g(rng), g(rng), g(rng)).normalized();
+    const double mu = frictions[k % 5];
+    const Vec3 free = std::pow(10.0, 4.0 * u(rng) - 2.0) * Vec3(g(rng), g(rng), g(rng));
+    const double m1 = std::pow(10.0, 3.0 * u(rng) - 5.0);
+    const double m2 = m1 * std::pow(10.0, 6.0 * u(rng) - 3.0);
+    const ContactPoint first = solved(n, mu, free, m1);
+    const Vec3 free2 = first.velocity - first.impulse / m2;
+    const ContactPoint second = solved(n, mu, free2, m2);
+    const double scale = first.impulse.norm() + m1 * first.velocity.norm() + 1e-300;
+    // On a branch boundary (|w_T| = mu |w_N| or w_N = 0) either label is right; the pair must
+    // still be the same.
+    const bool boundary = second.branch != first.branch;
+    switched += boundary;
+    ASSERT_LT((second.impulse - first.impulse).norm(), 1e-9 * scale) << "k = " << k;
+    ASSERT_LT(m1 * (second.velocity - first.velocity).norm(), 1e-9 * scale) << "k = " << k;
+    if (boundary) ASSERT_EQ(test::branchViolation(second, 1e-9), "") << "k = " << k;
+  }
+  EXPECT_LT(switched, 200) << "branch labels should agree away from the boundaries";
+}
+
 TEST(SignoriniCoulomb, EdgeCases) {
   const Vec3 n = Vec3::UnitY();
   // Resting with no tangential motion and no friction: stick with zero friction force.

@@ -9,6 +9,10 @@
 // A curve sampled at spacing d has neighbour differences of about slope * d where it is
 // continuous, and a difference that does not shrink with d at a jump. The summary therefore
 // reports, per curve, the largest neighbour difference and its ratio to the median one.
+//
+// --contact pd|newton|active_set sets solver.contact for every run (default: the scene's own);
+// a speed read after steps that ended above solver.pd_tolerance carries their unconverged part,
+// so the summary also gives the largest count of such steps over the mu samples.
 
 #include "../CommandLine.h"
 #include "../Commands.h"
@@ -65,8 +69,11 @@ struct Sample {
 // (the experiment isolates contact with the sphere), the cloth's lowest point lowered to 2 mm
 // above the top of the sphere so it starts in contact, keeping the scene's horizontal offset
 // (so that with little friction it slides off).
-Scene makeScene(const std::string& file, Surface surface, int subdivisions, double mu, int steps) {
-  Scene scene = loadScene(file, {{"time.steps", std::to_string(steps)}});
+Scene makeScene(const std::string& file, Surface surface, int subdivisions, double mu, int steps,
+                const std::string& contact) {
+  std::vector<SceneOverride> overrides = {{"time.steps", std::to_string(steps)}};
+  if (contact != "scene") overrides.push_back({"solver.contact", "\"" + contact + "\""});
+  Scene scene = loadScene(file, overrides);
   if (scene.cloths.size() != 1 || scene.obstacles.size() != 1 ||
       scene.obstacles[0].shape != Obstacle::Shape::Sphere)
     throw InputError(file, "obstacles",
@@ -126,6 +133,10 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
   const bool quick = cl.has("--quick");
   const std::string file = cl.value("--scene", assetFile("scenes/sphere.json"));
   const int threads = cl.integer("--threads", 1, 1, 1024);
+  const std::vector<std::string> contacts =
+      benchNames(cl, "--contact", "scene", {"scene", "pd", "newton", "active_set"});
+  if (contacts.size() != 1) cl.fail("--contact", "bench continuity takes one contact solve");
+  const std::string contact = contacts.front();
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
 
@@ -137,7 +148,7 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
   const int subdivisions = 3;  // 1280 triangles, edges about as long as the cloth's
   const std::vector<Surface> surfaces = {Surface::Analytic, Surface::FlatMesh, Surface::SmoothMesh};
 
-  const Scene probeScene = makeScene(file, Surface::Analytic, subdivisions, 0.0, recordAt.back());
+  const Scene probeScene = makeScene(file, Surface::Analytic, subdivisions, 0.0, recordAt.back(), contact);
   // Grid vertex (i, j) is j * (n + 1) + i: corner, middle of the first row, centre.
   const int vertices = probeScene.cloths[0].mesh.vertexCount();
   const int side = static_cast<int>(std::lround(std::sqrt(double(vertices))));
@@ -153,6 +164,8 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
   std::vector<std::vector<std::vector<std::vector<double>>>> curves(
       surfaces.size(), std::vector<std::vector<std::vector<double>>>(
                            recordAt.size(), std::vector<std::vector<double>>(probes.size())));
+  // unconvergedMax[surface][recorded step]: the most steps at the iteration cap over mu
+  std::vector<std::vector<int>> unconvergedMax(surfaces.size(), std::vector<int>(recordAt.size(), 0));
   std::vector<double> mus;
   for (int k = 0; k < samples; ++k) mus.push_back(0.35 * k / (samples - 1));
   const auto start = std::chrono::steady_clock::now();
@@ -160,8 +173,9 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
     for (double mu : mus) {
       std::fprintf(stderr, "\rcontinuity: %s mu %.4f   ", surfaceName(surfaces[s]), mu);
       const Sample sample = simulate(
-          makeScene(file, surfaces[s], subdivisions, mu, recordAt.back()), probes, recordAt);
-      for (std::size_t r = 0; r < recordAt.size(); ++r)
+          makeScene(file, surfaces[s], subdivisions, mu, recordAt.back(), contact), probes, recordAt);
+      for (std::size_t r = 0; r < recordAt.size(); ++r) {
+        unconvergedMax[s][r] = std::max(unconvergedMax[s][r], sample.unconverged[r]);
         for (std::size_t p = 0; p < probes.size(); ++p) {
           curves[s][r][p].push_back(sample.speed[r][p]);
           table.add({surfaceName(surfaces[s]), formatNumber(mu, 6), std::to_string(recordAt[r]),
@@ -170,6 +184,7 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
                      std::to_string(sample.branches[r][1]), std::to_string(sample.branches[r][2]),
                      std::to_string(sample.unconverged[r]), std::to_string(sample.failedStep)});
         }
+      }
     }
   }
   std::fprintf(stderr, "\n");
@@ -178,8 +193,8 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
 
   // Per curve: the largest difference between neighbouring mu samples, where it is, and its
   // ratio to the median difference.
-  BenchTable summary(
-      {"surface", "step", "node", "max_jump", "at_mu", "median_jump", "jump_ratio", "speed_range"});
+  BenchTable summary({"surface", "step", "node", "max_jump", "at_mu", "median_jump", "jump_ratio", "speed_range",
+                      "unconverged_max"});
   for (std::size_t s = 0; s < surfaces.size(); ++s)
     for (std::size_t r = 0; r < recordAt.size(); ++r)
       for (std::size_t p = 0; p < probes.size(); ++p) {
@@ -195,17 +210,19 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
         const auto [lo, hi] = std::minmax_element(c.begin(), c.end());
         summary.add({surfaceName(surfaces[s]), std::to_string(recordAt[r]), probes[p].label,
                      formatNumber(worst, 4), formatNumber(at, 4), formatNumber(med, 4),
-                     formatNumber(med > 0 ? worst / med : 0.0, 3), formatNumber(*hi - *lo, 4)});
+                     formatNumber(med > 0 ? worst / med : 0.0, 3), formatNumber(*hi - *lo, 4),
+                     std::to_string(unconvergedMax[s][r])});
       }
 
   const std::string preamble =
       "DiffCloth Fig. 2 (Sec. 5.1): cloth of " + file + " (" + std::to_string(n) + "x" +
       std::to_string(n) +
-      " quads) starting 2 mm above the top of its sphere, without self-collision, h = " +
+      " quads) starting 2 mm above the top of its sphere, without self-collision, solver.contact " +
+      (contact == "scene" ? std::string("as in the scene") : "\"" + contact + "\"") + ", h = " +
       formatNumber(probeScene.time.dt, 4) + " s. Friction mu swept over [0, 0.35] in " +
       std::to_string(samples) +
       " samples; speeds (m/s) of the corner A, edge-centre B and centre C nodes at the listed "
-      "steps (unconverged_steps: steps so far whose PD iterations hit the cap). Surfaces: the "
+      "steps (unconverged_steps: steps so far that ended above solver.pd_tolerance). Surfaces: the "
       "analytic sphere; an icosphere of " +
       std::to_string(20 << (2 * subdivisions)) +
       " triangles with flat face normals; the same with smoothed (interpolated vertex) normals. " +
@@ -221,7 +238,9 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
           "(max_jump, at_mu), the median one, and jump_ratio = max_jump / median_jump. A "
           "continuous curve keeps the ratio moderate (kinks at branch switches included); a "
           "discontinuity shows as a jump far above the median that does not shrink with the mu "
-          "spacing. Every sample: continuity.csv; plots: continuity_step*.png.");
+          "spacing. unconverged_max: the most steps, up to the listed one, that ended above "
+          "solver.pd_tolerance, over the mu samples. Every sample: continuity.csv; plots: "
+          "continuity_step*.png.");
   for (std::size_t r = 0; r < recordAt.size(); ++r) {
     std::vector<PlotSeries> plot;
     for (std::size_t s = 0; s < surfaces.size(); ++s)

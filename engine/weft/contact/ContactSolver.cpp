@@ -15,7 +15,8 @@ constexpr int kParallelMinimum = 512;
 
 void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleContacts,
                                 const std::vector<ContactConstraint>& pairs, const std::vector<int>& layerStart,
-                                const Eigen::VectorXd& mass) {
+                                const Eigen::VectorXd& lumped, const Eigen::VectorXd* lawMass) {
+  const Eigen::VectorXd& mass = lawMass ? *lawMass : lumped;
   for (const Slot& s : slots_) slotOf_[s.node] = -1;
   slots_.clear();
   contacts_.clear();
@@ -34,15 +35,17 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
     if (!sameNode) groupStart_.push_back(static_cast<int>(contacts_.size()));
     coupled_ = coupled_ || sameNode;
     contacts_.push_back(Contact{slotFor(c.node), -1, c.obstacle, c.normal, c.reference, c.friction, mass[c.node],
-                                Vec3::Zero(), ContactBranch::TakeOff, c.sample, c.pathFraction, Mat3::Zero()});
+                                lumped[c.node], Vec3::Zero(), ContactBranch::TakeOff, c.sample, c.pathFraction,
+                                Mat3::Zero()});
   }
   groupStart_.push_back(static_cast<int>(contacts_.size()));
   pairBegin_ = static_cast<int>(contacts_.size());
   for (const ContactConstraint& c : pairs) {
     const double ma = mass[c.node], mb = mass[c.partner];
+    const double la = lumped[c.node], lb = lumped[c.partner];
     contacts_.push_back(Contact{slotFor(c.node), slotFor(c.partner), -1, c.normal, c.reference, c.friction,
-                                ma * mb / (ma + mb), Vec3::Zero(), ContactBranch::TakeOff, c.sample,
-                                c.pathFraction, Mat3::Zero()});
+                                ma * mb / (ma + mb), la * lb / (la + lb), Vec3::Zero(), ContactBranch::TakeOff,
+                                c.sample, c.pathFraction, Mat3::Zero()});
   }
   coupled_ = coupled_ || !pairs.empty();
   layerStart_ = layerStart;
@@ -102,9 +105,12 @@ void ContactSolver::addImpulses(double scale, NodeMatrix& rhs) const {
   for (const Slot& s : slots_) rhs.row(s.node) += scale * s.impulse.transpose();
 }
 
-void ContactSolver::linearize() {
+int ContactSolver::linearize() {
   for (Slot& s : slots_) s.pinned.setZero();
+  int changed = 0;
   for (Contact& c : contacts_) {
+    changed += c.branch != c.linearized;
+    c.linearized = c.branch;
     c.law = differentiateSignoriniCoulomb(c.branch, c.normal, c.friction, freeVelocity(c)).velocity;
     if (c.b >= 0 || c.branch == ContactBranch::TakeOff) continue;
     Mat3& pinned = slots_[c.a].pinned;
@@ -112,6 +118,7 @@ void ContactSolver::linearize() {
     if (c.branch == ContactBranch::Stick || !pinned.isZero(0.0)) pinned.setIdentity();
     else pinned = c.normal * c.normal.transpose();
   }
+  return changed;
 }
 
 void ContactSolver::addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const {
@@ -160,7 +167,7 @@ void ContactSolver::record(StepContacts& out) const {
     if (c.b >= 0) u -= slots_[c.b].freeVelocity + slots_[c.b].impulse / slots_[c.b].mass;
     p.velocity = u - c.reference;
     p.friction = c.friction;
-    p.effectiveMass = c.effectiveMass;
+    p.effectiveMass = c.recordMass;
     p.reference = c.reference;
     p.sample = c.sample;
     p.pathFraction = c.pathFraction;

@@ -31,8 +31,18 @@ class ContactSolver {
 
   // Takes the step's contacts: obstacle contacts sorted by node, pairs in layer order with
   // `layerStart` boundaries. Resets all impulses to zero.
+  //
+  // `mass` is the lumped mass. `lawMass` (optional, per node) is the mass the law is solved with:
+  // the law relates an impulse r and a velocity u through the free velocity w = u - r / m~, and
+  // (r, u) satisfies Eq. 8 exactly when r = m~ L(w) for ANY m~ > 0 (per contact), so m~ changes
+  // the iteration, never the solution (it is the augmentation parameter of Alart and Curnier's
+  // formulation). The "pd" iteration uses the lumped mass (DiffCloth Eq. 12); the Newton solve
+  // a larger one (Simulator::solveContactNewton). The caller's free momentum must then be
+  // m~ v + (b - P x) / h. The record reports the lumped (reduced) mass either way, so that what
+  // it holds (r, u and d = m u - r with the lumped m) reads as DiffCloth's convention.
   void setContacts(const std::vector<ContactConstraint>& obstacleContacts, const std::vector<ContactConstraint>& pairs,
-                   const std::vector<int>& layerStart, const Eigen::VectorXd& mass);
+                   const std::vector<int>& layerStart, const Eigen::VectorXd& mass,
+                   const Eigen::VectorXd* lawMass = nullptr);
   bool empty() const { return contacts_.empty(); }
   int contactCount() const { return static_cast<int>(contacts_.size()); }
 
@@ -49,8 +59,9 @@ class ContactSolver {
   // the impulses r(f) as a function of the free momentum f, differentiated in each contact's
   // branch (ContactLawJacobian.h). Contacts sharing a node are differentiated one at a time
   // (their Gauss-Seidel coupling is left out), which makes the Newton matrix inexact there but
-  // never the solution: the Newton solve stops on the true residual.
-  void linearize();
+  // never the solution: the Newton solve stops on the true residual. Returns how many contacts
+  // changed branch since the previous linearisation of the step.
+  int linearize();
   // out += h dr/df q for q = h df (impulse-per-momentum blocks; out and q are m x 3).
   void addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const;
   // The velocity directions each contact node's branches prescribe (stick: all three; slip: the
@@ -72,12 +83,14 @@ class ContactSolver {
     int a, b;  // slots (b = -1 for an obstacle contact)
     int obstacle;
     Vec3 normal, reference;
-    double friction, effectiveMass;
+    double friction, effectiveMass;  // effectiveMass: the law's (reduced) mass m~
+    double recordMass;               // the lumped (reduced) mass, for the record
     Vec3 impulse;  // on slot a (slot b receives the opposite)
     ContactBranch branch;
     Vec3 sample;  // detection's surface sample (recorded for the backward pass)
     double pathFraction;
     Mat3 law;  // d du / d w in the contact's branch (linearize())
+    ContactBranch linearized = ContactBranch::None;  // the branch at the last linearize()
   };
   Vec3 freeVelocity(const Contact& c) const;  // w: the contact's velocity without its own impulse
   double update(Contact& c);  // one Gauss-Seidel update; returns |delta r| / m

@@ -45,7 +45,9 @@ void FrictionalContact::detectSelfCollisions(const NodeMatrix& x, const NodeMatr
   layering_.order(pairs_, obstacleNodes_, layerStart_);
 }
 
-void FrictionalContact::prepareSolve() { solver_.setContacts(obstacleContacts_, pairs_, layerStart_, model_.mass); }
+void FrictionalContact::prepareSolve(const Eigen::VectorXd* lawMass) {
+  solver_.setContacts(obstacleContacts_, pairs_, layerStart_, model_.mass, lawMass);
+}
 
 int FrictionalContact::solve(const NodeMatrix& freeMomentum, double sweepTolerance) {
   return solver_.solve(freeMomentum, sweepTolerance, kMaxSweeps);

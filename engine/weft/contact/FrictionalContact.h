@@ -40,9 +40,10 @@ class FrictionalContact {
   // x: state at the start of the step; displacement: the predicted motion over the step.
   void detectObstacles(const NodeMatrix& x, const NodeMatrix& displacement);
   void detectSelfCollisions(const NodeMatrix& x, const NodeMatrix& displacement);
-  // Hands the detected contacts to the per-node solver of solver.contact = "pd" (impulses start
-  // at zero).
-  void prepareSolve();
+  // Hands the detected contacts to the per-node solver of solver.contact = "pd" and "newton"
+  // (impulses start at zero), optionally with the mass the law is solved with
+  // (ContactSolver::setContacts; default: the lumped mass).
+  void prepareSolve(const Eigen::VectorXd* lawMass = nullptr);
   // Hands the detected contacts to the active set of solver.contact = "active_set"; x0 is the
   // start-of-step state and must stay unchanged during the step.
   void prepareActiveSet(const NodeMatrix& x0, double velocityTolerance) {

@@ -8,8 +8,12 @@
 #include <weft/physics/StretchConstraint.h>
 #include <weft/physics/WindForce.h>
 
+#include <Eigen/CholmodSupport>
+
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 namespace weft {
@@ -21,9 +25,34 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Newton steps that fail to reduce the residual enough before the Newton contact solve hands the
-// step over to the PD iteration.
-constexpr int kNewtonFailuresBeforePd = 1;
+// The Newton contact solve (Simulator::solveContactNewton).
+// K+ is refactorised when a GMRES solve needed more than this many iterations (the iterate and
+// the branches moved far from where it was factorised).
+constexpr int kRefactorIterations = 20;
+// GMRES iterations a step's first linear solve may take with P before K+ is factorised.
+constexpr int kPIterations = 5;
+constexpr int kGmresRestart = 100;
+// Backtracking stops below this step length; then a full Newton step is still taken if its
+// residual stays below kRelaxedGrowth times the best one so far (a non-monotone step, at most
+// kRelaxedSteps in a row: after a branch switch the next linearisation corrects the full step,
+// while the backtracking would creep along the old branch). The step's result is the best
+// iterate visited.
+constexpr double kMinStep = 1e-3;
+constexpr double kRelaxedGrowth = 100.0;
+constexpr int kRelaxedSteps = 3;
+
+// Diagnostics: WEFT_CONTACT_TRACE=a-b (or =a) prints each Newton contact iteration of steps a..b
+// to stderr (residual, GMRES iterations, step length, branch changes).
+bool traceContactStep(int step) {
+  static int first = 0, last = -1;
+  static bool read = false;
+  if (!read) {
+    read = true;
+    if (const char* e = std::getenv("WEFT_CONTACT_TRACE"))
+      if (std::sscanf(e, "%d-%d", &first, &last) == 1) last = first;
+  }
+  return step >= first && step <= last;
+}
 
 // A speed no cloth reaches unless the integration has blown up.
 constexpr double kBlowUpSpeed = 1e5;  // m/s
@@ -97,6 +126,12 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
   moduleSeconds_[solverModule_] += secondsSince(start);
 }
 
+struct Simulator::StiffnessFactor {
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  Eigen::SparseMatrix<double> lower;  // K+ (lower triangle), also for products
+  bool analysed = false;
+};
+
 Simulator::~Simulator() = default;
 
 int Simulator::addModule(const std::string& name) {
@@ -108,6 +143,9 @@ int Simulator::addModule(const std::string& name) {
 void Simulator::assembleAndFactorize() {
   system_ = assembleSystemMatrix(model_.mass, constraints_, h_);
   systemRows_ = system_;
+  // The Newton contact solve's law mass (solveContactNewton): the geometric mean of the lumped
+  // mass and P's diagonal.
+  lawMass_ = (model_.mass.array() * system_.diagonal().array()).sqrt().matrix();
   if (!cholesky_.factorize(system_))
     throw NumericalError(0, "solver", "system matrix P is not positive definite");
 }
@@ -405,8 +443,9 @@ void Simulator::detectContacts(double t0, double t1) {
   if (contact_->hasSelfCollision())
     timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, plainIterate_); });
   timed(contactSolveModule_, [&] {
+    contactLawMass_ = scene_.solver.contact == ContactMethod::Newton ? &lawMass_ : nullptr;
     if (scene_.solver.contact == ContactMethod::ActiveSet) contact_->prepareActiveSet(x_, scene_.solver.pdTolerance * h_);
-    else contact_->prepareSolve();
+    else contact_->prepareSolve(contactLawMass_);
   });
 }
 
@@ -423,8 +462,10 @@ void Simulator::assembleContactRhs(const NodeMatrix& x, NodeMatrix& systemTimesX
   timed(solverModule_, [&] {
     // Free momentum f = b_hat - (P - M) v^k = M (x^k - x_n)/h + (b - P x^k)/h, which equals
     // M v_n + h (f_ext + f_int(x^k)): the momentum each node would have without contact,
-    // predicted with the diagonal M as in Eq. 12.
-    freeMomentum_ = (rhs_ - systemTimesX + model_.mass.asDiagonal() * (x - x_)) / h_;
+    // predicted with the diagonal M as in Eq. 12. The Newton solve uses its law mass m~ in place
+    // of M (ContactSolver::setContacts): the same solution, other iterates.
+    const Eigen::VectorXd& lawMass = contactLawMass_ ? *contactLawMass_ : model_.mass;
+    freeMomentum_ = (rhs_ - systemTimesX + lawMass.asDiagonal() * (x - x_)) / h_;
   });
   timed(contactSolveModule_, [&] {
     // Sweeps stop when no impulse changes by more than a tenth of what the PD tolerance allows
@@ -499,67 +540,189 @@ double Simulator::contactResidual(const NodeMatrix& x, NodeMatrix& residual) {
   return measure;
 }
 
-void Simulator::solveContactNewton() {
-  // Semismooth Newton on G(x) = P x - b(x) - h r(f(x)) = 0, the fixed point of the "pd" contact
-  // iteration x <- P^-1 (b(x) + h r(f(x))) (DiffCloth Eqs. 10-12): the same per-node law (Eq. 8)
-  // with the same lumped-mass free momentum f = (M (x - x_n) + b(x) - P x) / h, so the same
-  // solution, and the same convergence test (the mass-weighted RMS of G, residualOf). Its
-  // Jacobian, with K = P - Delta P (Sec. 4.1) and R' = dr/df from each contact's branch
-  // (ContactLawJacobian.h), is
-  //   J = K + R' (K - M),
-  // the transpose of the backward pass's operator (Eq. 29): forward and backward linearise the
-  // same equations. J is not symmetric (slip blocks), so J d = -G is solved by GMRES, right-
-  // preconditioned by B: velocities the branches prescribe (stick: all of u, slip: u_N) have
-  // rows M in J, so B inverts them exactly per node and solves the rest with P's factor
-  // restricted to the free directions. GMRES works on M^-1/2 J d = -M^-1/2 G, so that the norm it
-  // minimises is the convergence test's mass-weighted one. The Newton step is damped by
-  // backtracking on that norm. Where even a short step does not reduce it (a branch switch the
-  // linearisation keeps missing, as at the rim of a cloth settling on a sphere), the PD
-  // iteration (solveWithContact), which needs no linearisation, finishes the step.
+void Simulator::colourNodes() {
+  // Greedy distance-2 colouring of P's graph (nodes sharing a constraint): two nodes of one
+  // colour never share a neighbour, so a product of K with the sum of one colour's unit vectors
+  // gives every column of that colour separately.
+  const int m = model_.nodeCount();
+  std::vector<std::vector<int>> adjacent(m);
+  for (int j = 0; j < system_.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(system_, j); it; ++it)
+      if (it.row() != j) adjacent[j].push_back(static_cast<int>(it.row()));
+  probeColour_.assign(m, -1);
+  probeColours_ = 0;
+  std::vector<char> taken;
+  for (int i = 0; i < m; ++i) {
+    taken.assign(probeColours_ + 1, 0);
+    for (int j : adjacent[i]) {
+      if (probeColour_[j] >= 0) taken[probeColour_[j]] = 1;
+      for (int k : adjacent[j])
+        if (probeColour_[k] >= 0) taken[probeColour_[k]] = 1;
+    }
+    int c = 0;
+    while (c < probeColours_ && taken[c]) ++c;
+    probeColour_[i] = c;
+    probeColours_ = std::max(probeColours_, c + 1);
+  }
+}
+
+bool Simulator::factorizeStiffness() {
+  // K+ = P - Delta P+ at iterate_ (the derivatives must have been prepared `definite`), 3 x 3
+  // blocks on P's pattern, probed with 3 x (colour count) products.
+  if (probeColour_.empty()) colourNodes();
+  if (!stiffness_) stiffness_ = std::make_unique<StiffnessFactor>();
+  const int m = model_.nodeCount();
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(9 * static_cast<std::size_t>(system_.nonZeros()));
+  probe_.setZero(m, 3);
+  probeProduct_.resize(m, 3);
+  for (int c = 0; c < probeColours_; ++c)
+    for (int a = 0; a < 3; ++a) {
+      probe_.setZero();
+      for (int i = 0; i < m; ++i)
+        if (probeColour_[i] == c) probe_(i, a) = 1.0;
+      multiplyNewtonMatrix(probe_, probeProduct_);
+      timed(solverModule_, [&] {
+        for (int j = 0; j < system_.outerSize(); ++j)
+          for (Eigen::SparseMatrix<double>::InnerIterator it(system_, j); it; ++it) {
+            const int i = static_cast<int>(it.row());  // column i of K, read in row j
+            if (probeColour_[i] != c) continue;
+            for (int b = 0; b < 3; ++b)
+              if (3 * j + b >= 3 * i + a) entries.emplace_back(3 * j + b, 3 * i + a, probeProduct_(j, b));
+          }
+      });
+    }
+  bool ok = false;
+  timed(solverModule_, [&] {
+    // The product gives K's lower triangle from the columns; K+ is symmetric.
+    StiffnessFactor& f = *stiffness_;
+    f.lower.resize(3 * m, 3 * m);
+    f.lower.setFromTriplets(entries.begin(), entries.end());
+    if (!f.analysed) {
+      f.llt.analyzePattern(f.lower);
+      f.analysed = true;
+    }
+    f.llt.factorize(f.lower);
+    ok = f.llt.info() == Eigen::Success;
+  });
+  stiffnessFactored_ = ok;
+  return ok;
+}
+
+void Simulator::preconditionContact(const NodeMatrix& scaled, NodeMatrix& z) {
+  // Right preconditioner B of the Newton contact solve. The velocities the branches prescribe
+  // (stick: all of u, slip: u_N) have rows m~ in J, so B inverts them exactly per node; the rest
+  // is solved with K+ (or P when K+ could not be factorised) restricted to the free directions.
   ContactSolver& contacts = contact_->perNodeSolver();
-  const SolverSettings& solver = scene_.solver;
-  NodeMatrix& residual = cgResidual_;  // G at iterate_
-  NodeMatrix& trialResidual = cgProduct_;
-  NodeMatrix& step = direction_;
-  NodeMatrix& rhs = cgSearch_;
-  auto applyJacobian = [&](const NodeMatrix& in, NodeMatrix& out) {
-    multiplyNewtonMatrix(in, out);
-    timed(contactSolveModule_, [&] {
-      lawInput_ = out - model_.mass.asDiagonal() * in;
-      contacts.addLawJacobian(lawInput_, out);
-      out = massRoot_.cwiseInverse().asDiagonal() * out;
-    });
-  };
-  auto precondition = [&](const NodeMatrix& scaled, NodeMatrix& z) {
-    timed(solverModule_, [&] {
-      z.resize(scaled.rows(), 3);
-      lawInput_ = massRoot_.asDiagonal() * scaled;  // (a free buffer here)
-      const NodeMatrix& r = lawInput_;
-      pinnedPart_.setZero();
-      contacts.pinnedVelocity(r, pinnedPart_);
+  const int m = model_.nodeCount();
+  timed(solverModule_, [&] {
+    z.resize(m, 3);
+    lawInput_ = massRoot_.asDiagonal() * scaled;  // (a free buffer here)
+    const NodeMatrix& r = lawInput_;
+    pinnedPart_.setZero(m, 3);
+    contacts.pinnedVelocity(r, pinnedPart_);
+    if (!stiffnessFactored_) {
       multiplySystem(pinnedPart_, z);
       z = r - z;
       contacts.removePinned(z);
       cholesky_.solveInPlace(z);
+    } else {
+      const StiffnessFactor& f = *stiffness_;
+      flatWork_.resize(3 * m);
+      for (int i = 0; i < m; ++i)
+        for (int a = 0; a < 3; ++a) flatWork_[3 * i + a] = pinnedPart_(i, a);
+      const Eigen::VectorXd coupling = f.lower.selfadjointView<Eigen::Lower>() * flatWork_;
+      for (int i = 0; i < m; ++i)
+        for (int a = 0; a < 3; ++a) z(i, a) = r(i, a) - coupling[3 * i + a];
       contacts.removePinned(z);
-      z += pinnedPart_;
+      for (int i = 0; i < m; ++i)
+        for (int a = 0; a < 3; ++a) flatWork_[3 * i + a] = z(i, a);
+      flatWork_ = f.llt.solve(flatWork_);
+      for (int i = 0; i < m; ++i)
+        for (int a = 0; a < 3; ++a) z(i, a) = flatWork_[3 * i + a];
+    }
+    contacts.removePinned(z);
+    z += pinnedPart_;
+  });
+  ++stats_.pdIterations;
+}
+
+void Simulator::solveContactNewton() {
+  // Semismooth Newton on G(x) = P x - b(x) - h r(f(x)) = 0, the fixed point of the "pd" contact
+  // iteration x <- P^-1 (b(x) + h r(f(x))) (DiffCloth Eqs. 10-12): the same per-node law (Eq. 8),
+  // so the same solution, and the same convergence test (the mass-weighted RMS of G,
+  // residualOf). Two choices differ from the PD iteration, neither changes the solution:
+  //  - The law is solved with the mass m~_i = sqrt(m_i P_ii) instead of the lumped m_i
+  //    (ContactSolver::setContacts; the augmentation parameter of Alart and Curnier's
+  //    formulation). The law decides a contact's branch from its free velocity
+  //    w = v + (b - P x) / (h m~): with m~ = m the elastic imbalance of an unconverged iterate is
+  //    amplified by P_ii / m_i (about 535 at 24^2 quads on the Sphere scene) and the branches of
+  //    rim nodes flip from one iterate to the next; with m~ = P_ii the decisions follow the
+  //    iterate's velocity, which lags when a resting cloth starts to slide (Slope: 83 of 100
+  //    steps converged against 100). The geometric mean converged all of Slope's steps and as
+  //    many of the Sphere's as P_ii (measured over 100 steps each).
+  //  - Its Jacobian, with K = P - Delta P (Sec. 4.1) and R' = dr/df from each contact's branch
+  //    (ContactLawJacobian.h), J = K + R' (K - M~) (the transpose of the backward pass's
+  //    operator, Eq. 29, with M~ for M), is not symmetric, so J d = -G is solved by GMRES (on
+  //    M^-1/2 J d = -M^-1/2 G, so that it minimises the convergence test's norm), right-
+  //    preconditioned by preconditionContact. P is a poor preconditioner here: P^-1 K has one
+  //    eigenvalue per node between m/P_ii and about 0.05 (measured at step 20 of the Sphere
+  //    scene without self-collision: 613 of 1875 eigenvalues in [1.4e-3, 0.045], their vectors
+  //    97-100 % along the cloth normal), the out-of-plane modes PD's quadratic stretch energy
+  //    makes as stiff as in-plane stretching, and GMRES needed about 25 iterations per decade
+  //    of residual. A factor of the clamped Hessian K+ brings that to a few. Each step starts
+  //    with P (where contacts pin the normal motion, as on Slope, it needs 1-4 iterations); once
+  //    a solve takes more than kPIterations, K+ is factorised at the current iterate, the solve
+  //    continues from where it was, and K+ is refactorised whenever a later solve needs more than
+  //    kRefactorIterations.
+  // The step is damped by backtracking on the residual norm; where that fails (the direction
+  // crosses a branch switch), a full step is still taken if it does not raise the residual more
+  // than kRelaxedGrowth-fold over the best (non-monotone), and the step's result is the best
+  // iterate visited.
+  ContactSolver& contacts = contact_->perNodeSolver();
+  const SolverSettings& solver = scene_.solver;
+  const bool trace = traceContactStep(step_ + 1);
+  NodeMatrix& residual = cgResidual_;  // G at iterate_
+  NodeMatrix& trialResidual = cgProduct_;
+  NodeMatrix& step = direction_;
+  NodeMatrix& rhs = cgSearch_;
+  NodeMatrix& best = plainIterate_;
+  const Eigen::VectorXd& lawMass = contactLawMass_ ? *contactLawMass_ : model_.mass;
+  auto applyJacobian = [&](const NodeMatrix& in, NodeMatrix& out) {
+    multiplyNewtonMatrix(in, out);
+    timed(contactSolveModule_, [&] {
+      lawInput_ = out - lawMass.asDiagonal() * in;
+      contacts.addLawJacobian(lawInput_, out);
+      out = massRoot_.cwiseInverse().asDiagonal() * out;
     });
-    ++stats_.pdIterations;
+  };
+  auto precondition = [&](const NodeMatrix& scaled, NodeMatrix& z) { preconditionContact(scaled, z); };
+  auto prepareDerivatives = [&](bool definite) {
+    for (std::size_t c = 0; c < constraints_.size(); ++c)
+      if (constraints_[c]->hasDerivative())
+        timed(constraintModule_[c], [&] { constraints_[c]->prepareDerivative(iterate_, definite); });
   };
 
   double measure = contactResidual(iterate_, residual);
   bool atIterate = true;  // rhs_ and the contact impulses belong to iterate_
+  double bestMeasure = measure;
+  best = iterate_;
+  bool factored = false;  // K+ factorised at an iterate of this step
+  stiffnessFactored_ = false;  // (preconditionContact uses P until then)
   double forcing = 0.1, previous = 0.0;
-  int failures = 0;  // Newton steps rejected or that did not halve the residual
+  int lastIterations = 0, relaxed = 0, iteration = 0;
+  if (trace) std::fprintf(stderr, "step %d: newton contact solve, residual %.3e\n", step_ + 1, measure);
   while (true) {
     stats_.residual = measure;
     stats_.converged = measure < solver.pdTolerance;
     if (stats_.converged || !std::isfinite(measure) || stats_.pdIterations >= solver.pdIterations) break;
-    if (failures >= kNewtonFailuresBeforePd) break;
-    for (std::size_t c = 0; c < constraints_.size(); ++c)
-      if (constraints_[c]->hasDerivative())
-        timed(constraintModule_[c], [&] { constraints_[c]->prepareDerivative(iterate_, false); });
-    timed(contactSolveModule_, [&] { contacts.linearize(); });
+    if (factored && lastIterations > kRefactorIterations) {
+      prepareDerivatives(true);
+      factorizeStiffness();
+    }
+    prepareDerivatives(false);
+    int changed = 0;
+    timed(contactSolveModule_, [&] { changed = contacts.linearize(); });
     // Inexact Newton: the linear tolerance follows the residual's decrease (Eisenstat-Walker 2).
     if (previous > 0.0) {
       const double ratio = measure / previous;
@@ -567,37 +730,66 @@ void Simulator::solveContactNewton() {
     }
     previous = measure;
     timed(solverModule_, [&] { rhs = -(massRoot_.cwiseInverse().asDiagonal() * residual); });
-    gmres_.solve(applyJacobian, precondition, rhs, step, forcing, std::max(1, solver.pdIterations - stats_.pdIterations),
-                 40);
-    bool accepted = false;
-    for (double alpha = 1.0; alpha > 0.1 && !accepted; alpha *= 0.5) {
-      timed(solverModule_, [&] { accelerated_ = iterate_ + alpha * step; });
-      const double trial = contactResidual(accelerated_, trialResidual);
-      accepted = trial <= (1.0 - 1e-4 * alpha) * measure;
-      atIterate = accepted;
-      if (accepted) {
-        iterate_.swap(accelerated_);
-        residual.swap(trialResidual);
-        measure = trial;
-      }
+    // Each step starts with P as the preconditioner (enough where contacts pin the cloth's
+    // normal motion, as on Slope); K+ is factorised once a solve with P is slow.
+    const int budget = std::max(1, solver.pdIterations - stats_.pdIterations);
+    GmresResult linear = gmres_.solve(applyJacobian, precondition, rhs, step, forcing,
+                                      factored ? budget : std::min(budget, kPIterations), kGmresRestart);
+    if (!factored && !linear.converged && stats_.pdIterations < solver.pdIterations) {
+      factored = true;
+      prepareDerivatives(true);
+      factorizeStiffness();
+      prepareDerivatives(false);
+      const int spent = linear.iterations;
+      linear = gmres_.solve(applyJacobian, precondition, rhs, step, forcing,
+                            std::max(1, solver.pdIterations - stats_.pdIterations), kGmresRestart, true);
+      linear.iterations += spent;
     }
-    // A step that did not at least halve the residual counts as a failure too: Newton is then
-    // outside its region of fast convergence, where each of its steps costs several PD steps.
-    if (!accepted || measure > 0.5 * previous) ++failures;
+    lastIterations = linear.iterations;
+    bool accepted = false;
+    double trial = measure, alpha = 1.0;
+    for (; alpha > kMinStep && !accepted; alpha *= 0.5) {
+      timed(solverModule_, [&] { accelerated_ = iterate_ + alpha * step; });
+      trial = contactResidual(accelerated_, trialResidual);
+      accepted = trial <= (1.0 - 1e-4 * alpha) * measure;
+    }
+    if (accepted) {
+      alpha *= 2.0;  // (the loop halved it once more)
+      relaxed = 0;
+    } else if (relaxed < kRelaxedSteps) {
+      alpha = 1.0;
+      timed(solverModule_, [&] { accelerated_ = iterate_ + step; });
+      trial = contactResidual(accelerated_, trialResidual);
+      accepted = std::isfinite(trial) && trial < kRelaxedGrowth * bestMeasure;
+      relaxed += accepted;
+    }
+    ++iteration;
+    if (trace)
+      std::fprintf(stderr, "  %2d: %2d branch changes, gmres %3d (%.1e), step %.3f%s, residual %.3e -> %.3e, %d solves\n",
+                   iteration, changed, linear.iterations, linear.residual, accepted ? alpha : 0.0,
+                   relaxed > 0 && accepted ? " (non-monotone)" : "", measure, trial, stats_.pdIterations);
+    atIterate = accepted;
+    if (!accepted) break;  // stalled: the best iterate is the result
+    iterate_.swap(accelerated_);
+    residual.swap(trialResidual);
+    measure = trial;
+    if (measure < bestMeasure) {
+      bestMeasure = measure;
+      best = iterate_;
+    }
   }
-  if (!stats_.converged && failures >= kNewtonFailuresBeforePd && stats_.pdIterations < solver.pdIterations) {
-    // Newton stalled (a branch switch its linearisation keeps missing): the PD iteration, which
-    // needs no linearisation, finishes the step from the best iterate.
-    solveWithContact();
-    return;
+  if (!(measure <= bestMeasure)) {
+    iterate_ = best;
+    atIterate = false;
   }
-  if (!atIterate) contactResidual(iterate_, residual);
-  // The step's result, as in the PD iteration: one global solve past the checked iterate.
-  timed(solverModule_, [&] {
-    global_ = rhs_;
-    cholesky_.solveInPlace(global_);
-  });
-  ++stats_.pdIterations;
+  if (!atIterate) measure = contactResidual(iterate_, residual);
+  stats_.residual = measure;
+  stats_.converged = measure < solver.pdTolerance;
+  // The step's result is the checked iterate itself (its contacts are the recorded ones). One PD
+  // global solve past it, as the PD iteration ends, would not be a contraction with the law mass
+  // m~: for a stuck node it maps a displacement error d to (I - P^-1 M~) d, which grows smooth
+  // errors by up to P_ii / m_i.
+  timed(solverModule_, [&] { global_ = iterate_; });
 }
 
 const StepStats& Simulator::step() {
@@ -631,7 +823,8 @@ const StepStats& Simulator::step() {
     const bool newton = solver.contact == ContactMethod::ActiveSet;
     if (newton && !contact_->activeSet().empty()) solveNewtonWithContact();
     else if (newton) solveNewton();
-    else if (solver.contact == ContactMethod::Newton && contact_->empty()) solveNewton();
+    // (The Newton contact solve also takes the steps without contacts: its preconditioner
+    // handles the compressed, buckling cloth the PD matrix preconditions poorly.)
     else if (solver.contact == ContactMethod::Newton) solveContactNewton();
     else solveWithContact();
     timed(contactSolveModule_, [&] {

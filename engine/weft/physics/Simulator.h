@@ -18,7 +18,11 @@
 //    make many steps reach the iteration cap.
 //  - "newton": semismooth Newton on the residual of the "pd" iteration's fixed point (see
 //    solveContactNewton): the same law and the same solution, reached in a few Newton steps
-//    where the PD iteration converges linearly.
+//    where the PD iteration converges linearly. The law is solved with the mass sqrt(m_i P_ii)
+//    (which changes the iterates, not the solution), and the linear solves are preconditioned by
+//    P, or, once that is slow, by a factorisation of the clamped Hessian K+: P leaves one soft
+//    out-of-plane mode per node that PD and P-preconditioned Krylov methods converge slowly on.
+//    Steps without contacts take the same path.
 
 #include <weft/contact/FrictionalContact.h>
 #include <weft/core/Types.h>
@@ -97,6 +101,14 @@ class Simulator {
   // at x, rhs_ = b(x) + h r); returns its mass-weighted RMS (residualOf's measure).
   double contactResidual(const NodeMatrix& x, NodeMatrix& residual);
   void solveContactNewton();
+  // The Newton contact solve's preconditioner: a CHOLMOD factor of the 3m x 3m clamped Hessian
+  // K+ = P - Delta P+ (the `definite` projection derivatives), assembled column by column from
+  // matrix-vector products with a distance-2 colouring of the mesh (colourNodes). False when
+  // the factorisation failed (the preconditioner then falls back to P).
+  void colourNodes();
+  bool factorizeStiffness();
+  // z = B r for the GMRES of solveContactNewton (r, z mass-scaled as there; one "solve").
+  void preconditionContact(const NodeMatrix& scaled, NodeMatrix& z);
   void multiplySystem(const NodeMatrix& in, NodeMatrix& out) const;  // one-coordinate P, 3 columns
   void multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out);
   double residualOf(const NodeMatrix& systemTimesChange) const;  // fills projections_, returns energy g(x)
@@ -122,6 +134,9 @@ class Simulator {
   Eigen::SparseMatrix<double, Eigen::RowMajor> systemRows_;  // the same, for row-parallel products
   Eigen::VectorXd inverseMass_;
   Eigen::VectorXd massRoot_;  // M^1/2, the scaling of the Newton contact solve's residual
+  // The Newton contact solve's law mass m~ (ContactSolver::setContacts): sqrt(m_i P_ii).
+  Eigen::VectorXd lawMass_;
+  const Eigen::VectorXd* contactLawMass_ = nullptr;  // &lawMass_ during a Newton contact step
   SparseCholesky cholesky_;
   AndersonAccelerator anderson_;
 
@@ -136,6 +151,13 @@ class Simulator {
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
   NodeMatrix freeMomentum_, plainIterate_, fullResidual_;  // contact scenes only
   NodeMatrix lawInput_, pinnedPart_;                       // solver.contact = "newton" only
+  struct StiffnessFactor;                                  // CHOLMOD supernodal factor of K+
+  std::unique_ptr<StiffnessFactor> stiffness_;
+  std::vector<int> probeColour_;
+  int probeColours_ = 0;
+  bool stiffnessFactored_ = false;
+  Eigen::VectorXd flatWork_;
+  NodeMatrix probe_, probeProduct_;
   Gmres gmres_;
   std::vector<NodeMatrix> projections_, derivativeRows_;
   double totalMass_ = 0.0;
