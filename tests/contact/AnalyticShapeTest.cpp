@@ -1,7 +1,8 @@
 // The analytic obstacle shapes (plane, sphere, capsule, box, cylinder) against closed-form
 // signed distances computed here independently (by clamping to the solid), their normals
 // against central finite differences of the distance (the normal is the distance gradient away
-// from the medial axis), their closest points, and the `reach` early-out.
+// from the medial axis), their closest points, and the `reach` early-out; and the box's contact
+// face for a point its relative motion took inside it (BoxShape::sampleMoved).
 
 #include <weft/contact/BoxShape.h>
 #include <weft/contact/CapsuleShape.h>
@@ -177,6 +178,82 @@ TEST(AnalyticShapeDegenerate, CentreOfSphereAndAxisOfCapsule) {
   ASSERT_TRUE(CylinderShape(kA, kB, 0.15).sample(0.5 * (kA + kB), 0.1, s));
   EXPECT_NEAR(s.distance, -0.15, 1e-15);
   EXPECT_NEAR(s.normal.norm(), 1.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace weft
+
+namespace weft {
+namespace {
+
+// BoxShape::sampleMoved: a point inside the box that came from outside gets the face its path
+// crossed, not the nearest face; everything else is sample()'s answer. The box is rotated, and
+// the points are given in its body frame (x = 0.1 is a side face, y = -0.05 the bottom).
+class BoxEntryFace : public ::testing::Test {
+ protected:
+  const Vec3 half{0.1, 0.05, 0.3};
+  const BoxShape box{kCentre, half, kRotation};
+  Vec3 world(double x, double y, double z) const { return kCentre + kRotation * Vec3(x, y, z); }
+};
+
+TEST_F(BoxEntryFace, SideEntryNearTheBottomEdgeGetsTheSideNormal) {
+  // A node 1 mm above the bottom face, 1 mm outside the side face at the start; the box moves
+  // 10 mm towards it: relative to the box it ends 9 mm inside the side, still 1 mm above the
+  // bottom (a box standing on a floor sweeping over a node lying on the floor).
+  const Vec3 from = world(0.101, -0.049, 0.1), p = world(0.091, -0.049, 0.1);
+  SurfaceSample nearest, entered;
+  ASSERT_TRUE(box.sample(p, 0.01, nearest));
+  EXPECT_LT((nearest.normal + kRotation.col(1)).norm(), 1e-12) << "the nearest face is the bottom";
+  ASSERT_TRUE(box.sampleMoved(p, from, 0.01, entered));
+  EXPECT_LT((entered.normal - kRotation.col(0)).norm(), 1e-12);
+  EXPECT_NEAR(entered.distance, -0.009, 1e-12);
+  EXPECT_LT((entered.point - world(0.1, -0.049, 0.1)).norm(), 1e-12);
+}
+
+TEST_F(BoxEntryFace, TheFaceCrossedNotAPreferredOne) {
+  // Up through the bottom, 1 mm inside the side's slab: the bottom normal, although the side is
+  // the nearest face at the end.
+  SurfaceSample s;
+  ASSERT_TRUE(box.sampleMoved(world(0.099, -0.04, 0.0), world(0.099, -0.06, 0.0), 0.01, s));
+  EXPECT_LT((s.normal + kRotation.col(1)).norm(), 1e-12);
+  EXPECT_NEAR(s.distance, -0.01, 1e-12);
+  // Diagonally past the edge: outside both slabs at the start; x = 0.1 is crossed at 20% of the
+  // path (the point is then still under the box), y = -0.05 at 67%: in through the bottom.
+  ASSERT_TRUE(box.sampleMoved(world(0.092, -0.045, 0.0), world(0.102, -0.06, 0.0), 0.01, s));
+  EXPECT_LT((s.normal + kRotation.col(1)).norm(), 1e-12);
+  EXPECT_NEAR(s.distance, -0.005, 1e-12);
+  // The mirrored path (x -> -x, y -> -y): in through the top after the -x side's slab.
+  ASSERT_TRUE(box.sampleMoved(world(-0.092, 0.045, 0.0), world(-0.102, 0.06, 0.0), 0.01, s));
+  EXPECT_LT((s.normal - kRotation.col(1)).norm(), 1e-12);
+  // Swap which slab is entered last: now the side (-x) at 47%, the top at 29%.
+  ASSERT_TRUE(box.sampleMoved(world(-0.092, 0.045, 0.0), world(-0.107, 0.052, 0.0), 0.01, s));
+  EXPECT_LT((s.normal + kRotation.col(0)).norm(), 1e-12);
+  EXPECT_NEAR(s.distance, -0.008, 1e-12);
+}
+
+TEST_F(BoxEntryFace, OutsideOrAlreadyInsideIsTheSignedDistanceSample) {
+  // Outside the box (every node resting in a skin) the frame is the smooth distance gradient
+  // whatever the path; a path that starts inside has no entry face: the nearest face.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  int outside = 0, inside = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    const Vec3 p = kCentre + Vec3(u(rng), u(rng), u(rng));
+    const Vec3 from = kCentre + 0.3 * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 local = kRotation.transpose() * (p - kCentre), start = kRotation.transpose() * (from - kCentre);
+    const bool pInside = (local.cwiseAbs() - half).maxCoeff() <= 0.0;
+    const bool fromInside = (start.cwiseAbs() - half).maxCoeff() <= 0.0;
+    if (pInside && !fromInside) continue;
+    SurfaceSample a, b;
+    const bool hitA = box.sample(p, 1.0, a), hitB = box.sampleMoved(p, from, 1.0, b);
+    ASSERT_EQ(hitA, hitB);
+    EXPECT_EQ(a.distance, b.distance);
+    EXPECT_EQ(a.normal, b.normal);
+    EXPECT_EQ(a.point, b.point);
+    (pInside ? inside : outside)++;
+  }
+  EXPECT_GT(outside, 100);
+  EXPECT_GT(inside, 20);
 }
 
 }  // namespace

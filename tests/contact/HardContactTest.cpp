@@ -4,7 +4,13 @@
 
 #include "ContactTestSupport.h"
 
+#include <support/SceneBuilder.h>
+#include <weft/contact/ObstacleContactDetector.h>
+
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
 
 namespace weft {
 namespace {
@@ -72,35 +78,73 @@ TEST(HardContact, ClothSqueezedBetweenTwoObstacles) {
   EXPECT_LT(shift, 0.1 + 1e-3);
 }
 
-// KNOWN FAILURE, disabled: not a convergence failure. With solver.contact = "newton" every
-// step up to 27 converges (tolerance 1e-3 m/s^2), yet from step 6 on node 0 (the corner the
-// wall reaches first) sits at y = -1 mm, under the box's bottom face and 8 mm behind its moving
-// face. The box's bottom is flush with the floor, so a node lying on the floor is inside the
-// box's 1 mm skin layer, whose nearest face is the bottom one: detection gives it the normal
-// -y, the wall presses it into the floor instead of pushing it along, and it slides under the
-// wall. (With the PD iteration: 2.2 mm behind the wall at step 9.) A box lifted by more than
-// the two skins, or contact normals from the box's swept face, would fix it.
-TEST(HardContact, DISABLED_MovingObstaclePushesTheCloth) {
+// The box stands on the floor: its bottom face is flush with the floor plane, so a node lying on
+// the floor (in the floor's 1 mm skin) is 1 mm from the box's bottom face and, once the wall has
+// moved over it within a step, farther from the side face. The nearest-face normal (-y) pressed
+// such a node into the floor and let the wall pass over it (node 0 ended 2.2 mm behind the wall
+// at step 9); detection now gives it the face it entered through (BoxShape::sampleMoved).
+TEST(HardContact, MovingObstaclePushesTheCloth) {
   // A wall sweeps across the floor at 1 m/s into a cloth lying there.
   nlohmann::json doc = test::clothScene(0.3, 10, Vec3(0, kSkin, 0), 0.01, 1000.0);
   test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.2);
   test::addObstacle(doc, "box", {{"center", {-0.3, 0.05, 0}}, {"size", {0.2, 0.1, 0.6}}}, 0.2);
   doc["obstacles"][1]["motion"] = {
       {"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.4}, {"offset", {0.4, 0, 0}}}}}};
-  const test::ContactRun run = test::runScene(doc, 40);
-  for (int n = 1; n <= run.trajectory.stepCount(); ++n) {
-    const NodeMatrix& x = run.trajectory.positions[n];
-    ASSERT_TRUE(x.allFinite());
-    // The wall's face is at x = -0.2 + v t; no node behind it (unless it rode up over the top).
-    const double face = -0.2 + 1.0 * n * 0.01;
-    for (int i = 0; i < x.rows(); ++i)
-      if (x(i, 1) < 0.1) {
-        ASSERT_GT(x(i, 0), face + kSkin - 3 * kTolerance) << "step " << n << " node " << i;
-      }
+  // Both contact solves (the rule is detection's, not the solve's).
+  for (const char* method : {"pd", "newton"}) {
+    SCOPED_TRACE(method);
+    doc["solver"]["contact"] = method;
+    const test::ContactRun run = test::runScene(doc, 40);
+    double closest = 1.0;  // the smallest x - face of a node under the wall's top
+    for (int n = 1; n <= run.trajectory.stepCount(); ++n) {
+      const NodeMatrix& x = run.trajectory.positions[n];
+      ASSERT_TRUE(x.allFinite());
+      // The wall's face is at x = -0.2 + v t; no node behind it (unless it rode up over the top).
+      const double face = -0.2 + 1.0 * n * 0.01;
+      for (int i = 0; i < x.rows(); ++i)
+        if (x(i, 1) < 0.1) {
+          ASSERT_GT(x(i, 0), face + kSkin - 3 * kTolerance) << "step " << n << " node " << i;
+          closest = std::min(closest, x(i, 0) - face);
+        }
+    }
+    const double shift = run.trajectory.positions.back().col(0).mean() - run.trajectory.positions.front().col(0).mean();
+    RecordProperty(std::string("pushed_shift_mm_") + method, std::to_string(shift * 1e3));
+    RecordProperty(std::string("closest_to_face_mm_") + method, std::to_string(closest * 1e3));
+    EXPECT_GT(shift, 0.15);
   }
-  const double shift = run.trajectory.positions.back().col(0).mean() - run.trajectory.positions.front().col(0).mean();
-  RecordProperty("pushed_shift_mm", std::to_string(shift * 1e3));
-  EXPECT_GT(shift, 0.15);
+}
+
+// The detection rule behind it, for one step: the wall (face at x = -0.15 at t = 0.05, -0.14 at
+// t = 0.06) moves over a node lying on the floor 1 mm ahead of it. At the end-of-step pose the
+// node is 9 mm inside the box and 1 mm above its bottom face; it came in through the side, so
+// the contact is the side's: normal +x, and the reference velocity brings it to the face's skin
+// by the end of the step (gap -10 mm over 10 ms: 1 m/s along +x).
+TEST(HardContact, NodeTheWallMovesOverGetsTheWallsNormal) {
+  nlohmann::json doc = test::clothScene(0.3, 2, Vec3(0, kSkin, 0), 0.01, 1000.0);
+  test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.2);
+  test::addObstacle(doc, "box", {{"center", {-0.3, 0.05, 0}}, {"size", {0.2, 0.1, 0.6}}}, 0.2);
+  doc["obstacles"][1]["motion"] = {
+      {"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.4}, {"offset", {0.4, 0, 0}}}}}};
+  const Scene scene = test::parse(doc);
+  std::vector<ContactObstacle> obstacles;
+  for (const Obstacle& o : scene.obstacles) obstacles.emplace_back(o);
+  for (ContactObstacle& o : obstacles) o.beginStep(0.05, 0.06);
+  NodeMatrix x(2, 3);
+  x.row(0) = Vec3(-0.149, kSkin, 0.1).transpose();  // the node the wall reaches
+  x.row(1) = Vec3(0.1, kSkin, 0.1).transpose();     // on the floor only
+  ObstacleContactDetector detector(obstacles, 2e-3);
+  std::vector<ContactConstraint> contacts;
+  detector.detect(x, NodeMatrix::Zero(2, 3), 0.01, contacts);
+  ASSERT_EQ(contacts.size(), 3u);
+  EXPECT_EQ(contacts[0].node, 0);
+  EXPECT_EQ(contacts[0].obstacle, 0);
+  const ContactConstraint& wall = contacts[1];
+  ASSERT_EQ(wall.node, 0);
+  ASSERT_EQ(wall.obstacle, 1);
+  EXPECT_LT((wall.normal - Vec3::UnitX()).norm(), 1e-12) << wall.normal.transpose();
+  EXPECT_LT((wall.reference - Vec3(1.0, 0, 0)).norm(), 1e-9) << wall.reference.transpose();
+  EXPECT_EQ(contacts[2].node, 1);
+  EXPECT_EQ(contacts[2].obstacle, 0);
 }
 
 }  // namespace

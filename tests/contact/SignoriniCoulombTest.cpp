@@ -79,7 +79,9 @@ TEST(SignoriniCoulomb, SolutionDoesNotDependOnTheMassItIsSolvedWith) {
     switched += boundary;
     ASSERT_LT((second.impulse - first.impulse).norm(), 1e-9 * scale) << "k = " << k;
     ASSERT_LT(m1 * (second.velocity - first.velocity).norm(), 1e-9 * scale) << "k = " << k;
-    if (boundary) ASSERT_EQ(test::branchViolation(second, 1e-9), "") << "k = " << k;
+    if (boundary) {
+      ASSERT_EQ(test::branchViolation(second, 1e-9), "") << "k = " << k;
+    }
   }
   EXPECT_LT(switched, 200) << "branch labels should agree away from the boundaries";
 }

@@ -47,6 +47,14 @@ bool ContactObstacle::sample(const Vec3& p, double reach, SurfaceSample& out) co
   return true;
 }
 
+bool ContactObstacle::sample(const Vec3& p, const Vec3& start, double reach, SurfaceSample& out) const {
+  if (!motion_) return shape_->sampleMoved(p, start, reach, out);
+  if (!shape_->sampleMoved(end_.inverse(p), start_.inverse(start), reach, out)) return false;
+  out.normal = end_.rotation * out.normal;
+  out.point = end_.apply(out.point);
+  return true;
+}
+
 Vec3 ContactObstacle::surfaceVelocity(const Vec3& surfacePoint) const {
   if (!motion_) return Vec3::Zero();
   const Vec3 body = end_.inverse(surfacePoint);

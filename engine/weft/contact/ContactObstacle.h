@@ -35,6 +35,10 @@ class ContactObstacle {
   void beginStep(double t0, double t1);
   // The sample of a world point against the end-of-step pose, in world axes.
   bool sample(const Vec3& p, double reach, SurfaceSample& out) const;
+  // The same for a point of a node's path whose start-of-step position was `start` (world): the
+  // shape sees the path relative to itself, from `start` in the start-of-step pose to p in the
+  // end-of-step pose (ObstacleShape::sampleMoved).
+  bool sample(const Vec3& p, const Vec3& start, double reach, SurfaceSample& out) const;
   // Velocity (m/s) over the step of the body point now at world position `surfacePoint`.
   Vec3 surfaceVelocity(const Vec3& surfacePoint) const;
 

@@ -32,7 +32,7 @@ void ObstacleContactDetector::detect(const NodeMatrix& x, const NodeMatrix& disp
       int k = 0;
       for (; k <= segments && !hit; ++k)
         hit =
-            obstacle.sample(start + (double(k) / segments) * path, reach, s) && s.distance < reach;
+            obstacle.sample(start + (double(k) / segments) * path, start, reach, s) && s.distance < reach;
       if (!hit) continue;
       const double fraction = double(k - 1) / segments;
       ContactConstraint c;

@@ -2,8 +2,10 @@
 // Node-obstacle contact detection, once per step (DiffCloth Sec. 3.2; notes Sec. 2.3). Each
 // node's predicted path x_n -> x_n + displacement is sampled at its start, middle and end (more
 // samples when it is long compared with the margin); the first sample closer than the
-// obstacle's skin plus the margin makes a contact, whose frame is frozen from that sample. A
-// node has at most one contact per obstacle, and may touch several obstacles.
+// obstacle's skin plus the margin makes a contact, whose frame is frozen from that sample. The
+// obstacle sees each sample together with the node's start-of-step position, so that a shape
+// can give a point the obstacle moved onto the face it came in through (BoxShape::sampleMoved).
+// A node has at most one contact per obstacle, and may touch several obstacles.
 
 #include <weft/contact/ContactConstraint.h>
 #include <weft/contact/ParallelContactCollector.h>

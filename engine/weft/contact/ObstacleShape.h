@@ -22,6 +22,15 @@ class ObstacleShape {
   // more than `reach` outside it (then returns false and leaves `out` unspecified). Safe to call
   // concurrently.
   virtual bool sample(const Vec3& p, double reach, SurfaceSample& out) const = 0;
+  // The same for a point that got to p by moving, relative to the shape, from `from` (both in
+  // the body frame): contact detection's sample of a node's path, `from` being the node's
+  // start-of-step position in the start-of-step body frame. Shapes whose inside normal is not
+  // determined by p alone override it (BoxShape: the face the node came in through); the others
+  // answer sample(p).
+  virtual bool sampleMoved(const Vec3& p, const Vec3& from, double reach, SurfaceSample& out) const {
+    (void)from;
+    return sample(p, reach, out);
+  }
 };
 
 }  // namespace weft

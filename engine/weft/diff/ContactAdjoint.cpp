@@ -34,7 +34,7 @@ void ContactAdjoint::frameOfObstacleContact(const ContactPoint& p, const NodeMat
   // formula as ObstacleContactDetector).
   auto frame = [&](const Vec3& s, Vec3& normal, Vec3& reference) {
     SurfaceSample sample;
-    obstacle.sample(s, kAnyReach, sample);
+    obstacle.sample(s, start, kAnyReach, sample);  // (a box: the entry face, as detection)
     normal = sample.normal;
     const double gap = sample.normal.dot(start - sample.point) - obstacle.thickness();
     const Vec3 surface = obstacle.surfaceVelocity(sample.point);
