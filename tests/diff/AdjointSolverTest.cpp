@@ -145,6 +145,59 @@ TEST(AdjointSolvers, ClampedHessianPreconditionerNeedsFewIterations) {
   EXPECT_LT(4 * rb.iterations, ra.iterations);
 }
 
+// The automatic preconditioner (solver.backward.preconditioner "auto", the default) starts with
+// P and switches to the clamped Hessian once P needs more than kAutomaticPIterations iterations,
+// keeping it for later solves; where P is a good model of K (soft cloth: Delta P small against
+// the mass) it never factors the Hessian.
+TEST(AdjointSolvers, AutomaticPreconditionerSwitchesToTheHessianOnlyWherePIsSlow) {
+  {
+    const Scene scene = withTightForwardSolver(test::parse(test::windClothScene(10, 20)), 1e-8);
+    const ForwardPass pass = runForwardPass(scene);
+    AdjointSystem system(scene);
+    system.prepare(pass.trajectory.positions.back());
+    GmresSolver automatic(1e-10, 1000, 1000, false, GmresSolver::Preconditioner::Automatic);
+    GmresSolver byHessian(1e-10, 1000, 1000, false, GmresSolver::Preconditioner::ClampedHessian);
+    DirectLuSolver direct;
+    EXPECT_STREQ(automatic.name(), "gmres (auto: p)");
+    for (int seed : {6, 7}) {
+      const NodeMatrix g = randomBlock(system.nodeCount(), seed);
+      NodeMatrix a, b, c;
+      const LinearSolveResult ra = automatic.solve(system, g, a);
+      const LinearSolveResult rb = byHessian.solve(system, g, b);
+      ASSERT_TRUE(direct.solve(system, g, c).converged);
+      ASSERT_TRUE(ra.converged);
+      EXPECT_LT((a - c).norm(), 1e-7 * c.norm());
+      EXPECT_STREQ(automatic.name(), "gmres (auto: hessian)");
+      std::printf("seed %d: automatic %d iterations, clamped Hessian %d\n", seed, ra.iterations, rb.iterations);
+      // First solve: P's probe, then the Hessian from where P stopped; second: the Hessian at once.
+      if (seed == 6) EXPECT_LE(ra.iterations, GmresSolver::kAutomaticPIterations + rb.iterations + 2);
+      else EXPECT_EQ(ra.iterations, rb.iterations);
+    }
+  }
+  {
+    const Scene scene = withTightForwardSolver(test::parse(test::softWindClothScene(6, 25)), 1e-8);
+    const ForwardPass pass = runForwardPass(scene);
+    AdjointSystem system(scene);
+    system.prepare(pass.trajectory.positions.back());
+    ASSERT_TRUE(system.hasDeltaP());
+    // At a backward pass's default tolerance, 1e-4, P needs under kAutomaticPIterations here.
+    GmresSolver automatic(1e-4, 1000, 1000, false, GmresSolver::Preconditioner::Automatic);
+    GmresSolver byP(1e-4, 1000, 1000);
+    DirectLuSolver direct;
+    const NodeMatrix g = randomBlock(system.nodeCount(), 8);
+    NodeMatrix a, b, c;
+    const LinearSolveResult ra = automatic.solve(system, g, a);
+    const LinearSolveResult rb = byP.solve(system, g, b);
+    ASSERT_TRUE(direct.solve(system, g, c).converged);
+    ASSERT_TRUE(ra.converged);
+    EXPECT_LT((a - c).norm(), 1e-3 * c.norm());
+    std::printf("soft cloth: automatic %d iterations, P %d\n", ra.iterations, rb.iterations);
+    EXPECT_EQ(ra.iterations, rb.iterations);
+    EXPECT_LE(ra.iterations, GmresSolver::kAutomaticPIterations);
+    EXPECT_STREQ(automatic.name(), "gmres (auto: p)");
+  }
+}
+
 TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
   TempDir dir;
   const Scene scene = withTightForwardSolver(

@@ -271,7 +271,14 @@ TEST(TShirtTask, LbfgsbRecoversTheHiddenValuesAtAReducedSize) {
   // and buckling, make-tshirt.py): from another start (stretch 260, phase 0.88, frequency 1.62,
   // d = (0.35, 0.67, 0.45)) L-BFGS-B stops at a kink with the loss at 3.9e-5 and d_x 7% off.
   test::TempDir dir;
-  const Scene scene = withTightForwardSolver(reducedTShirt(dir, 36), 1e-8);
+  //
+  // The adjoint is solved to 1e-8 here (the scene's 1e-6 otherwise): on this bumpy landscape the
+  // run is sensitive to gradient errors of that size. With the 1e-6 adjoint it passes with GMRES
+  // preconditioned by P or by the clamped Hessian but not with the automatic choice between them
+  // (the default), which stops at 48 evaluations with d_x 2.4% off (measured).
+  nlohmann::json doc = withTightForwardSolver(reducedTShirt(dir, 36), 1e-8).document;
+  doc["solver"]["backward"]["tolerance"] = 1e-8;
+  const Scene scene = test::parse(doc, dir.file("tshirt.json"));
   SimulationObjective objective(scene, ParameterSet::fromTask(scene));
   OptimizerSettings settings;
   settings.maxEvaluations = 48;

@@ -240,7 +240,7 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
   expectInputError([&] { test::parse(with("/solver/pd_tolerance", 0)); }, "solver.pd_tolerance",
                    "must be > 0");
   expectInputError([&] { test::parse(with("/solver/backward/preconditioner", "jacobi")); },
-                   "solver.backward.preconditioner", "must be one of p, hessian");
+                   "solver.backward.preconditioner", "must be one of auto, p, hessian");
   EXPECT_EQ(test::parse(with("/solver/backward/preconditioner", "hessian")).solver.backward.preconditioner, "hessian");
   expectInputError(
       [&] { test::parse(with("/cloths/0/mesh/grid/size", nlohmann::json::array({1.0}))); },

@@ -108,7 +108,9 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
                                        {"gmres 1e-4", "gmres", 1e-4},
                                        {"gmres 1e-6", "gmres", 1e-6},
                                        {"gmres+hessian 1e-4", "gmres", 1e-4, "hessian"},
-                                       {"gmres+hessian 1e-6", "gmres", 1e-6, "hessian"}};
+                                       {"gmres+hessian 1e-6", "gmres", 1e-6, "hessian"},
+                                       {"gmres+auto 1e-4", "gmres", 1e-4, "auto"},
+                                       {"gmres+auto 1e-6", "gmres", 1e-6, "auto"}};
   BenchTable table({"scene", "quads", "vertices", "steps", "method", "tolerance", "backward_s", "ms_per_step",
                     "solve_ms_per_step", "rest_ms_per_step", "iterations_per_step", "max_iterations",
                     "not_converged", "fallbacks", "fail_percent", "speedup_vs_direct", "gradient_rel_error",

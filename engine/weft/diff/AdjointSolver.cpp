@@ -25,7 +25,8 @@ std::unique_ptr<AdjointLinearSolver> makeAdjointLinearSolver(const BackwardSetti
   return std::make_unique<GmresSolver>(settings.tolerance, settings.maxIterations,
                                        std::min(settings.maxIterations, 200), /*warmStart=*/true,
                                        settings.preconditioner == "hessian" ? GmresSolver::Preconditioner::ClampedHessian
-                                                                            : GmresSolver::Preconditioner::P);
+                                       : settings.preconditioner == "p"     ? GmresSolver::Preconditioner::P
+                                                                            : GmresSolver::Preconditioner::Automatic);
 }
 
 AdjointSolver::AdjointSolver(const BackwardSettings& settings)

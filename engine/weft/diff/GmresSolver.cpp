@@ -2,26 +2,67 @@
 
 #include <weft/diff/AdjointSystem.h>
 
+#include <algorithm>
+
 namespace weft {
 
+const char* GmresSolver::name() const {
+  switch (preconditioner_) {
+    case Preconditioner::P: return "gmres";
+    case Preconditioner::ClampedHessian: return "gmres (hessian)";
+    case Preconditioner::Automatic: return switched_ ? "gmres (auto: hessian)" : "gmres (auto: p)";
+  }
+  return "gmres";
+}
+
 LinearSolveResult GmresSolver::solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) {
-  // Without Delta P the clamped Hessian is P itself.
-  const bool hessian =
-      preconditioner_ == Preconditioner::ClampedHessian && system.hasDeltaP() && system.factorClampedHessian();
-  const GmresResult r = gmres_.solve([&](const NodeMatrix& in, NodeMatrix& out) { system.multiplyK(in, out); },
-                                     [&](const NodeMatrix& in, NodeMatrix& out) {
-                                       out = in;
-                                       if (hessian)
-                                         system.solveClampedHessian(out);
-                                       else
-                                         system.solveP(out);
-                                     },
-                                     rhs, z, tolerance_, maxIterations_, restart_, warmStart_);
-  LinearSolveResult result;
-  result.converged = r.converged;
-  result.iterations = r.iterations;
-  result.residual = r.residual;
-  return result;
+  auto multiplyK = [&](const NodeMatrix& in, NodeMatrix& out) { system.multiplyK(in, out); };
+  bool hessian = false;
+  auto precondition = [&](const NodeMatrix& in, NodeMatrix& out) {
+    out = in;
+    if (hessian)
+      system.solveClampedHessian(out);
+    else
+      system.solveP(out);
+  };
+  if (preconditioner_ != Preconditioner::Automatic || !system.hasDeltaP()) {
+    // Without Delta P the clamped Hessian is P itself.
+    hessian = preconditioner_ == Preconditioner::ClampedHessian && system.hasDeltaP() && system.factorClampedHessian();
+    const GmresResult r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_);
+    return {r.converged, false, r.iterations, r.residual};
+  }
+  // Automatic (see the header): start with the Hessian after a step it served well, except every
+  // kAutomaticReprobe-th such step, which probes P first. Its factor is kept across steps until a
+  // solve with it needs more than kAutomaticRefactor iterations.
+  GmresResult r;
+  if (switched_ && hessianRun_ < kAutomaticReprobe) {
+    const bool fresh = !factorValid_ || lastIterations_ > kAutomaticRefactor;
+    if (fresh) factorValid_ = system.factorClampedHessian();
+    if (factorValid_) {
+      hessian = true;
+      ++hessianRun_;
+      r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_);
+      lastIterations_ = r.iterations;
+      // A fresh factor that needs many iterations does not model this K (contacts, Delta R).
+      switched_ = !fresh || r.iterations <= kAutomaticPIterations;
+      return {r.converged, false, r.iterations, r.residual};
+    }
+  }
+  hessianRun_ = 0;
+  r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, std::min(maxIterations_, kAutomaticPIterations),
+                   restart_, warmStart_);
+  switched_ = false;
+  if (!r.converged && r.iterations < maxIterations_ && (factorValid_ = system.factorClampedHessian())) {
+    // P is slow here: continue from the z it reached, preconditioned by the Hessian.
+    hessian = true;
+    const int spent = r.iterations;
+    r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_ - spent, restart_,
+                     /*warmStart=*/true);
+    switched_ = r.converged && r.iterations <= kAutomaticPIterations;
+    lastIterations_ = r.iterations;
+    r.iterations += spent;
+  }
+  return {r.converged, false, r.iterations, r.residual};
 }
 
 }  // namespace weft

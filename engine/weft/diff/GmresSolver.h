@@ -14,8 +14,20 @@
 // Two preconditioners: P's factor (Preconditioner::P, DiffCloth's choice: free, but on a cloth
 // in tension a poor model of K) or a fresh factor of the clamped Hessian H each step
 // (Preconditioner::ClampedHessian, AdjointSystem::factorClampedHessian: one sparse Cholesky of
-// 3m unknowns per step, then a handful of iterations). Each step starts from the previous
-// step's z when warmStart is set (the adjoint varies smoothly along the trajectory).
+// 3m unknowns per step, then a handful of iterations), or Preconditioner::Automatic, which picks
+// one per step: P is right where contacts pin the cloth's soft out-of-plane modes or the cloth
+// is slack (Slope: 1-5 iterations per step), the Hessian where the cloth hangs free in tension
+// (Wind: 60-130 iterations with P, 2-5 with the Hessian), and the factorisation costs as much
+// as tens of iterations with P. A step first runs up to kAutomaticPIterations iterations with P;
+// if that does not converge, the Hessian is factored and the solve continues from where P left
+// it. If the Hessian then converged within kAutomaticPIterations more, the following steps start
+// with it (a backward pass walks one trajectory, whose stiffness changes slowly), probing P
+// again every kAutomaticReprobe steps and dropping back to P as soon as the Hessian needs more
+// than kAutomaticPIterations (the hard iterations come from the contact part Delta R, which
+// the Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
+// The choice depends on iteration counts only, so repeated runs stay bit-identical.
+// Each step starts from the previous step's z when warmStart is set (the adjoint varies
+// smoothly along the trajectory).
 
 #include <weft/diff/AdjointLinearSolver.h>
 #include <weft/physics/Gmres.h>
@@ -24,7 +36,13 @@ namespace weft {
 
 class GmresSolver final : public AdjointLinearSolver {
  public:
-  enum class Preconditioner { P, ClampedHessian };
+  enum class Preconditioner { P, ClampedHessian, Automatic };
+  // Automatic: iterations with P after which a step switches to the clamped Hessian, and the
+  // steps after which a run of steps started with the Hessian tries P again.
+  static constexpr int kAutomaticPIterations = 12;
+  static constexpr int kAutomaticReprobe = 10;
+  // Automatic: iterations with a kept Hessian factor beyond which the next step refactors.
+  static constexpr int kAutomaticRefactor = 6;
   GmresSolver(double tolerance, int maxIterations, int restart = 50, bool warmStart = false,
               Preconditioner preconditioner = Preconditioner::P)
       : tolerance_(tolerance),
@@ -32,7 +50,7 @@ class GmresSolver final : public AdjointLinearSolver {
         restart_(restart),
         warmStart_(warmStart),
         preconditioner_(preconditioner) {}
-  const char* name() const override { return preconditioner_ == Preconditioner::P ? "gmres" : "gmres (hessian)"; }
+  const char* name() const override;
   LinearSolveResult solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) override;
 
  private:
@@ -41,6 +59,12 @@ class GmresSolver final : public AdjointLinearSolver {
   int restart_;
   bool warmStart_;
   Preconditioner preconditioner_;
+  // Automatic: the last step used the Hessian (the name() reports it); steps in a row started
+  // with the Hessian.
+  bool switched_ = false;
+  int hessianRun_ = 0;
+  bool factorValid_ = false;  // the system holds a clamped-Hessian factor of an earlier step
+  int lastIterations_ = 0;    // of the last solve with that factor
   Gmres gmres_;
 };
 

@@ -27,10 +27,11 @@ struct BackwardSettings {
   double tolerance = 1e-4;  // relative residual |g - K z| / |g| of each step's adjoint solve
   int maxIterations = 200;
   std::string fallback = "direct";  // "direct" (sparse LU) or "none"
-  // GMRES's preconditioner: "p" (the prefactorised PD matrix P, as DiffCloth's Eq. 30 uses it)
-  // or "hessian" (a fresh Cholesky factor per step of P - Delta P with each projection's
-  // derivative clamped to keep it definite: AdjointSystem::factorClampedHessian).
-  std::string preconditioner = "p";
+  // GMRES's preconditioner: "p" (the prefactorised PD matrix P, as DiffCloth's Eq. 30 uses it),
+  // "hessian" (a fresh Cholesky factor per step of P - Delta P with each projection's
+  // derivative clamped to keep it definite: AdjointSystem::factorClampedHessian) or "auto"
+  // (per step, P first and the Hessian where P is slow: GmresSolver).
+  std::string preconditioner = "auto";
 };
 
 enum class Acceleration { None, Anderson };

@@ -303,7 +303,7 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
     if (auto v = b->optional("tolerance")) s.backward.tolerance = v->positive();
     if (auto v = b->optional("max_iterations")) s.backward.maxIterations = v->integer(1, 1000000);
     if (auto v = b->optional("fallback")) s.backward.fallback = v->choice({"direct", "none"});
-    if (auto v = b->optional("preconditioner")) s.backward.preconditioner = v->choice({"p", "hessian"});
+    if (auto v = b->optional("preconditioner")) s.backward.preconditioner = v->choice({"auto", "p", "hessian"});
   }
 }
 
