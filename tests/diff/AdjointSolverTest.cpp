@@ -198,6 +198,29 @@ TEST(AdjointSolvers, AutomaticPreconditionerSwitchesToTheHessianOnlyWherePIsSlow
   }
 }
 
+// The automatic choice depends on iteration counts only, never on time: a repeated backward pass
+// switches at the same steps and gives the same bits.
+TEST(AdjointSolvers, AutomaticPreconditionerRepeatsBitForBit) {
+  TempDir dir;
+  const Scene scene = withTightForwardSolver(
+      test::withTrajectoryTask(dir, test::windClothScene(10, 20), {"cloths.0.material.stretch", "wind.strength"}),
+      1e-8);
+  ASSERT_EQ(scene.solver.backward.preconditioner, "auto");
+  const ForwardPass pass = runForwardPass(scene);
+  const TaskLoss loss(scene);
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  const GradientResult a = backpropagate(scene, pass.trajectory, loss, parameters, scene.solver.backward);
+  const GradientResult b = backpropagate(scene, pass.trajectory, loss, parameters, scene.solver.backward);
+  EXPECT_EQ(a.solver.iterations, b.solver.iterations);
+  for (int k = 0; k < parameters.size(); ++k) EXPECT_EQ(a.gradient[k], b.gradient[k]) << parameters[k].path;
+  // It did switch: far fewer iterations than with P alone on this cloth in tension.
+  BackwardSettings byP = scene.solver.backward;
+  byP.preconditioner = "p";
+  const GradientResult c = backpropagate(scene, pass.trajectory, loss, parameters, byP);
+  std::printf("iterations over %d steps: auto %lld, P %lld\n", a.solver.solves, a.solver.iterations, c.solver.iterations);
+  EXPECT_LT(2 * a.solver.iterations, c.solver.iterations);
+}
+
 TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
   TempDir dir;
   const Scene scene = withTightForwardSolver(
