@@ -114,11 +114,6 @@ class EditorDocument {
   static constexpr std::size_t kMaxUndo = 200;
 };
 
-// Writes `text` to `path` atomically: a temporary file in the same folder, flushed and closed,
-// then renamed over `path`. Throws InputError naming the path on failure (the temporary file
-// is removed, the target untouched).
-void writeFileAtomically(const std::string& path, const std::string& text);
-
 // The most recently used scene files, most recent first, without duplicates, at most `limit`,
 // persisted as a JSON list in `storeFile` (an unreadable store starts empty).
 class RecentFiles {

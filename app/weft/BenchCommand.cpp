@@ -9,12 +9,25 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir);
 int backwardBenchmark(const CommandLine& cl, const std::string& outDir);
 int applicationsBenchmark(const CommandLine& cl, const std::string& outDir);
 
-int benchCommand(const std::vector<std::string>& args) {
+int benchCommand(const std::vector<std::string>& arguments) {
   // The render benchmark has its own options (--frames, --size, --backend).
-  if (!args.empty() && args[0] == "render") return renderBenchmark({args.begin() + 1, args.end()});
+  if (!arguments.empty() && arguments[0] == "render")
+    return renderBenchmark({arguments.begin() + 1, arguments.end()});
+  // --paper-meshes takes an optional folder: the next argument, unless it is an option or a
+  // benchmark name; bare, it is handed on with an empty value (the default folder).
+  std::vector<std::string> args;
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    if (arguments[i] != "--paper-meshes") {
+      args.push_back(arguments[i]);
+      continue;
+    }
+    const bool hasValue = i + 1 < arguments.size() && arguments[i + 1].rfind("-", 0) != 0 &&
+                          arguments[i + 1] != "applications";
+    args.push_back("--paper-meshes=" + (hasValue ? arguments[++i] : std::string()));
+  }
   CommandLine cl(args, {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks", "--seeds", "--budget",
-                        "--contact"},
-                 {"--quick"});
+                        "--contact", "--paper-meshes"},
+                 {"--quick", "--resume"});
   if (cl.positional().size() != 1)
     cl.fail("NAME", "bench takes one benchmark name: forward, backward, continuity, contact, applications or render");
   const std::string name = cl.positional()[0];
@@ -24,7 +37,7 @@ int benchCommand(const std::vector<std::string>& args) {
     if (cl.has("--contact")) cl.fail("--contact", "applies to the contact benchmark only");
     return applicationsBenchmark(cl, out);
   }
-  for (const char* option : {"--tasks", "--seeds", "--budget"})
+  for (const char* option : {"--tasks", "--seeds", "--budget", "--resume", "--paper-meshes"})
     if (cl.has(option)) cl.fail(option, "applies to the applications benchmark only");
   if (name == "contact") return contactBenchmark(cl, out);
   if (cl.has("--contact") && name != "continuity")

@@ -1,6 +1,6 @@
 // `weft bench applications [--tasks a,b] [--seeds N] [--budget STEPS] [--quick] [--out DIR]
-//                          [--threads N]`: DiffCloth's comparison of gradient-based and
-// gradient-free optimisation (Sec. 5.2 and Fig. 4, the Flying Napkin; Sec. 6, Tables 2-3;
+//                          [--threads N] [--resume] [--paper-meshes [DIR]]`: DiffCloth's comparison
+// of gradient-based and gradient-free optimisation (Sec. 5.2 and Fig. 4, the Flying Napkin; Sec. 6, Tables 2-3;
 // Appendix C, Tables 5-6). Every task scene is optimised by L-BFGS-B (adjoint gradients),
 // CMA-ES and the (1+1)-ES (values alone) from the same random starting point per seed, each run
 // with the same budget of simulated steps (a forward step 1, a backward step 1 more, as the
@@ -12,14 +12,22 @@
 //                     Tables 5-6 analogue (every seed)
 //   loss_<task>.png   loss against steps, the minimum envelope over seeds (Fig. 4 bottom left)
 //   speedup.png       speedup against the parameter count (Fig. 4 bottom right)
+//   runs/             every (task, method, seed) run as <task>_<method>_<seed>.csv (the rows of
+//                     applications.csv) and settings.json (budget, quick, paper meshes)
+//   paper_scenes/     with --paper-meshes: the scenes as run (<task>.json, targets beside them)
+// Runs are written as they finish, atomically, into DIR.partial/ (kept when the comparison is
+// killed or fails); --resume reads the runs stored there (or in DIR/runs/ of a finished
+// comparison) instead of running them again, and refuses runs stored with other settings.
 
 #include "../CommandLine.h"
 #include "BenchAssets.h"
 #include "BenchTable.h"
 #include "LossEnvelope.h"
+#include "PaperMeshScenes.h"
 
 #include <weft/core/Error.h>
 #include <weft/diff/ParameterSet.h>
+#include <weft/io/AtomicFile.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/optim/Optimizer.h>
 #include <weft/optim/SearchBox.h>
@@ -32,8 +40,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <limits>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -91,13 +103,20 @@ struct Run {
   LossCurve curve;
   double seconds = 0.0;
   std::string stop;
+  std::vector<std::vector<std::string>> rows;  // its rows of applications.csv
+  bool resumed = false;
 };
+
+const std::vector<std::string> kRunColumns = {"task",  "method", "seed", "evaluation",
+                                              "steps", "wall_s", "loss"};
 
 struct TaskResult {
   const ApplicationTask* task = nullptr;
   int parameters = 0;
   long long budget = 0;
   std::vector<Run> runs;
+  std::optional<paper::PaperScene> paperScene;  // --paper-meshes, for tasks that have one
+  int garmentVertices = 0;
 };
 
 // Seed s's starting point, shared by every method (Table 2: "All methods start the optimization
@@ -150,10 +169,136 @@ long long convergenceSteps(const LossCurve& envelope, double initial) {
   return stepsToReach(envelope, final + kConvergedFraction * std::max(0.0, initial - final));
 }
 
+
+namespace fs = std::filesystem;
+
+std::string joinCsv(const std::vector<std::string>& fields) {
+  std::string line;
+  for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + fields[i];
+  return line + "\n";
+}
+
+std::string runFileName(const ApplicationTask& task, int method, int seed) {
+  return std::string(task.name) + "_" + kMethods[method].name + "_" + std::to_string(seed) + ".csv";
+}
+
+void writeRunFile(const std::string& path, const Run& run) {
+  std::string text = joinCsv(kRunColumns);
+  for (const auto& row : run.rows) text += joinCsv(row);
+  writeFileAtomically(path, text);
+}
+
+// A stored run, checked line by line against the run it must be.
+Run readRunFile(const std::string& path, const ApplicationTask& task, int method, int seed) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "<file>", "cannot read the stored run");
+  Run run;
+  run.method = method;
+  run.seed = seed;
+  run.resumed = true;
+  run.stop = "resumed";
+  std::string line;
+  if (!std::getline(in, line) || joinCsv(kRunColumns) != line + "\n")
+    throw InputError(path, "line 1", "expected the header " + joinCsv(kRunColumns).substr(0, 44));
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string item; std::getline(fields, item, ',');) f.push_back(item);
+    const std::string where = "line " + std::to_string(number);
+    if (f.size() != kRunColumns.size())
+      throw InputError(path, where, "expected " + std::to_string(kRunColumns.size()) + " fields");
+    if (f[0] != task.name || f[1] != kMethods[method].name || f[2] != std::to_string(seed))
+      throw InputError(path, where, "a row of another run (" + f[0] + ", " + f[1] + ", seed " + f[2] + ")");
+    char* end = nullptr;
+    const long long steps = std::strtoll(f[4].c_str(), &end, 10);
+    if (f[4].empty() || *end) throw InputError(path, where, "steps is not an integer: '" + f[4] + "'");
+    const double wall = std::strtod(f[5].c_str(), &end);
+    if (f[5].empty() || *end) throw InputError(path, where, "wall_s is not a number: '" + f[5] + "'");
+    const double loss = std::strtod(f[6].c_str(), &end);
+    if (f[6].empty() || *end) throw InputError(path, where, "loss is not a number: '" + f[6] + "'");
+    if (!run.curve.steps.empty() && steps < run.curve.steps.back())
+      throw InputError(path, where, "steps decrease");
+    run.curve.steps.push_back(steps);
+    run.curve.loss.push_back(loss);
+    run.seconds = wall;
+    run.rows.push_back(f);
+  }
+  return run;
+}
+
+// What a stored run depends on besides its task, method and seed.
+nlohmann::json runSettings(const CommandLine& cl, long long budgetOption, bool quick,
+                           const std::string& paperMeshes) {
+  return {{"format", "weft bench applications runs 1"},
+          {"budget", cl.has("--budget") ? nlohmann::json(budgetOption) : nlohmann::json("task default")},
+          {"quick", quick},
+          {"paper_meshes", paperMeshes.empty() ? nlohmann::json(nullptr) : nlohmann::json(paperMeshes)}};
+}
+
+std::string describeSetting(const std::string& key, const nlohmann::json& v) {
+  if (key == "budget")
+    return v.is_number() ? "--budget " + v.dump() : v.is_null() ? "no budget" : "each task's default budget";
+  if (key == "quick") return v == nlohmann::json(true) ? "--quick" : "no --quick";
+  if (key == "paper_meshes")
+    return v.is_string() ? "--paper-meshes " + v.get<std::string>() : "the tasks' own meshes";
+  return v.is_null() ? "none" : v.is_string() ? v.get<std::string>() : v.dump();
+}
+
+// Throws unless the settings stored in `file` are `settings`.
+void checkStoredSettings(const std::string& file, const nlohmann::json& settings) {
+  nlohmann::json stored;
+  try {
+    std::ifstream in(file);
+    stored = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, "<json>", std::string("invalid JSON: ") + e.what());
+  }
+  for (const char* key : {"format", "budget", "quick", "paper_meshes"}) {
+    const nlohmann::json have = stored.contains(key) ? stored[key] : nlohmann::json(nullptr);
+    if (have != settings[key])
+      throw InputError(file, key,
+                       "the stored runs were made with " + describeSetting(key, have) +
+                           ", this command asks for " + describeSetting(key, settings[key]) +
+                           "; resume with the same settings, or use another --out");
+  }
+}
+
+// The run store: DIR.partial/ while the comparison runs. Returns the number of stored runs.
+int openRunStore(const std::string& store, const std::string& finished, bool resume,
+                 const nlohmann::json& settings) {
+  std::error_code ec;
+  const std::string settingsFile = store + "/settings.json";
+  if (fs::exists(store, ec) && !resume)
+    throw InputError(store, "--resume",
+                     "holds the runs of an unfinished comparison: pass --resume to continue it, or "
+                     "remove the folder to start over");
+  if (resume && !fs::exists(store, ec) && fs::is_regular_file(finished + "/settings.json", ec)) {
+    // A finished comparison: continue from its runs (more seeds, more tasks) without touching it.
+    checkStoredSettings(finished + "/settings.json", settings);
+    fs::create_directories(store, ec);
+    for (const auto& entry : fs::directory_iterator(finished, ec))
+      if (entry.is_regular_file()) fs::copy_file(entry.path(), fs::path(store) / entry.path().filename(), ec);
+    if (ec) throw InputError(store, "--resume", "cannot copy the runs of " + finished + ": " + ec.message());
+  }
+  if (fs::exists(settingsFile, ec)) {
+    checkStoredSettings(settingsFile, settings);
+  } else {
+    fs::create_directories(store, ec);
+    if (ec) throw InputError(store, "--out", "cannot create the run folder: " + ec.message());
+    writeFileAtomically(settingsFile, settings.dump(2) + "\n");
+  }
+  int stored = 0;
+  for (const auto& entry : fs::directory_iterator(store, ec))
+    if (entry.path().extension() == ".csv") ++stored;
+  return stored;
+}
+
 }  // namespace
 
 int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   const bool quick = cl.has("--quick");
+  const bool resume = cl.has("--resume");
   const std::vector<const ApplicationTask*> tasks = selectTasks(cl, quick);
   const int seeds = cl.integer("--seeds", quick ? 1 : 3, 1, 100);
   const int threads = cl.integer("--threads", 1, 1, 1024);
@@ -162,33 +307,89 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   if (cl.has("--budget") &&
       !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
     cl.fail("--budget", "must be a positive whole number of simulated steps");
+  // --paper-meshes [DIR]: BenchCommand hands a bare --paper-meshes over as an empty value.
+  std::string paperDir;
+  if (cl.has("--paper-meshes")) {
+    paperDir = cl.value("--paper-meshes", "");
+    if (paperDir.empty()) {
+      fs::path repository = fs::path(assetFile("scenes")).parent_path().parent_path();
+      paperDir = paper::defaultPaperMeshDirectory(repository.empty() ? "." : repository.string());
+    }
+    const std::string missing = paper::missingPaperMeshes(paperDir);
+    if (!missing.empty()) throw InputError(paperDir, "--paper-meshes", missing);
+    paperDir = fs::absolute(paperDir).lexically_normal().string();
+  }
   StagedDirectory out(outDir);
+  std::string finalDir = outDir;
+  while (finalDir.size() > 1 && finalDir.back() == '/') finalDir.pop_back();
+  const std::string store = finalDir + ".partial";
   const auto benchStart = std::chrono::steady_clock::now();
 
-  BenchTable csv({"task", "method", "seed", "evaluation", "steps", "wall_s", "loss"});
+  // Every task's budget is checked before anything runs.
   std::vector<TaskResult> results;
   for (const ApplicationTask* task : tasks) {
     const std::string file = assetFile(task->scene);
     const Scene scene = loadScene(file, {});
     const ParameterSet parameters = ParameterSet::fromTask(scene);
     if (parameters.empty()) throw InputError(file, "task.parameters", "no parameters to optimise");
-    const SimulationObjective probe(scene, parameters);  // the box and the starting values
     TaskResult result;
     result.task = task;
     result.parameters = parameters.size();
+    result.garmentVertices = scene.vertexCount();
     result.budget = cl.has("--budget") ? static_cast<long long>(budgetOption)
                     : quick            ? task->quickBudget
                                        : task->budget;
-    if (result.budget < probe.stepsPerEvaluation())
+    const long long perGradient = 2LL * scene.time.steps;
+    if (result.budget < perGradient)
       cl.fail("--budget", "must allow at least one gradient evaluation of " +
-                              std::string(task->name) + " (" +
-                              std::to_string(probe.stepsPerEvaluation()) + " simulated steps)");
+                              std::string(task->name) + " (" + std::to_string(perGradient) +
+                              " simulated steps)");
+    results.push_back(std::move(result));
+  }
+  const int storedRuns = openRunStore(
+      store, finalDir + "/runs", resume,
+      runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir));
+  if (storedRuns > 0)
+    std::fprintf(stderr, "applications: %d stored run(s) in %s\n", storedRuns, store.c_str());
+
+  int resumedRuns = 0, newRuns = 0;
+  for (TaskResult& result : results) {
+    const ApplicationTask* task = result.task;
+    const std::string file = assetFile(task->scene);
+    const paper::PaperMesh* paperMesh = paperDir.empty() ? nullptr : paper::paperMeshFor(task->name);
+    // Loaded only when some run of the task is still to do.
+    std::optional<Scene> scene;
+    std::optional<ParameterSet> parameters;
+    std::optional<SimulationObjective> probe;
+    const auto prepare = [&]() {
+      if (scene) return;
+      if (!result.paperScene) scene = loadScene(file, {});
+      else scene = parseScene(result.paperScene->document, file, fs::path(file).parent_path().string());
+      for (const std::string& w : scene->warnings)
+        std::fprintf(stderr, "warning: %s: %s\n", task->name, w.c_str());
+      parameters = ParameterSet::fromTask(*scene);
+      probe.emplace(*scene, *parameters);  // the box and the starting values
+    };
+    if (paperMesh) {
+      std::fprintf(stderr, "applications: %s on %s...\n", task->name, paperMesh->file);
+      result.paperScene =
+          paper::makePaperScene(file, *paperMesh, paperDir, store + "/targets", /*reuseTarget=*/true);
+      result.garmentVertices = result.paperScene->vertices;
+    }
     for (int seed = 1; seed <= seeds; ++seed) {
-      const Eigen::VectorXd start = randomStart(probe.space(), static_cast<unsigned>(seed));
       for (int m = 0; m < kMethodCount; ++m) {
+        const std::string runFile = store + "/" + runFileName(*task, m, seed);
+        if (fs::exists(runFile)) {
+          Run run = readRunFile(runFile, *task, m, seed);
+          ++resumedRuns;
+          if (!run.curve.steps.empty()) result.runs.push_back(std::move(run));
+          continue;
+        }
+        prepare();
+        const Eigen::VectorXd start = randomStart(probe->space(), static_cast<unsigned>(seed));
         std::fprintf(stderr, "applications: %s, %s, seed %d...\n", task->name, kMethods[m].name,
                      seed);
-        SimulationObjective objective(scene, parameters);
+        SimulationObjective objective(*scene, *parameters);
         OptimizerSettings settings;
         settings.budget = result.budget;
         settings.seed = static_cast<unsigned>(seed);
@@ -213,14 +414,23 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
           run.seconds = e.seconds;
           char wall[32];
           std::snprintf(wall, sizeof wall, "%.6f", e.seconds);
-          csv.add({task->name, kMethods[m].name, std::to_string(seed), std::to_string(e.evaluation),
-                   std::to_string(e.steps), wall, formatNumber(e.loss, 17)});
+          run.rows.push_back({task->name, kMethods[m].name, std::to_string(seed),
+                              std::to_string(e.evaluation), std::to_string(e.steps), wall,
+                              formatNumber(e.loss, 17)});
         }
+        writeRunFile(runFile, run);  // from here on the run survives a kill
+        ++newRuns;
         if (!run.curve.steps.empty()) result.runs.push_back(std::move(run));
       }
     }
-    results.push_back(std::move(result));
   }
+  BenchTable csv(kRunColumns);
+  for (const TaskResult& r : results)
+    for (int seed = 1; seed <= seeds; ++seed)
+      for (int m = 0; m < kMethodCount; ++m)
+        for (const Run& run : r.runs)
+          if (run.seed == seed && run.method == m)
+            for (const auto& row : run.rows) csv.add(row);
   const double benchSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - benchStart).count();
 
@@ -339,6 +549,58 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   for (const std::string& note : plotNotes) std::fprintf(stderr, "warning: %s\n", note.c_str());
 
   csv.writeCsv(out.file("applications.csv"));
+  // The runs (and their settings) go with the tables, so that a later --resume can extend them.
+  {
+    std::error_code ec;
+    fs::create_directories(out.file("runs"), ec);
+    for (const auto& entry : fs::directory_iterator(store, ec))
+      if (entry.is_regular_file() &&
+          (entry.path().extension() == ".csv" || entry.path().filename() == "settings.json"))
+        fs::copy_file(entry.path(), fs::path(out.file("runs")) / entry.path().filename(), ec);
+    if (ec) throw InputError(out.file("runs"), "output", "cannot copy the runs: " + ec.message());
+  }
+  // The paper-mesh scenes as run, each with its target beside it (the mesh stays where it is).
+  std::string meshNotes;
+  for (const TaskResult& r : results) {
+    if (!r.paperScene) {
+      if (!paperDir.empty())
+        meshNotes += "- " + std::string(r.task->name) + ": the task's own mesh (" +
+                     std::to_string(r.garmentVertices) + " vertices; no paper mesh for this task)\n";
+      continue;
+    }
+    const paper::PaperScene& p = *r.paperScene;
+    std::error_code ec;
+    fs::create_directories(out.file("paper_scenes"), ec);
+    nlohmann::json doc = p.document;
+    if (!p.target.empty()) {
+      const std::string local = fs::path(p.target).filename().string();
+      fs::copy_file(p.target, out.file("paper_scenes/" + local), ec);
+      if (ec) throw InputError(out.file("paper_scenes"), "output", "cannot copy " + p.target);
+      for (const char* term : {"trajectory", "final"})
+        if (doc["task"]["loss"].contains(term)) doc["task"]["loss"][term]["target"] = local;
+    }
+    writeFileAtomically(out.file("paper_scenes/" + std::string(r.task->name) + ".json"),
+                        doc.dump(2) + "\n");
+    std::string remaps;
+    for (const paper::IndexRemap& m : p.remaps)
+      remaps += (remaps.empty() ? "" : "; ") + m.path + " " + std::to_string(m.original) + " -> " +
+                std::to_string(m.count) + " vertices, farthest " +
+                formatNumber(1000.0 * m.maxDistance, 3) + " mm";
+    const paper::PaperMesh* pm = paper::paperMeshFor(r.task->name);
+    meshNotes += "- " + std::string(r.task->name) + ": `" + p.meshFile + "` (" +
+                 std::to_string(p.vertices) + " vertices, the task's own garment " +
+                 std::to_string(p.originalVertices) + "), rotated (" +
+                 formatNumber(p.rotateDeg.x(), 5) + ", " + formatNumber(p.rotateDeg.y(), 5) + ", " +
+                 formatNumber(p.rotateDeg.z(), 5) + ") deg (" + pm->why + "), scaled by " +
+                 formatNumber(p.scale, 6) + ", translated (" + formatNumber(p.translate.x(), 4) +
+                 ", " + formatNumber(p.translate.y(), 4) + ", " + formatNumber(p.translate.z(), 4) +
+                 ") m. Remapped: " + remaps + "." +
+                 (p.target.empty() ? ""
+                  : r.paperScene->document["task"]["loss"].contains("trajectory")
+                      ? " Target motion recorded on this mesh from the scene's hidden values."
+                      : " Target: this rest shape translated as the task's own target is.") +
+                 " Scene: paper_scenes/" + r.task->name + ".json\n";
+  }
   {
     std::string taskList;
     for (const TaskResult& r : results)
@@ -346,8 +608,9 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     const std::string setup =
         "Machine: " + machineDescription() + ", " + std::to_string(threads) + " thread(s). " +
         std::to_string(seeds) + " seed(s) per task (1.." + std::to_string(seeds) + "), " +
-        formatNumber(benchSeconds, 4) +
-        " s in all. Each seed draws one starting point (uniform within a quarter of each "
+        formatNumber(benchSeconds, 4) + " s in this invocation (" + std::to_string(newRuns) +
+        " run(s) made, " + std::to_string(resumedRuns) +
+        " read back from stored run files; a run's wall s is its own). Each seed draws one starting point (uniform within a quarter of each "
         "parameter's box width "
         "around the scene's values; box widths capped at 2 optimiser units), shared by the three "
         "methods; "
@@ -361,6 +624,17 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     std::ofstream md(out.file("applications.md"));
     md << "# Gradient-based vs gradient-free optimisation (weft bench applications)\n\n"
        << "Tasks: " << taskList << ". " << setup << "\n\n";
+    if (paperDir.empty()) {
+      md << "Meshes: every task on its own mesh (assets/meshes, or a grid).\n\n";
+    } else {
+      md << "## Meshes\n\nGarment tasks on the DiffCloth release's own garment meshes (`--paper-meshes "
+         << paperDir
+         << "`): each is rotated into the task's frame, scaled uniformly so that its largest "
+            "bounding-box extent equals that of the task's own garment, and translated so that the "
+            "two bounding-box centres coincide; every vertex list of the scene is remapped to the "
+            "nearest vertices of the new mesh (repeats dropped, except keypoints).\n\n"
+         << meshNotes << "\n";
+    }
     losses.writeMarkdown(md, "Loss reached (DiffCloth Table 2)",
                          "Final %: the method's final loss as a percentage of the minimum initial "
                          "loss over seeds. Equal-step %: "
@@ -387,11 +661,15 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     if (!md) throw InputError(out.file("applications.md"), "output", "write failed");
   }
   out.commit();
+  {
+    std::error_code ec;
+    fs::remove_all(store, ec);  // everything it held is in DIR/runs now
+  }
   std::printf(
-      "bench applications: %zu task(s) x %d methods x %d seed(s), %.1f s -> "
-      "%s/applications.{csv,md}, "
-      "loss_<task>.png\n",
-      results.size(), kMethodCount, seeds, benchSeconds, outDir.c_str());
+      "bench applications: %zu task(s) x %d methods x %d seed(s), %d run(s) made, %d resumed, "
+      "%s meshes, %.1f s -> %s/applications.{csv,md}, loss_<task>.png, runs/\n",
+      results.size(), kMethodCount, seeds, newRuns, resumedRuns,
+      paperDir.empty() ? "own" : "paper", benchSeconds, outDir.c_str());
   return 0;
 }
 
