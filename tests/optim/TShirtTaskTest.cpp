@@ -16,7 +16,6 @@
 #include <weft/diff/ParameterSet.h>
 #include <weft/diff/TaskLoss.h>
 #include <weft/io/Npy.h>
-#include <weft/optim/LbfgsbOptimizer.h>
 #include <weft/optim/SimulationObjective.h>
 
 #include <gtest/gtest.h>
@@ -279,21 +278,7 @@ TEST(TShirtTask, LbfgsbRecoversTheHiddenValuesAtAReducedSize) {
   nlohmann::json doc = withTightForwardSolver(reducedTShirt(dir, 36), 1e-8).document;
   doc["solver"]["backward"]["tolerance"] = 1e-8;
   const Scene scene = test::parse(doc, dir.file("tshirt.json"));
-  SimulationObjective objective(scene, ParameterSet::fromTask(scene));
-  OptimizerSettings settings;
-  settings.maxEvaluations = 48;
-  LbfgsbOptimizer optimizer(settings);
-  const ParameterSpace& space = objective.space();
-  const OptimizationResult r = optimizer.minimize(objective, space.toCoordinates(space.initialValues()),
-                                                  space.lowerCoordinates(), space.upperCoordinates());
-  const double initial = optimizer.log().entries().front().loss;
-  EXPECT_LT(r.loss, 1e-4 * initial) << r.stopReason << ", " << r.evaluations << " evaluations";
-  const Eigen::VectorXd values = space.toValues(r.x);
-  for (int i = 0; i < values.size(); ++i) {
-    const std::string& path = space.parameters()[i].path;
-    EXPECT_NEAR(values[i], kHidden.at(path), 0.02 * std::abs(kHidden.at(path)))
-        << path << " (" << r.evaluations << " evaluations, " << r.stopReason << ")";
-  }
+  test::expectLbfgsbRecoversHiddenValues(scene, kHidden, 48, 1e-4);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <weft/diff/ForwardPass.h>
 #include <weft/diff/GradientCheck.h>
 #include <weft/diff/ParameterSet.h>
+#include <weft/optim/LbfgsbOptimizer.h>
 #include <weft/optim/SimulationObjective.h>
 #include <weft/scene/SceneLoader.h>
 
@@ -89,6 +90,28 @@ inline void expectHiddenValuesInsideBoxesAndAwayFromStart(const Scene& scene, co
     EXPECT_GT(hidden, p.lower);
     EXPECT_LT(hidden, p.upper);
     EXPECT_GT(std::abs(start[i] - hidden), 0.15 * std::abs(hidden));
+  }
+}
+
+// L-BFGS-B from the scene's start, at most `maxEvaluations` evaluations, recovers the hidden
+// values: the loss falls below `lossFraction` of its initial value and every parameter ends
+// within 2 % of its hidden value.
+inline void expectLbfgsbRecoversHiddenValues(const Scene& scene, const std::map<std::string, double>& hiddenByPath,
+                                             int maxEvaluations, double lossFraction) {
+  SimulationObjective objective(scene, ParameterSet::fromTask(scene));
+  OptimizerSettings settings;
+  settings.maxEvaluations = maxEvaluations;
+  LbfgsbOptimizer optimizer(settings);
+  const ParameterSpace& space = objective.space();
+  const OptimizationResult r = optimizer.minimize(objective, space.toCoordinates(space.initialValues()),
+                                                  space.lowerCoordinates(), space.upperCoordinates());
+  const double initial = optimizer.log().entries().front().loss;
+  EXPECT_LT(r.loss, lossFraction * initial) << r.stopReason << ", " << r.evaluations << " evaluations";
+  const Eigen::VectorXd values = space.toValues(r.x);
+  for (int i = 0; i < values.size(); ++i) {
+    const std::string& path = space.parameters()[i].path;
+    EXPECT_NEAR(values[i], hiddenByPath.at(path), 0.02 * std::abs(hiddenByPath.at(path)))
+        << path << " (" << r.evaluations << " evaluations, " << r.stopReason << ")";
   }
 }
 
