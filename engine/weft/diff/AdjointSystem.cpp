@@ -25,50 +25,10 @@ AdjointSystem::AdjointSystem(const Scene& scene) : model_(buildClothModel(scene)
     rows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
   if (!cholesky_.factorize(system_)) throw NumericalError(0, "backward", "system matrix P is not positive definite");
-  buildColouring();
+  probe_ = std::make_unique<ColouredProbe>(system_);
 }
 
 AdjointSystem::~AdjointSystem() = default;
-
-void AdjointSystem::buildColouring() {
-  // Adjacency from the selection patterns: two nodes are coupled (in P and Delta P) when they
-  // appear in one constraint row. Pattern values are replaced by 1 so nothing cancels.
-  const int m = model_.nodeCount();
-  std::vector<std::vector<int>> adjacency(m);
-  for (int i = 0; i < m; ++i) adjacency[i].push_back(i);
-  for (const auto& c : constraints_) {
-    if (!c->hasDerivative()) continue;
-    const Eigen::SparseMatrix<double> rowsByNode = c->selectionTransposed().transpose();  // rows x nodes
-    Eigen::SparseMatrix<double, Eigen::RowMajor> byRow = rowsByNode;
-    for (int r = 0; r < byRow.outerSize(); ++r) {
-      std::vector<int> nodes;
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(byRow, r); it; ++it) nodes.push_back(it.col());
-      for (int a : nodes)
-        for (int b : nodes) adjacency[a].push_back(b);
-    }
-  }
-  for (auto& list : adjacency) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
-  neighbours_ = adjacency;
-  // Greedy distance-2 colouring: a node's colour differs from every node within two hops.
-  std::vector<int> colour(m, -1);
-  std::vector<int> mark;
-  for (int i = 0; i < m; ++i) {
-    for (int j : adjacency[i])
-      for (int k : adjacency[j])
-        if (colour[k] >= 0) {
-          if (static_cast<int>(mark.size()) <= colour[k]) mark.resize(colour[k] + 1, -1);
-          mark[colour[k]] = i;
-        }
-    int c = 0;
-    while (c < static_cast<int>(mark.size()) && mark[c] == i) ++c;
-    colour[i] = c;
-    if (static_cast<int>(colourNodes_.size()) <= c) colourNodes_.resize(c + 1);
-    colourNodes_[c].push_back(i);
-  }
-}
 
 void AdjointSystem::prepare(const NodeMatrix& x, const ContactAdjoint* contact) {
   preparedX_ = x;  // kept for factorClampedHessian (same size every step: no allocation)
@@ -134,36 +94,22 @@ bool AdjointSystem::factorClampedHessian() {
   return hessianCholesky_.factorize(clamped);
 }
 
+double AdjointSystem::hessianFactorCost() const {
+  constexpr double kHessianFlopsPerPFlop = 26.0, kFactorSlowdown = 3.0;
+  const double iteration = 12.0 * cholesky_.factorEntries() + 18.0 * static_cast<double>(system_.nonZeros());
+  const double factor = kFactorSlowdown * kHessianFlopsPerPFlop * cholesky_.factorFlops();
+  return 3.0 * probe_->colourCount() + factor / iteration;
+}
+
 void AdjointSystem::solveClampedHessian(NodeMatrix& inOut) {
   // NodeMatrix storage is column-major: its data is the flat 3m vector assembleK indexes.
   hessianCholesky_.solveInPlace(inOut.data(), 1);
 }
 
 Eigen::SparseMatrix<double> AdjointSystem::assembleK() const {
-  const int m = nodeCount();
-  std::vector<Eigen::Triplet<double>> entries;
-  // Block diagonal P (x) I_3.
-  for (int k = 0; k < system_.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(system_, k); it; ++it)
-      for (int d = 0; d < 3; ++d) entries.emplace_back(d * m + it.row(), d * m + it.col(), it.value());
-  if (anyDerivative_) {
-    NodeMatrix probe(m, 3), image(m, 3);
-    for (const std::vector<int>& nodes : colourNodes_) {
-      for (int d = 0; d < 3; ++d) {
-        probe.setZero();
-        for (int i : nodes) probe(i, d) = 1.0;
-        multiplyDeltaP(probe, image);
-        // Column (d, i) of Delta P lives on i's neighbours, which see no other node of this colour.
-        for (int i : nodes)
-          for (int j : neighbours_[i])
-            for (int e = 0; e < 3; ++e)
-              if (image(j, e) != 0.0) entries.emplace_back(e * m + j, d * m + i, -image(j, e));
-      }
-    }
-  }
-  Eigen::SparseMatrix<double> k(3 * m, 3 * m);
-  k.setFromTriplets(entries.begin(), entries.end());
-  k.makeCompressed();
+  // P (x) I_3 - Delta P, Delta P probed through its products (Eq. 19).
+  Eigen::SparseMatrix<double> k;
+  probe_->assemble([this](const NodeMatrix& in, NodeMatrix& out) { multiplyDeltaP(in, out); }, -1.0, &system_, k);
   return k;
 }
 

@@ -19,6 +19,7 @@
 #include <weft/core/Types.h>
 #include <weft/diff/ContactAdjoint.h>
 #include <weft/physics/ClothModel.h>
+#include <weft/physics/ColouredProbe.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SparseCholesky.h>
 #include <weft/scene/Scene.h>
@@ -75,11 +76,18 @@ class AdjointSystem {
   // transposed system of ContactAdjoint::appendTransposedBlocks, (3m + 3c) square, whose first 3m
   // unknowns are z for a right-hand side [g; 0].
   Eigen::SparseMatrix<double> assembleSystem() const;
-  int probeColours() const { return static_cast<int>(colourNodes_.size()); }
+  int probeColours() const { return probe_->colourCount(); }
+  // What one factorClampedHessian costs, in GMRES iterations preconditioned by P, estimated from
+  // operation counts so that choices made from it repeat exactly: the 3 x colours products that
+  // probe H, plus its factorisation, whose flops are about 26 times P's (H has P's pattern in
+  // 3 x 3 blocks; measured 25.5-26.4 on the Wind napkin at 12^2-48^2 quads) and which runs about
+  // 3 times slower per flop than an iteration (CHOLMOD's supernodal factorisation with the
+  // reference BLAS, small supernodes, and the conversion for our solves, against a P solve of
+  // 12 flops and a K product of about 18 flops per stored entry). Measured against timed runs
+  // on wind_reference.json: 70, 85, 170 iterations at 12^2, 24^2, 48^2; estimated 63, 101, 192.
+  double hessianFactorCost() const;
 
  private:
-  void buildColouring();
-
   ClothModel model_;
   double h_;
   std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
@@ -92,9 +100,7 @@ class AdjointSystem {
   const ContactAdjoint* contact_ = nullptr;
   mutable NodeMatrix contactWbar_, contactSum_, work_;
   mutable Eigen::MatrixX3d contactY_;
-  // Node adjacency (nodes sharing a constraint row, self included) and its distance-2 colouring.
-  std::vector<std::vector<int>> neighbours_;
-  std::vector<std::vector<int>> colourNodes_;
+  mutable std::unique_ptr<ColouredProbe> probe_;  // assembleK's probing (buffers kept)
 };
 
 }  // namespace weft

@@ -3,6 +3,7 @@
 #include <weft/diff/AdjointSystem.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace weft {
 
@@ -48,9 +49,15 @@ LinearSolveResult GmresSolver::solve(AdjointSystem& system, const NodeMatrix& rh
       return {r.converged, false, r.iterations, r.residual};
     }
   }
+  // A step after a run of Hessian steps only checks whether P has become cheap; any other step
+  // gives P as many iterations as a factorisation costs before buying one (the ski-rental
+  // rule: never more than twice the cost of the better choice made in hindsight).
+  const bool reprobe = switched_;
+  const int pBudget = reprobe ? kAutomaticPIterations
+                              : std::max(kAutomaticPIterations, static_cast<int>(std::lround(system.hessianFactorCost())));
   hessianRun_ = 0;
-  r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, std::min(maxIterations_, kAutomaticPIterations),
-                   restart_, warmStart_);
+  r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, std::min(maxIterations_, pBudget), restart_,
+                   warmStart_);
   switched_ = false;
   if (!r.converged && r.iterations < maxIterations_ && (factorValid_ = system.factorClampedHessian())) {
     // P is slow here: continue from the z it reached, preconditioned by the Hessian.

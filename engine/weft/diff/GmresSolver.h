@@ -18,14 +18,17 @@
 // one per step: P is right where contacts pin the cloth's soft out-of-plane modes or the cloth
 // is slack (Slope: 1-5 iterations per step), the Hessian where the cloth hangs free in tension
 // (Wind: 60-130 iterations with P, 2-5 with the Hessian), and the factorisation costs as much
-// as tens of iterations with P. A step first runs up to kAutomaticPIterations iterations with P;
-// if that does not converge, the Hessian is factored and the solve continues from where P left
-// it. If the Hessian then converged within kAutomaticPIterations more, the following steps start
+// as 60-200 iterations with P (AdjointSystem::hessianFactorCost, from operation counts). A step
+// first runs with P for as many iterations as a factorisation costs (at least
+// kAutomaticPIterations); if that does not converge, the Hessian is factored and the solve
+// continues from where P left it: never more than twice the cost of the better choice in
+// hindsight. If the Hessian then converged within kAutomaticPIterations more, the following steps start
 // with it (a backward pass walks one trajectory, whose stiffness changes slowly), probing P
 // again every kAutomaticReprobe steps and dropping back to P as soon as the Hessian needs more
 // than kAutomaticPIterations (the hard iterations come from the contact part Delta R, which
 // the Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
-// The choice depends on iteration counts only, so repeated runs stay bit-identical.
+// The choice depends on iteration and operation counts only, so repeated runs stay
+// bit-identical.
 // Each step starts from the previous step's z when warmStart is set (the adjoint varies
 // smoothly along the trajectory).
 
@@ -37,8 +40,9 @@ namespace weft {
 class GmresSolver final : public AdjointLinearSolver {
  public:
   enum class Preconditioner { P, ClampedHessian, Automatic };
-  // Automatic: iterations with P after which a step switches to the clamped Hessian, and the
-  // steps after which a run of steps started with the Hessian tries P again.
+  // Automatic: the fewest iterations with P after which a step switches to the clamped Hessian
+  // (and the most when a run of Hessian steps probes P again), and the steps after which such
+  // a run tries P again.
   static constexpr int kAutomaticPIterations = 12;
   static constexpr int kAutomaticReprobe = 10;
   // Automatic: iterations with a kept Hessian factor beyond which the next step refactors.

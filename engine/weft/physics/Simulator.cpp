@@ -8,8 +8,6 @@
 #include <weft/physics/StretchConstraint.h>
 #include <weft/physics/WindForce.h>
 
-#include <Eigen/CholmodSupport>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -125,12 +123,6 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
   assembleAndFactorize();
   moduleSeconds_[solverModule_] += secondsSince(start);
 }
-
-struct Simulator::StiffnessFactor {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
-  Eigen::SparseMatrix<double> lower;  // K+ (lower triangle), also for products
-  bool analysed = false;
-};
 
 Simulator::~Simulator() = default;
 
@@ -540,71 +532,14 @@ double Simulator::contactResidual(const NodeMatrix& x, NodeMatrix& residual) {
   return measure;
 }
 
-void Simulator::colourNodes() {
-  // Greedy distance-2 colouring of P's graph (nodes sharing a constraint): two nodes of one
-  // colour never share a neighbour, so a product of K with the sum of one colour's unit vectors
-  // gives every column of that colour separately.
-  const int m = model_.nodeCount();
-  std::vector<std::vector<int>> adjacent(m);
-  for (int j = 0; j < system_.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(system_, j); it; ++it)
-      if (it.row() != j) adjacent[j].push_back(static_cast<int>(it.row()));
-  probeColour_.assign(m, -1);
-  probeColours_ = 0;
-  std::vector<char> taken;
-  for (int i = 0; i < m; ++i) {
-    taken.assign(probeColours_ + 1, 0);
-    for (int j : adjacent[i]) {
-      if (probeColour_[j] >= 0) taken[probeColour_[j]] = 1;
-      for (int k : adjacent[j])
-        if (probeColour_[k] >= 0) taken[probeColour_[k]] = 1;
-    }
-    int c = 0;
-    while (c < probeColours_ && taken[c]) ++c;
-    probeColour_[i] = c;
-    probeColours_ = std::max(probeColours_, c + 1);
-  }
-}
-
 bool Simulator::factorizeStiffness() {
-  // K+ = P - Delta P+ at iterate_ (the derivatives must have been prepared `definite`), 3 x 3
-  // blocks on P's pattern, probed with 3 x (colour count) products.
-  if (probeColour_.empty()) colourNodes();
-  if (!stiffness_) stiffness_ = std::make_unique<StiffnessFactor>();
-  const int m = model_.nodeCount();
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(9 * static_cast<std::size_t>(system_.nonZeros()));
-  probe_.setZero(m, 3);
-  probeProduct_.resize(m, 3);
-  for (int c = 0; c < probeColours_; ++c)
-    for (int a = 0; a < 3; ++a) {
-      probe_.setZero();
-      for (int i = 0; i < m; ++i)
-        if (probeColour_[i] == c) probe_(i, a) = 1.0;
-      multiplyNewtonMatrix(probe_, probeProduct_);
-      timed(solverModule_, [&] {
-        for (int j = 0; j < system_.outerSize(); ++j)
-          for (Eigen::SparseMatrix<double>::InnerIterator it(system_, j); it; ++it) {
-            const int i = static_cast<int>(it.row());  // column i of K, read in row j
-            if (probeColour_[i] != c) continue;
-            for (int b = 0; b < 3; ++b)
-              if (3 * j + b >= 3 * i + a) entries.emplace_back(3 * j + b, 3 * i + a, probeProduct_(j, b));
-          }
-      });
-    }
+  // K+ = P - Delta P+ at iterate_ (the derivatives must have been prepared `definite`), probed
+  // through its products (ColouredProbe) and factorised by CHOLMOD (symbolic analysis kept).
+  if (!stiffnessProbe_) stiffnessProbe_ = std::make_unique<ColouredProbe>(system_);
+  stiffnessProbe_->assemble([this](const NodeMatrix& in, NodeMatrix& out) { multiplyNewtonMatrix(in, out); }, 1.0,
+                            nullptr, stiffness_);
   bool ok = false;
-  timed(solverModule_, [&] {
-    // The product gives K's lower triangle from the columns; K+ is symmetric.
-    StiffnessFactor& f = *stiffness_;
-    f.lower.resize(3 * m, 3 * m);
-    f.lower.setFromTriplets(entries.begin(), entries.end());
-    if (!f.analysed) {
-      f.llt.analyzePattern(f.lower);
-      f.analysed = true;
-    }
-    f.llt.factorize(f.lower);
-    ok = f.llt.info() == Eigen::Success;
-  });
+  timed(solverModule_, [&] { ok = stiffnessCholesky_.factorize(stiffness_); });
   stiffnessFactored_ = ok;
   return ok;
 }
@@ -627,19 +562,14 @@ void Simulator::preconditionContact(const NodeMatrix& scaled, NodeMatrix& z) {
       contacts.removePinned(z);
       cholesky_.solveInPlace(z);
     } else {
-      const StiffnessFactor& f = *stiffness_;
-      flatWork_.resize(3 * m);
-      for (int i = 0; i < m; ++i)
-        for (int a = 0; a < 3; ++a) flatWork_[3 * i + a] = pinnedPart_(i, a);
-      const Eigen::VectorXd coupling = f.lower.selfadjointView<Eigen::Lower>() * flatWork_;
-      for (int i = 0; i < m; ++i)
-        for (int a = 0; a < 3; ++a) z(i, a) = r(i, a) - coupling[3 * i + a];
+      // A NodeMatrix's storage is the flat vector K+ acts on (ColouredProbe's index).
+      const Eigen::Index n = 3 * static_cast<Eigen::Index>(m);
+      coupling_.resize(m, 3);
+      Eigen::Map<Eigen::VectorXd>(coupling_.data(), n).noalias() =
+          stiffness_ * Eigen::Map<const Eigen::VectorXd>(pinnedPart_.data(), n);
+      z = r - coupling_;
       contacts.removePinned(z);
-      for (int i = 0; i < m; ++i)
-        for (int a = 0; a < 3; ++a) flatWork_[3 * i + a] = z(i, a);
-      flatWork_ = f.llt.solve(flatWork_);
-      for (int i = 0; i < m; ++i)
-        for (int a = 0; a < 3; ++a) z(i, a) = flatWork_[3 * i + a];
+      stiffnessCholesky_.solveInPlace(z.data(), 1);
     }
     contacts.removePinned(z);
     z += pinnedPart_;

@@ -28,6 +28,7 @@
 #include <weft/core/Types.h>
 #include <weft/physics/AndersonAccelerator.h>
 #include <weft/physics/ClothModel.h>
+#include <weft/physics/ColouredProbe.h>
 #include <weft/physics/ExternalForce.h>
 #include <weft/physics/Gmres.h>
 #include <weft/physics/ProjectiveConstraint.h>
@@ -102,10 +103,9 @@ class Simulator {
   double contactResidual(const NodeMatrix& x, NodeMatrix& residual);
   void solveContactNewton();
   // The Newton contact solve's preconditioner: a CHOLMOD factor of the 3m x 3m clamped Hessian
-  // K+ = P - Delta P+ (the `definite` projection derivatives), assembled column by column from
-  // matrix-vector products with a distance-2 colouring of the mesh (colourNodes). False when
-  // the factorisation failed (the preconditioner then falls back to P).
-  void colourNodes();
+  // K+ = P - Delta P+ (the `definite` projection derivatives), assembled from matrix-vector
+  // products (ColouredProbe). False when the factorisation failed (the preconditioner then
+  // falls back to P).
   bool factorizeStiffness();
   // z = B r for the GMRES of solveContactNewton (r, z mass-scaled as there; one "solve").
   void preconditionContact(const NodeMatrix& scaled, NodeMatrix& z);
@@ -151,13 +151,11 @@ class Simulator {
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
   NodeMatrix freeMomentum_, plainIterate_, fullResidual_;  // contact scenes only
   NodeMatrix lawInput_, pinnedPart_;                       // solver.contact = "newton" only
-  struct StiffnessFactor;                                  // CHOLMOD supernodal factor of K+
-  std::unique_ptr<StiffnessFactor> stiffness_;
-  std::vector<int> probeColour_;
-  int probeColours_ = 0;
+  std::unique_ptr<ColouredProbe> stiffnessProbe_;          // K+ (factorizeStiffness)
+  Eigen::SparseMatrix<double> stiffness_;
+  SparseCholesky stiffnessCholesky_;
   bool stiffnessFactored_ = false;
-  Eigen::VectorXd flatWork_;
-  NodeMatrix probe_, probeProduct_;
+  NodeMatrix coupling_;
   Gmres gmres_;
   std::vector<NodeMatrix> projections_, derivativeRows_;
   double totalMass_ = 0.0;

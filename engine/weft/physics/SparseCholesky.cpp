@@ -42,6 +42,8 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
   if (!samePattern) {
     if (symbolic_) cholmod_free_factor(&symbolic_, common_);
     symbolic_ = cholmod_analyze(&view, common_);
+    factorFlops_ = common_->fl;
+    factorEntries_ = common_->lnz;
     size_ = static_cast<int>(lower_.rows());
     patternNonZeros_ = lower_.nonZeros();
   }

@@ -31,6 +31,12 @@ class SparseCholesky {
   bool factorize(const Eigen::SparseMatrix<double>& matrix);
   bool factorized() const { return factor_ != nullptr; }
   int size() const { return size_; }
+  // From CHOLMOD's symbolic analysis of the current pattern (0 before the first factorize):
+  // the floating-point operations of one numeric factorisation and the entries of L. They cost
+  // a factorisation and a solve without timing anything, so choices made from them repeat
+  // exactly.
+  double factorFlops() const { return factorFlops_; }
+  double factorEntries() const { return factorEntries_; }
 
   // b <- P^{-1} b, for an n x k column-major block (k right-hand sides solved together).
   void solveInPlace(double* data, int columns);
@@ -52,6 +58,7 @@ class SparseCholesky {
   Eigen::SparseMatrix<double> lower_;  // kept: CHOLMOD views its arrays
   int size_ = 0;
   long long patternNonZeros_ = -1;
+  double factorFlops_ = 0.0, factorEntries_ = 0.0;
 };
 
 }  // namespace weft
