@@ -3,6 +3,8 @@
 #include <weft/contact/ContactLawJacobian.h>
 #include <weft/contact/SignoriniCoulomb.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 
 namespace weft {
@@ -24,7 +26,7 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
   auto slotFor = [&](int node) {
     if (slotOf_[node] < 0) {
       slotOf_[node] = static_cast<int>(slots_.size());
-      slots_.push_back(Slot{node, mass[node], Vec3::Zero(), Vec3::Zero(), Mat3::Zero()});
+      slots_.push_back(Slot{node, mass[node], Vec3::Zero(), Vec3::Zero(), Mat3::Zero(), Mat3::Zero()});
     }
     return slotOf_[node];
   };
@@ -105,6 +107,28 @@ void ContactSolver::addImpulses(double scale, NodeMatrix& rhs) const {
   for (const Slot& s : slots_) rhs.row(s.node) += scale * s.impulse.transpose();
 }
 
+Mat3 ContactSolver::coupledLaw(int begin, int end) const {
+  // The sweeps over one node's k obstacle contacts converge to r_c = m L_c(f/m + sum_{d != c}
+  // r_d / m - reference_c) for every c (the node's mass m is every contact's). Differentiating,
+  // with s_c = dr_c / m, q = df / m and J_c = dL_c/dw in c's branch:
+  //   s_c - J_c sum_{d != c} s_d = J_c q,
+  // a 3k system whose sum over c gives d(total impulse)/df. Two stick contacts (J = -I each)
+  // make it singular: the total -f is determined, its split between the walls is not. The
+  // minimum-norm solution then still gives the total, which is all the Newton matrix uses.
+  const int k = end - begin;
+  Eigen::MatrixXd system = Eigen::MatrixXd::Identity(3 * k, 3 * k), rhs(3 * k, 3);
+  for (int i = 0; i < k; ++i) {
+    const Mat3& law = contacts_[begin + i].law;
+    rhs.middleRows<3>(3 * i) = law;
+    for (int j = 0; j < k; ++j)
+      if (j != i) system.block<3, 3>(3 * i, 3 * j) = -law;
+  }
+  const Eigen::MatrixXd s = system.completeOrthogonalDecomposition().solve(rhs);
+  Mat3 total = Mat3::Zero();
+  for (int i = 0; i < k; ++i) total += s.middleRows<3>(3 * i);
+  return total;
+}
+
 int ContactSolver::linearize() {
   for (Slot& s : slots_) s.pinned.setZero();
   int changed = 0;
@@ -118,6 +142,12 @@ int ContactSolver::linearize() {
     if (c.branch == ContactBranch::Stick || !pinned.isZero(0.0)) pinned.setIdentity();
     else pinned = c.normal * c.normal.transpose();
   }
+  const int groups = static_cast<int>(groupStart_.size()) - 1;
+  for (int g = 0; g < groups; ++g) {
+    const int begin = groupStart_[g], end = groupStart_[g + 1];
+    slots_[contacts_[begin].a].obstacleLaw =
+        end - begin == 1 ? contacts_[begin].law : coupledLaw(begin, end);
+  }
   return changed;
 }
 
@@ -125,12 +155,10 @@ void ContactSolver::addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const {
   // r_c = m_eff du(w), w = f_a / m_a (- f_b / m_b) - reference (DiffCloth Eq. 12's per-node law).
   const int groups = static_cast<int>(groupStart_.size()) - 1;
 #pragma omp parallel for schedule(static) if (groups > kParallelMinimum)
-  for (int g = 0; g < groups; ++g)
-    for (int k = groupStart_[g]; k < groupStart_[g + 1]; ++k) {
-      const Contact& c = contacts_[k];
-      const int node = slots_[c.a].node;
-      if (c.branch != ContactBranch::TakeOff) out.row(node) += (c.law * q.row(node).transpose()).transpose();
-    }
+  for (int g = 0; g < groups; ++g) {
+    const Slot& a = slots_[contacts_[groupStart_[g]].a];
+    out.row(a.node) += (a.obstacleLaw * q.row(a.node).transpose()).transpose();
+  }
   for (std::size_t k = pairBegin_; k < contacts_.size(); ++k) {
     const Contact& c = contacts_[k];
     if (c.branch == ContactBranch::TakeOff) continue;

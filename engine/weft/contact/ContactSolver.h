@@ -57,10 +57,12 @@ class ContactSolver {
 
   // Linearisation of the last solve, for the semismooth Newton contact solve (Simulator):
   // the impulses r(f) as a function of the free momentum f, differentiated in each contact's
-  // branch (ContactLawJacobian.h). Contacts sharing a node are differentiated one at a time
-  // (their Gauss-Seidel coupling is left out), which makes the Newton matrix inexact there but
-  // never the solution: the Newton solve stops on the true residual. Returns how many contacts
-  // changed branch since the previous linearisation of the step.
+  // branch (ContactLawJacobian.h). Obstacle contacts sharing a node (a corner, two walls) are
+  // differentiated together, through the fixed point their Gauss-Seidel sweeps converge to;
+  // self-collision pairs are differentiated one at a time (their coupling through shared nodes
+  // is left out), which makes the Newton matrix inexact there but never the solution: the
+  // Newton solve stops on the true residual. Returns how many contacts changed branch since the
+  // previous linearisation of the step.
   int linearize();
   // out += h dr/df q for q = h df (impulse-per-momentum blocks; out and q are m x 3).
   void addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const;
@@ -78,6 +80,7 @@ class ContactSolver {
     Vec3 freeVelocity;  // f / m
     Vec3 impulse;       // total contact impulse on the node
     Mat3 pinned;        // projector onto the prescribed velocity directions (linearize())
+    Mat3 obstacleLaw;   // d(total obstacle impulse)/df on the node (linearize())
   };
   struct Contact {
     int a, b;  // slots (b = -1 for an obstacle contact)
@@ -94,6 +97,7 @@ class ContactSolver {
   };
   Vec3 freeVelocity(const Contact& c) const;  // w: the contact's velocity without its own impulse
   double update(Contact& c);  // one Gauss-Seidel update; returns |delta r| / m
+  Mat3 coupledLaw(int begin, int end) const;  // obstacleLaw of a node with several contacts
 
   std::vector<int> slotOf_;  // per node
   std::vector<Slot> slots_;
