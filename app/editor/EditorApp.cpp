@@ -227,6 +227,12 @@ void EditorApp::drawMenuBar() {
     ImGui::Separator();
     if (ImGui::MenuItem("Clear selection", nullptr, false, !session_.selection().empty()))
       session_.selection().clear();
+    ImGui::Separator();
+    // Not an action of its own (the click happens in the viewport): listed for its shortcut.
+    ImGui::MenuItem("Gizmo: pick an obstacle or cloth", "Ctrl+Click", false, false);
+    if (ImGui::MenuItem("Gizmo: off", "Esc", false,
+                        session_.activeObject().kind != EditorObject::Kind::None))
+      session_.setActiveObject("");
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Add")) {
@@ -613,8 +619,10 @@ void EditorApp::selectionPanel() {
   ImGui::TextDisabled("Click: pick (and inspect) a vertex; drag: box");
   ImGui::TextDisabled("select; Shift adds. Right drag: orbit; middle:");
   ImGui::TextDisabled("pan; wheel: zoom; F: frame the scene; Alt+drag:");
-  ImGui::TextDisabled("move the selected vertices' targets. \"gizmo\"");
-  ImGui::TextDisabled("(Obstacles, Cloth): drag its arrows and rings.");
+  ImGui::TextDisabled("move the selected vertices' targets. Ctrl+click");
+  ImGui::TextDisabled("an obstacle or cloth (or \"gizmo\" under");
+  ImGui::TextDisabled("Obstacles, Cloth) to place it: drag the");
+  ImGui::TextDisabled("gizmo's arrows and rings; Esc takes it off.");
 }
 
 void EditorApp::drawViewport(float left, float top, float width, float height) {
@@ -705,6 +713,8 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
       if (drag.x != 0.0f || drag.y != 0.0f)
         session_.boxSelectPixels(boxStart_[0], boxStart_[1], mouse.x, mouse.y, viewportWidth_,
                                  viewportHeight_, io.KeyShift);
+      else if (io.KeyCtrl)
+        pickObjectAt(mouse.x, mouse.y);
       else
         session_.clickSelect(mouse.x, mouse.y, viewportWidth_, viewportHeight_, io.KeyShift);
     }
@@ -738,6 +748,15 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
     draw->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(230, 80, 70, 255),
                   "The scene does not validate: showing the last valid state (see the Scene panel).");
   ImGui::End();
+}
+
+void EditorApp::pickObjectAt(float x, float y) {
+  const std::string error = session_.clickObject(x, y, viewportWidth_, viewportHeight_);
+  const std::string picked = session_.activeObject().path();
+  if (!error.empty())
+    report(error, true);
+  else
+    report(picked.empty() ? "nothing there: gizmo off" : "gizmo on " + picked, false);
 }
 
 void EditorApp::drawGizmo(ImDrawList* draw, float originX, float originY, GizmoHandle hovered) {

@@ -83,6 +83,7 @@ class EditorApp {
   void handleShortcuts();
   void renderViewport();
   void drawGizmo(ImDrawList* draw, float originX, float originY, GizmoHandle hovered);
+  void pickObjectAt(float x, float y);  // Ctrl+click in the viewport (viewport pixels)
   void keyControls();
   void drawKeyTicks(int frames);
   void placeButton(const std::string& path);

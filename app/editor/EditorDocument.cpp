@@ -1,5 +1,8 @@
 #include "EditorDocument.h"
 
+#include "FinalTargets.h"
+#include "ScenePathRebase.h"
+
 #include <weft/core/Error.h>
 #include <weft/io/AtomicFile.h>
 #include <weft/scene/JsonPath.h>
@@ -71,11 +74,30 @@ void EditorDocument::save() {
 
 void EditorDocument::saveAs(const std::string& file) {
   if (file.empty()) throw InputError("-", "-", "no file name given");
-  writeFileAtomically(file, document_.dump(2) + "\n");
-  const bool directoryChanged = fs::absolute(file).parent_path() != fs::path(directory());
+  const std::string from = directory();
+  const std::string to = fs::absolute(file).parent_path().string();
+  // Relative file references resolve against the scene's folder, so in another folder they are
+  // rewritten to name the same files (ScenePathRebase.h). This is part of saving, not an undoable
+  // edit: the document must equal the file just written (clean, and Save writes the same), and
+  // undoing it could only bring back references that name nothing from the new folder. So the
+  // whole history is rebased with it: every undo and redo state keeps naming the files it named.
+  // The editor's own target file is not moved: it is written next to the scene, wherever that is.
+  auto rebase = [&](nlohmann::json& document, const nlohmann::json& sidecar) {
+    std::vector<std::string> keep;
+    if (!ownedFinalTargetFile(document, sidecar).empty()) keep.push_back("task.loss.final.target");
+    rebaseSceneFiles(document, from, to, keep);
+  };
+  nlohmann::json saved = document_;
+  rebase(saved, sidecar_);
+  writeFileAtomically(file, saved.dump(2) + "\n");  // throws: nothing has changed yet
+  document_ = std::move(saved);
+  for (std::vector<Step>* stack : {&undo_, &redo_})
+    for (Step& step : *stack) rebase(step.before, step.sidecarBefore);
+  const bool directoryChanged =
+      fs::path(to).lexically_normal() != fs::path(from).lexically_normal();
   file_ = file;
   savedState_ = state_;
-  // Relative mesh paths now resolve against the new folder.
+  // Relative references now resolve against the new folder (to the same files).
   if (directoryChanged) {
     ++revision_;
     revalidate();

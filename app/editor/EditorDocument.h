@@ -35,7 +35,9 @@ class EditorDocument {
 
   // Saves to the current file (which must be set) or to `file` (save as: the document then
   // belongs to that file). Atomic: writes a temporary sibling, then renames it over the
-  // target, so a crash never leaves a truncated scene. Throws InputError on failure.
+  // target, so a crash never leaves a truncated scene. Throws InputError on failure. Save As into
+  // another folder rewrites relative file references (meshes, targets) to name the same files
+  // from there, in the document and its whole undo history (ScenePathRebase.h).
   void save();
   void saveAs(const std::string& file);
 

@@ -2,6 +2,7 @@
 
 #include <FrameBuilder.h>
 
+#include "ObjectPicking.h"
 #include "ObstacleTemplates.h"
 
 #include <weft/core/Error.h>
@@ -73,11 +74,10 @@ std::string EditorSession::writeTargets(const std::string& sceneFile) {
   const Scene* scene = document_.scene();
   if (!scene)
     return "the final targets were not written: the scene does not validate (save again once it does)";
-  const std::string name = document_.sidecar()["final_targets"].value("file", finalTargetFileName(sceneFile));
   // Targets read from an opened scene are written only once edited (the scene then names the
   // editor's file); until then the scene's own file stays as it is.
-  const nlohmann::json* named = document_.find("task.loss.final.target");
-  if (!named || !named->is_string() || named->get<std::string>() != name) return "";
+  const std::string name = ownedFinalTargetFile(document_.document(), document_.sidecar());
+  if (name.empty()) return "";
   const std::string directory = std::filesystem::absolute(sceneFile).parent_path().string();
   writeTargetNpy(resolveScenePath(directory, name), finalTargetMatrix(list, buildClothModel(*scene).rest.vertices));
   return "";
@@ -94,7 +94,10 @@ std::string EditorSession::save() {
 std::string EditorSession::saveAs(const std::string& file) {
   if (file.empty()) throw InputError("-", "-", "no file name given");
   const std::string warning = writeTargets(file);
+  const bool current = cache_.scene() && !cacheStale();
   document_.saveAs(file);
+  // Rebased references name the same files: the cached run is still the document's own.
+  if (current && document_.valid()) cache_.relabel(document_.sharedScene());
   recent_.add(file);
   return warning;
 }
@@ -184,6 +187,20 @@ std::optional<int> EditorSession::clickSelect(float x, float y, int width, int h
       selection_.set({*vertex});
   }
   return vertex;
+}
+
+std::string EditorSession::clickObject(float x, float y, int width, int height) {
+  const render::RenderScene* frame = viewportScene();
+  // The scene the picture comes from, at the time of the state it shows.
+  const std::shared_ptr<const Scene> shown = showingCache_ ? cache_.scene() : lastValidScene_;
+  if (!frame || !shown) return "there is nothing in the viewport to pick";
+  double time = 0.0;
+  if (showingCache_)
+    if (const auto f = cache_.frame(std::min(playback_.frame(), cache_.frameCount() - 1)))
+      time = f->state * shown->time.dt;
+  const auto hit = pickObject(*shown, time, frame->cloth, pixelRay(camera_, x, y, width, height),
+                              camera_.farPlane);
+  return setActiveObject(hit ? hit->object.path() : "");
 }
 
 void EditorSession::boxSelectPixels(float x0, float y0, float x1, float y1, int width, int height,

@@ -49,7 +49,9 @@ class EditorSession {
   // File actions. Errors are InputError (open, save); the document is then unchanged. Saving
   // first writes the editor's final-target .npy next to the scene (when targets were set), then
   // the scene; it returns a warning text ("" normally), e.g. when the targets could not be
-  // written because the scene does not validate.
+  // written because the scene does not validate. Save As into another folder rewrites relative
+  // file references to name the same files from there (EditorDocument::saveAs); the targets file
+  // the editor owns is written next to the new scene, and a current simulation stays current.
   void newDocument(nlohmann::json document = EditorDocument::defaultSceneDocument());
   void open(const std::string& file);
   std::string save();
@@ -77,6 +79,11 @@ class EditorSession {
   // Selection in viewport pixels of a width x height view (x right, y down).
   std::optional<int> clickSelect(float x, float y, int width, int height, bool add);
   void boxSelectPixels(float x0, float y0, float x1, float y1, int width, int height, bool add);
+  // Ctrl+click: the obstacle or cloth under the pixel (the nearest, as the viewport shows it:
+  // ObjectPicking.h) becomes the object the gizmo places; a click that meets nothing takes the
+  // gizmo off, as Esc does. Returns an error text ("" also for a click on nothing; activeObject()
+  // says what was picked), e.g. when the object shown is no longer in the document.
+  std::string clickObject(float x, float y, int width, int height);
   // Selects global nodes; returns an error text for a node that is not a cloth vertex.
   std::string selectNodes(const std::vector<int>& nodes, bool add);
   // Adds a fixed attachment holding the selected vertices (one undo step). Error text or "".

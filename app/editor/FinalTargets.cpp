@@ -2,6 +2,7 @@
 
 #include <weft/core/Error.h>
 #include <weft/io/Npy.h>
+#include <weft/scene/JsonPath.h>
 #include <weft/scene/SceneLoader.h>
 
 #include <algorithm>
@@ -34,6 +35,14 @@ std::vector<FinalTarget> finalTargets(const nlohmann::json& sidecar) {
 std::string finalTargetFileName(const std::string& sceneFile) {
   const std::string stem = sceneFile.empty() ? "untitled" : fs::path(sceneFile).stem().string();
   return stem + "-final-target.npy";
+}
+
+std::string ownedFinalTargetFile(const nlohmann::json& document, const nlohmann::json& sidecar) {
+  if (finalTargets(sidecar).empty()) return "";
+  const nlohmann::json& file = sidecar["final_targets"].value("file", nlohmann::json());
+  const nlohmann::json* named = findJsonPath(document, "task.loss.final.target");
+  if (!file.is_string() || !named || *named != file) return "";
+  return file.get<std::string>();
 }
 
 void setFinalTargets(nlohmann::json& document, nlohmann::json& sidecar, std::vector<FinalTarget> targets,

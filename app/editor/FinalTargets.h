@@ -35,6 +35,12 @@ std::vector<FinalTarget> finalTargets(const nlohmann::json& sidecar);
 // ("untitled-final-target.npy" for a document without a file).
 std::string finalTargetFileName(const std::string& sceneFile);
 
+// The target file the editor writes when `document` is saved: the sidecar holds targets and the
+// final term names the sidecar's own file. "" otherwise (no targets, or targets read from a file
+// the scene still names: that file is the scene's, not the editor's). The name is relative to the
+// scene's folder wherever the scene is saved, since the file is written next to the scene.
+std::string ownedFinalTargetFile(const nlohmann::json& document, const nlohmann::json& sidecar);
+
 // Replaces the target set in `document` (task.loss.final, creating the task when needed) and in
 // `sidecar`. An empty set removes the final term (and the task when nothing else is left in it).
 // `fileName` is used when the sidecar does not name its file yet. A weight already in the scene

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 namespace weft::editor {
 namespace {
@@ -25,10 +26,25 @@ std::string metres(double v) {
 
 nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
 
+// True when some vertex belongs to two triangles: a mesh without one is a pile of loose
+// triangles, which as cloth falls apart (a file exported with a vertex per triangle corner).
+bool trianglesShareVertices(const TriangleMesh& mesh) {
+  std::vector<char> used(std::size_t(mesh.vertexCount()), 0);
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.triangles(t, k);
+      if (v < 0 || v >= mesh.vertexCount()) continue;  // the loader's checks report those
+      if (used[std::size_t(v)]) return true;
+      used[std::size_t(v)] = 1;
+    }
+  return false;
+}
+
 // Reads the file, fills the counts and boxes and the "mesh" object. Returns false (with
 // result.error set) when the file cannot be used at all.
-bool readAndPlace(const MeshImportOptions& o, const std::string& documentFile, const std::string& directory,
-                  MeshImport& result, nlohmann::json& mesh) {
+bool readAndPlace(const MeshImportOptions& o, const std::string& documentFile,
+                  const std::string& directory, MeshImport& result, nlohmann::json& mesh,
+                  TriangleMesh& read) {
   if (o.file.empty()) {
     result.error = "no file given";
     return false;
@@ -38,7 +54,6 @@ bool readAndPlace(const MeshImportOptions& o, const std::string& documentFile, c
     result.error = o.file + ": file not found";
     return false;
   }
-  TriangleMesh read;
   try {
     read = readMesh(o.file);
   } catch (const std::exception& e) {
@@ -140,7 +155,12 @@ MeshImport prepareGarment(const MeshImportOptions& o, const std::string& documen
                           const std::string& documentDirectory) {
   MeshImport result;
   nlohmann::json mesh;
-  if (!readAndPlace(o, documentFile, documentDirectory, result, mesh)) return result;
+  TriangleMesh read;
+  if (!readAndPlace(o, documentFile, documentDirectory, result, mesh, read)) return result;
+  if (result.triangles > 1 && !trianglesShareVertices(read))
+    result.warnings.push_back(
+        "no two triangles share a vertex: as cloth the " + std::to_string(result.triangles) +
+        " triangles fall apart (weld the file's vertices first)");
   if (o.repair) mesh["repair"] = true;
   result.entry = {{"mesh", mesh}, {"material", defaultGarmentMaterial()}};
   const nlohmann::json minimal = {{"time", {{"dt", 0.01}, {"steps", 1}}}, {"cloths", {result.entry}}};
@@ -153,7 +173,8 @@ MeshImport prepareMeshObstacle(const MeshImportOptions& o, const std::string& do
                                const std::string& documentDirectory) {
   MeshImport result;
   nlohmann::json mesh;
-  if (!readAndPlace(o, documentFile, documentDirectory, result, mesh)) return result;
+  TriangleMesh read;
+  if (!readAndPlace(o, documentFile, documentDirectory, result, mesh, read)) return result;
   if (!o.smoothNormals) mesh["smooth_normals"] = false;
   result.entry = {{"mesh", mesh}, {"friction", 0.3}};
   const nlohmann::json minimal = {

@@ -31,7 +31,7 @@ struct MeshImportOptions {
 
 struct MeshImport {
   std::string error;                  // empty when the entry can be added
-  std::vector<std::string> warnings;  // the loader's, and a unit check
+  std::vector<std::string> warnings;  // the loader's, a unit check, and loose triangles (garments)
   int vertices = 0, triangles = 0;
   Vec3 fileLower = Vec3::Zero(), fileUpper = Vec3::Zero();  // bounding box in file units
   Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();          // after scale and transform (m)

@@ -27,7 +27,8 @@ std::string kindOf(const nlohmann::json& action) {
                         "drag_targets", "remove_targets", "load_target_motion", "remove_target_motion",
                         "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
                         "optimize_cancel", "optimize_apply", "optimize_revert", "gizmo", "gizmo_drag",
-                        "make_handle", "handle_offset", "set_key", "delete_key", "jump_key"})
+                        "make_handle", "handle_offset", "set_key", "delete_key", "jump_key",
+                        "click_object"})
     if (action.contains(k)) return k;
   return action.begin().key();
 }
@@ -293,6 +294,19 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
       fail("the click at (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ") hits no cloth triangle");
       return false;
     }
+  } else if (kind == "click_object") {
+    // Ctrl+click: what the gizmo places becomes the obstacle or cloth under the pixel.
+    const auto p = a.at(kind).get<std::vector<float>>();
+    if (p.size() != 2) throw std::invalid_argument("click_object takes [x, y] in viewport pixels");
+    std::string error = session.clickObject(p[0], p[1], app.viewportWidth(), app.viewportHeight());
+    const std::string picked = session.activeObject().path();
+    if (error.empty() && picked.empty() && a.value("must_hit", true))
+      error = "the click at (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
+              ") meets no obstacle or cloth";
+    app.report(error.empty() ? (picked.empty() ? "nothing there: gizmo off" : "gizmo on " + picked)
+                             : error,
+               !error.empty());
+    if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
   } else if (kind == "box_select") {
     const auto r = a.at("box_select").get<std::vector<float>>();
     if (r.size() != 4) throw std::invalid_argument("box_select takes [x0, y0, x1, y1] in viewport pixels");

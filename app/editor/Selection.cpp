@@ -28,7 +28,7 @@ std::optional<Eigen::Vector2f> projectToPixel(const render::Camera& camera, cons
   return Eigen::Vector2f((ndc.x() + 1.0f) * 0.5f * float(width), (1.0f - ndc.y()) * 0.5f * float(height));
 }
 
-std::optional<int> pickVertex(const render::SurfaceMesh& mesh, const Ray& ray) {
+std::optional<TriangleHit> nearestTriangleHit(const render::SurfaceMesh& mesh, const Ray& ray) {
   float best = std::numeric_limits<float>::infinity();
   int bestTriangle = -1;
   for (int t = 0; t < mesh.triangles.rows(); ++t) {
@@ -54,11 +54,17 @@ std::optional<int> pickVertex(const render::SurfaceMesh& mesh, const Ray& ray) {
     }
   }
   if (bestTriangle < 0) return std::nullopt;
-  const Eigen::Vector3f hit = ray.origin + best * ray.direction;
-  int vertex = mesh.triangles(bestTriangle, 0);
+  return TriangleHit{bestTriangle, best};
+}
+
+std::optional<int> pickVertex(const render::SurfaceMesh& mesh, const Ray& ray) {
+  const auto nearestHit = nearestTriangleHit(mesh, ray);
+  if (!nearestHit) return std::nullopt;
+  const Eigen::Vector3f hit = ray.origin + nearestHit->distance * ray.direction;
+  int vertex = mesh.triangles(nearestHit->triangle, 0);
   float nearest = std::numeric_limits<float>::infinity();
   for (int corner = 0; corner < 3; ++corner) {
-    const int v = mesh.triangles(bestTriangle, corner);
+    const int v = mesh.triangles(nearestHit->triangle, corner);
     const float d = (mesh.positions.row(v).transpose() - hit).squaredNorm();
     if (d < nearest) nearest = d, vertex = v;
   }

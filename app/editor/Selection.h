@@ -28,6 +28,13 @@ Ray pixelRay(const render::Camera& camera, float x, float y, int width, int heig
 std::optional<Eigen::Vector2f> projectToPixel(const render::Camera& camera, const Eigen::Vector3f& p,
                                               int width, int height);
 
+// The nearest triangle a ray hits (from either side) and the distance along the ray to the hit.
+struct TriangleHit {
+  int triangle = -1;
+  float distance = 0.0f;
+};
+std::optional<TriangleHit> nearestTriangleHit(const render::SurfaceMesh& mesh, const Ray& ray);
+
 // The vertex picked by a click: of the nearest triangle the ray hits, the corner closest to the
 // hit point. nullopt when the ray misses the mesh.
 std::optional<int> pickVertex(const render::SurfaceMesh& mesh, const Ray& ray);

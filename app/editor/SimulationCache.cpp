@@ -118,6 +118,11 @@ std::shared_ptr<const Scene> SimulationCache::scene() const {
   return scene_;
 }
 
+void SimulationCache::relabel(std::shared_ptr<const Scene> scene) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (scene_ && scene) scene_ = std::move(scene);
+}
+
 bool SimulationCache::staleFor(const nlohmann::json& document) const {
   std::shared_ptr<const Scene> scene;
   {

@@ -67,6 +67,11 @@ class SimulationCache {
   // a parameter changed since, and the timeline shows old results. Keys that do not change
   // the motion (task, name, description) are ignored: editing a target keeps the run current.
   bool staleFor(const nlohmann::json& document) const;
+  // Describes the cached run by `scene` from now on: for a document that moved without changing
+  // what it simulates (Save As naming the same files from another folder), so that the frames
+  // stay current for it. The caller vouches that `scene` simulates as the cached one did. Does
+  // nothing on an empty cache.
+  void relabel(std::shared_ptr<const Scene> scene);
   // Changes with every start() and clear(): lets readers keep what they derived from one run.
   long runId() const { return runId_.load(); }
 

@@ -1,8 +1,11 @@
 // Placing things in the viewport, driven by scripts through the real binary (headless through
 // OSMesa) and checked through state: the gizmo dragging an obstacle along one axis (one undo
-// step, the cache going stale), moving a cloth by its transform and turning a box; the viewport
-// with the gizmo against a golden image; and keyframing a handle on the timeline (the cached
-// motion follows the keys; they are saved and read back).
+// step, the cache going stale), moving a cloth by its transform and turning a box; Ctrl+click
+// choosing the object at a pixel; the viewport with the gizmo against a golden image; and
+// keyframing a handle on the timeline (the cached motion follows the keys; they are saved and
+// read back).
+
+#include <Selection.h>
 
 #include "../render/GoldenImage.h"
 #include "support/Process.h"
@@ -120,6 +123,57 @@ TEST(EditorGizmo, DragMovesAnObstacleAlongOneAxisAsOneUndoStep) {
   EXPECT_EQ(box["rotate_deg"][0], 0.0);
   EXPECT_EQ(box["rotate_deg"][2], 0.0);
   EXPECT_TRUE(turned["gizmo"]["rotates"]);
+}
+
+// Ctrl+click ("click_object") on known pixels of a front view: the sphere, the cloth and the box
+// each become what the gizmo places; a click on empty space takes the gizmo off (and fails the
+// script unless "must_hit" is false). The pixels come from the camera the script sets, in the
+// viewport whose size a first run reports.
+TEST(EditorGizmo, CtrlClickPicksTheObjectUnderThePixel) {
+  TempDir dir;
+  const std::string scene = writeScene(dir.file("scene.json"), clothSphereBox());
+  const nlohmann::json view = {
+      {"yaw", 0}, {"pitch", 0}, {"distance", 4.0}, {"target", {0.0, 0.5, 0.0}}};
+  const ProcessResult sized = runEditor(
+      dir, {{{"open", scene}}, {{"frames", 1}}, {{"write_state", dir.file("size.json")}}});
+  ASSERT_EQ(sized.exitCode, 0) << sized.err;
+  const nlohmann::json viewport = readJson(dir.file("size.json"))["viewport"];
+  const int width = viewport[0], height = viewport[1];
+  render::Camera camera;
+  camera.distance = 4.0f;
+  camera.target = render::Vec3f(0.0f, 0.5f, 0.0f);
+  auto pixel = [&](float x, float y, float z) {
+    const auto p = editor::projectToPixel(camera, Eigen::Vector3f(x, y, z), width, height);
+    EXPECT_TRUE(p.has_value());
+    const Eigen::Vector2f at = p.value_or(Eigen::Vector2f::Zero());
+    return nlohmann::json::array({at.x(), at.y()});
+  };
+  const ProcessResult r = runEditor(
+      dir,
+      {{{"open", scene}},
+       {{"camera", view}},
+       {{"frames", 1}},
+       {{"click_object", pixel(0.2f, 0.3f, 0.4f)}},  // the sphere's centre
+       {{"expect", {{"active_object", "obstacles.0"}}}},
+       {{"click_object", pixel(-0.3f, 1.2f, 0.0f)}},
+       {{"expect", {{"active_object", "cloths.0"}}}},
+       {{"click_object", pixel(-0.4f, -0.2f, 0.4f)}},  // the box's front face
+       {{"write_state", dir.file("box.json")}},
+       {{"click_object", pixel(-1.2f, 1.6f, 0.0f)}, {"must_hit", false}},
+       {{"write_state", dir.file("nothing.json")}},
+       {{"gizmo", "cloths.0"}},
+       {{"click_object", pixel(-1.2f, 1.6f, 0.0f)}, {"expect_error", "meets no obstacle or cloth"}},
+       {{"expect", {{"active_object", ""}}}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const nlohmann::json box = readJson(dir.file("box.json"));
+  EXPECT_EQ(box["active_object"], "obstacles.1");
+  ASSERT_TRUE(box["gizmo"].is_object());
+  EXPECT_EQ(vec(box["gizmo"]["origin"]), Vec3(0.0, float(-0.2), 0.0)) << "at the box's centre";
+  EXPECT_EQ(box["message"], "gizmo on obstacles.1");
+  const nlohmann::json nothing = readJson(dir.file("nothing.json"));
+  EXPECT_EQ(nothing["active_object"], "");
+  EXPECT_TRUE(nothing["gizmo"].is_null());
+  EXPECT_EQ(nothing["message"], "nothing there: gizmo off");
 }
 
 // The golden viewport with the gizmo: the hanging cloth, the sphere and the box, the box's

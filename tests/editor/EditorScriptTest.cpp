@@ -1,7 +1,7 @@
 // The editor as a person would use it, driven by automation scripts through the real binary:
-// headless through OSMesa (open, edit, select, pin, simulate, scrub, save, screenshot), the
-// error contract of a failing action, one viewport screenshot against a golden image, and one
-// smoke test of a real window under Xvfb.
+// headless through OSMesa (open, edit, select, pin, simulate, scrub, save, save as elsewhere,
+// screenshot), the error contract of a failing action, one viewport screenshot against a golden
+// image, and one smoke test of a real window under Xvfb.
 
 #include "../render/GoldenImage.h"
 #include "support/Process.h"
@@ -9,6 +9,7 @@
 #include "support/TempDir.h"
 
 #include <weft/render/Image.h>
+#include <weft/scene/SceneLoader.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -106,6 +107,30 @@ TEST(EditorScript, UndoRedoAndBoxSelect) {
             {{"write_state", dir.file("state.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(readJson(dir.file("state.json"))["selected"].size(), 25u) << "the whole view selects every vertex";
+}
+
+// Save As into another folder (a relative path, as typed into the dialog): the garment the scene
+// names relative to its folder is named from the new folder, and the engine loads the copy.
+TEST(EditorScript, SaveAsIntoAnotherFolderKeepsTheGarmentFound) {
+  TempDir dir;
+  fs::create_directories(dir.file("project/meshes"));
+  fs::create_directories(dir.file("copies"));
+  dir.write("project/meshes/strip.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nv 1 0 1\nf 1 3 4\nf 1 4 2\n");
+  nlohmann::json doc = hangingClothScene(1.0, 4, 0.01, 3, 500.0);
+  doc["cloths"].push_back(
+      {{"mesh", {{"file", "meshes/strip.obj"}, {"transform", {{"translate", {0, 2, 0}}}}}},
+       {"material", {{"density", 0.1}, {"stretch", 500.0}}}});
+  writeScene(dir.file("project/scene.json"), doc);
+  const ProcessResult r = runEditor(dir, {{{"open", "project/scene.json"}},
+                                          {{"save", "copies/scene.json"}},
+                                          {{"expect", {{"valid", true}, {"dirty", false}}}},
+                                          {{"write_state", dir.file("state.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json saved = readJson(dir.file("copies/scene.json"));
+  EXPECT_EQ(saved["cloths"][1]["mesh"]["file"], "../project/meshes/strip.obj");
+  EXPECT_EQ(readJson(dir.file("state.json"))["document"], saved)
+      << "the document is what was saved";
+  EXPECT_EQ(loadScene(dir.file("copies/scene.json")).cloths[1].mesh.vertexCount(), 4);
 }
 
 TEST(EditorScript, FailingActionExitsNonzeroNamingIt) {

@@ -1,18 +1,24 @@
 // Importing garments and mesh obstacles: the entry added to the document names the file, keeps
 // the file's vertex count and order (through the engine's reader), carries scale and placement,
-// and every unusable file is a clear message rather than a broken document.
+// and every unusable file is a clear message rather than a broken document. FBX and glTF files
+// are written here by assimp's own exporter and imported as the editor's Import garment does.
 
+#include <EditorSession.h>
 #include <MeshImport.h>
 
 #include "support/TempDir.h"
 
 #include <weft/scene/SceneLoader.h>
 
+#include <assimp/Exporter.hpp>
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace weft::editor {
 namespace {
@@ -175,6 +181,136 @@ TEST(MeshImport, PathsOutsideTheSceneFolderStayAbsolute) {
   std::filesystem::create_directories(dir.file("meshes"));
   const std::string inside = dir.write("meshes/strip.obj", stripObj());
   EXPECT_EQ(documentRelativePath(inside, dir.file("scene.json"), dir.path()), "meshes/strip.obj");
+}
+
+// The position of vertex (i, j) of the 3 x 3 quad grid below, in file units.
+Vec3 gridPoint(int i, int j) {
+  return Vec3(0.25 + 0.5 * i, 0.1, 0.5 * j);
+}
+
+// A 3 x 3 quad grid in the XZ plane (16 vertices, vertex (i, j) = 4 j + i; 18 triangles), written
+// by assimp's exporter as `format` (an Assimp::Exporter id) to `file`. Its coordinates are not
+// round numbers in any unit, so a unit conversion on the way back would show.
+void exportGrid(const std::string& format, const std::string& file) {
+  aiScene scene;
+  scene.mRootNode = new aiNode("grid");
+  scene.mRootNode->mNumMeshes = 1;
+  scene.mRootNode->mMeshes = new unsigned[1]{0};
+  scene.mNumMaterials = 1;
+  scene.mMaterials = new aiMaterial*[1]{new aiMaterial};
+  aiMesh* mesh = new aiMesh;
+  scene.mNumMeshes = 1;
+  scene.mMeshes = new aiMesh*[1]{mesh};
+  mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+  mesh->mNumVertices = 16;
+  mesh->mVertices = new aiVector3D[16];
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const Vec3 p = gridPoint(i, j);
+      mesh->mVertices[4 * j + i] = aiVector3D(float(p.x()), float(p.y()), float(p.z()));
+    }
+  mesh->mNumFaces = 18;
+  mesh->mFaces = new aiFace[18];
+  int f = 0;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const unsigned a = unsigned(4 * j + i), b = a + 1, c = a + 5, d = a + 4;
+      for (const auto& corners :
+           {std::array<unsigned, 3>{a, d, c}, std::array<unsigned, 3>{a, c, b}}) {
+        aiFace& face = mesh->mFaces[f++];
+        face.mNumIndices = 3;
+        face.mIndices = new unsigned[3]{corners[0], corners[1], corners[2]};
+      }
+    }
+  Assimp::Exporter exporter;
+  ASSERT_EQ(exporter.Export(&scene, format, file), aiReturn_SUCCESS) << exporter.GetErrorString();
+}
+
+bool canExport(const std::string& format) {
+  Assimp::Exporter exporter;
+  for (std::size_t i = 0; i < exporter.GetExportFormatCount(); ++i)
+    if (format == exporter.GetExportFormatDescription(i)->id) return true;
+  return false;
+}
+
+// FBX as the editor's Import garment reads it (assimp 5.2 here). Written as ASCII FBX ("fbxa"):
+// the binary FBX assimp 5.2.5 writes is refused by its own reader ("FBX-Tokenize ... block offset
+// is out of range"). assimp's reader gives a vertex per triangle corner (it unrolls the
+// polygon-vertex list); the engine's reader joins corners at one position again, so the grid
+// comes back connected: its 16 vertices (numbered in order of first use), its 18 triangles in
+// order, at the file's coordinates (no unit scale: the exporter writes UnitScaleFactor 1).
+TEST(MeshImport, FbxGarmentComesBackConnected) {
+  ASSERT_TRUE(canExport("fbxa")) << "this assimp cannot write ASCII FBX";
+  TempDir dir;
+  const std::string file = dir.file("grid.fbx");
+  exportGrid("fbxa", file);
+  ASSERT_FALSE(HasFatalFailure());
+
+  EditorSession session("");
+  MeshImportOptions o;
+  o.file = file;
+  const MeshImport preview = session.previewGarment(o);
+  ASSERT_TRUE(preview.ok()) << preview.error;
+  EXPECT_EQ(preview.triangles, 18);
+  EXPECT_EQ(preview.vertices, 16);
+  // The file's coordinates as written (in single precision): no unit scale applied.
+  EXPECT_LT((preview.fileLower - gridPoint(0, 0)).norm(), 1e-6) << preview.fileLower.transpose();
+  EXPECT_LT((preview.fileUpper - gridPoint(3, 3)).norm(), 1e-6) << preview.fileUpper.transpose();
+  EXPECT_TRUE(preview.warnings.empty()) << preview.warnings.front();
+
+  // Imported as the dialog does: the new cloth is what the engine reads from the file.
+  ASSERT_EQ(session.importGarment(o), "");
+  const Scene* scene = session.document().scene();
+  ASSERT_NE(scene, nullptr) << session.document().validationError();
+  ASSERT_EQ(scene->cloths.size(), 2u);
+  const TriangleMesh& cloth = scene->cloths[1].mesh;
+  EXPECT_EQ(cloth.vertexCount(), 16);
+  ASSERT_EQ(cloth.triangleCount(), 18);
+  // Triangle t of the file, corner by corner, at the exported positions (float precision).
+  for (int t = 0; t < 18; ++t) {
+    const int i = (t / 2) % 3, j = (t / 2) / 3;
+    const Vec3 a = gridPoint(i, j), b = gridPoint(i + 1, j), c = gridPoint(i + 1, j + 1),
+               d = gridPoint(i, j + 1);
+    const Vec3 corners[2][3] = {{a, d, c}, {a, c, b}};
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LT((cloth.vertices.row(cloth.triangles(t, k)).transpose() - corners[t % 2][k]).norm(),
+                1e-6)
+          << "triangle " << t << " corner " << k;
+  }
+  // Connected as the grid is: each interior edge is shared by two triangles.
+  std::map<std::pair<int, int>, int> edges;
+  for (int t = 0; t < 18; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int u = cloth.triangles(t, k), v = cloth.triangles(t, (k + 1) % 3);
+      ++edges[{std::min(u, v), std::max(u, v)}];
+    }
+  int shared = 0;
+  for (const auto& [edge, count] : edges) shared += count == 2;
+  EXPECT_EQ(edges.size(), 33u);  // 24 grid edges + 9 diagonals
+  EXPECT_EQ(shared, 21);         // 12 interior grid edges + 9 diagonals
+}
+
+// The same grid as glTF 2.0 from the same exporter: the file's vertices, in the file's order.
+TEST(MeshImport, GltfGarmentFromAssimpsExporterKeepsItsVertices) {
+  ASSERT_TRUE(canExport("gltf2"));
+  TempDir dir;
+  const std::string file = dir.file("grid.gltf");
+  exportGrid("gltf2", file);
+  ASSERT_FALSE(HasFatalFailure());
+
+  EditorSession session("");
+  MeshImportOptions o;
+  o.file = file;
+  ASSERT_EQ(session.importGarment(o), "");
+  const Scene* scene = session.document().scene();
+  ASSERT_NE(scene, nullptr) << session.document().validationError();
+  const TriangleMesh& cloth = scene->cloths.back().mesh;
+  EXPECT_EQ(cloth.vertexCount(), 16);
+  EXPECT_EQ(cloth.triangleCount(), 18);
+  for (int v = 0; v < 16; ++v)
+    EXPECT_LT((cloth.vertices.row(v).transpose() - gridPoint(v % 4, v / 4)).norm(), 1e-6)
+        << "vertex " << v;
+  EXPECT_TRUE(session.previewGarment(o).warnings.empty());
 }
 
 }  // namespace

@@ -11,11 +11,13 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -103,8 +105,31 @@ void checkPlyHeader(const std::string& path) {
   throw InputError(path, "mesh", "PLY header has no 'end_header' line (truncated file?)");
 }
 
+// assimp's FBX reader gives every triangle corner its own vertex (it unrolls the file's
+// polygon-vertex list instead of indexing the shared control points), so an FBX cloth would be
+// loose triangles. Corners at bit-identical positions are joined again, in order of first
+// appearance: the file's own vertex order cannot be recovered through assimp, and two control
+// points at exactly one position (a cut left open in the file) become one vertex.
+void joinCoincidentCorners(TriangleMesh& part) {
+  std::map<std::array<double, 3>, int> index;
+  std::vector<int> joined(static_cast<std::size_t>(part.vertexCount()));
+  NodeMatrix kept(part.vertexCount(), 3);
+  int count = 0;
+  for (int v = 0; v < part.vertexCount(); ++v) {
+    const std::array<double, 3> key{part.vertices(v, 0), part.vertices(v, 1), part.vertices(v, 2)};
+    const auto [it, inserted] = index.emplace(key, count);
+    if (inserted) kept.row(count++) = part.vertices.row(v);
+    joined[static_cast<std::size_t>(v)] = it->second;
+  }
+  // assimp numbers the corners triangle by triangle, so this is the order of first use.
+  part.vertices = kept.topRows(count);
+  for (Eigen::Index t = 0; t < part.triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k) part.triangles(t, k) = joined[static_cast<std::size_t>(part.triangles(t, k))];
+}
+
 TriangleMesh readWithAssimp(const std::string& path) {
   checkPlyHeader(path);
+  const bool fbx = lowerExtension(path) == ".fbx";
   Assimp::Importer importer;
   // No post-processing that welds, splits or reorders vertices.
   const aiScene* scene = importer.ReadFile(path, 0);
@@ -128,6 +153,7 @@ TriangleMesh readWithAssimp(const std::string& path) {
       }
     }
     part.triangles = Eigen::Map<TriangleIndices>(tri.data(), static_cast<int>(tri.size() / 3), 3);
+    if (fbx) joinCoincidentCorners(part);
     mesh.append(part);
   }
   if (mesh.vertexCount() == 0) throw InputError(path, "mesh", "the file holds no mesh");

@@ -1,0 +1,70 @@
+#include "ObjectPicking.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace weft::editor {
+namespace {
+
+// Enough for a ray that skims a plane at a shallow angle (each step then gains only the sine of
+// the angle times the height) to still find it; a ray that needs more is a silhouette graze.
+constexpr int kMaxSteps = 4000;
+
+}  // namespace
+
+std::optional<double> traceShape(const ObstacleShape& shape, const RigidPose& pose, const Ray& ray,
+                                 double maxDistance) {
+  const Vec3 origin = ray.origin.cast<double>(),
+             direction = ray.direction.cast<double>().normalized();
+  const double infinity = std::numeric_limits<double>::infinity();
+  double t = 0.0;
+  for (int step = 0; step < kMaxSteps && t <= maxDistance; ++step) {
+    SurfaceSample sample;
+    if (!shape.sample(pose.inverse(origin + t * direction), infinity, sample)) return std::nullopt;
+    // The magnitude: a ray that starts inside (the camera within a box, under the ground) still
+    // walks to the surface it sees.
+    const double distance = std::abs(sample.distance);
+    if (!std::isfinite(distance)) return std::nullopt;
+    // Far below a pixel at that depth: the hit is found to well within what a click can tell.
+    if (distance <= 1e-6 + 1e-6 * t) return t;
+    t += distance;
+  }
+  return std::nullopt;
+}
+
+std::optional<ObjectHit> pickObject(const Scene& scene, double time,
+                                    const render::SurfaceMesh& cloth, const Ray& ray,
+                                    double maxDistance) {
+  std::optional<ObjectHit> best;
+  auto offer = [&](EditorObject::Kind kind, int index, double distance) {
+    if (best && best->distance <= distance) return;
+    EditorObject object;
+    object.kind = kind;
+    object.index = index;
+    best = ObjectHit{object, distance};
+  };
+  for (std::size_t k = 0; k < scene.obstacles.size(); ++k) {
+    const Obstacle& o = scene.obstacles[k];
+    const std::unique_ptr<ObstacleShape> shape = makeObstacleShape(o);
+    if (!shape) continue;
+    // Where the viewport draws it: the frame builder moves an obstacle by the same motion.
+    const RigidPose pose = o.motion ? poseAt(*o.motion, time) : RigidPose();
+    if (const auto t = traceShape(*shape, pose, ray, maxDistance))
+      offer(EditorObject::Kind::Obstacle, int(k), *t);
+  }
+  std::vector<int> offsets{0};
+  for (const Cloth& c : scene.cloths) offsets.push_back(offsets.back() + c.mesh.vertexCount());
+  if (cloth.positions.rows() == offsets.back()) {
+    const auto hit = nearestTriangleHit(cloth, ray);
+    if (hit && hit->distance <= maxDistance) {
+      const int vertex = cloth.triangles(hit->triangle, 0);
+      const int index =
+          int(std::upper_bound(offsets.begin(), offsets.end(), vertex) - offsets.begin()) - 1;
+      offer(EditorObject::Kind::Cloth, index, hit->distance);
+    }
+  }
+  return best;
+}
+
+}  // namespace weft::editor
