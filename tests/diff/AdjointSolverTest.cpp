@@ -171,10 +171,12 @@ TEST(AdjointSolvers, AutomaticPreconditionerSwitchesToTheHessianOnlyWherePIsSlow
       EXPECT_LT((a - c).norm(), 1e-7 * c.norm());
       EXPECT_STREQ(automatic.name(), "gmres (auto: hessian)");
       std::printf("seed %d: automatic %d iterations, clamped Hessian %d\n", seed, ra.iterations, rb.iterations);
-      // First solve: P for as many iterations as a factorisation costs, then the Hessian from
-      // where P stopped; second: the Hessian at once.
-      const int budget = std::max(GmresSolver::kAutomaticPIterations,
-                                  static_cast<int>(std::lround(system.hessianFactorCost())));
+      // First solve: P for as many iterations as a factorisation costs, shared by the steps a
+      // factor is assumed to serve, then the Hessian from where P stopped; second: the Hessian
+      // at once.
+      const int budget = std::max(
+          GmresSolver::kAutomaticPIterations,
+          static_cast<int>(std::lround(system.hessianFactorCost() / GmresSolver::kAutomaticPriorReuse)));
       if (seed == 6) {
         EXPECT_GT(ra.iterations, budget);
         EXPECT_LE(ra.iterations, budget + rb.iterations + 2);

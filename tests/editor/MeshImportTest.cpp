@@ -233,6 +233,18 @@ bool canExport(const std::string& format) {
   return false;
 }
 
+// Imports `o.file` as a new garment the way the dialog does; the new cloth's mesh (what the
+// engine reads from the file), or nullptr after a test failure.
+const TriangleMesh* importGarmentMesh(EditorSession& session, const MeshImportOptions& o) {
+  const std::string error = session.importGarment(o);
+  const Scene* scene = session.document().scene();
+  if (!error.empty() || !scene) {
+    ADD_FAILURE() << "import: " << error << " " << session.document().validationError();
+    return nullptr;
+  }
+  return &scene->cloths.back().mesh;
+}
+
 // FBX as the editor's Import garment reads it (assimp 5.2 here). Written as ASCII FBX ("fbxa"):
 // the binary FBX assimp 5.2.5 writes is refused by its own reader ("FBX-Tokenize ... block offset
 // is out of range"). assimp's reader gives a vertex per triangle corner (it unrolls the
@@ -258,12 +270,9 @@ TEST(MeshImport, FbxGarmentComesBackConnected) {
   EXPECT_LT((preview.fileUpper - gridPoint(3, 3)).norm(), 1e-6) << preview.fileUpper.transpose();
   EXPECT_TRUE(preview.warnings.empty()) << preview.warnings.front();
 
-  // Imported as the dialog does: the new cloth is what the engine reads from the file.
-  ASSERT_EQ(session.importGarment(o), "");
-  const Scene* scene = session.document().scene();
-  ASSERT_NE(scene, nullptr) << session.document().validationError();
-  ASSERT_EQ(scene->cloths.size(), 2u);
-  const TriangleMesh& cloth = scene->cloths[1].mesh;
+  const TriangleMesh* imported = importGarmentMesh(session, o);
+  ASSERT_NE(imported, nullptr);
+  const TriangleMesh& cloth = *imported;
   EXPECT_EQ(cloth.vertexCount(), 16);
   ASSERT_EQ(cloth.triangleCount(), 18);
   // Triangle t of the file, corner by corner, at the exported positions (float precision).
@@ -301,10 +310,9 @@ TEST(MeshImport, GltfGarmentFromAssimpsExporterKeepsItsVertices) {
   EditorSession session("");
   MeshImportOptions o;
   o.file = file;
-  ASSERT_EQ(session.importGarment(o), "");
-  const Scene* scene = session.document().scene();
-  ASSERT_NE(scene, nullptr) << session.document().validationError();
-  const TriangleMesh& cloth = scene->cloths.back().mesh;
+  const TriangleMesh* imported = importGarmentMesh(session, o);
+  ASSERT_NE(imported, nullptr);
+  const TriangleMesh& cloth = *imported;
   EXPECT_EQ(cloth.vertexCount(), 16);
   EXPECT_EQ(cloth.triangleCount(), 18);
   for (int v = 0; v < 16; ++v)

@@ -85,6 +85,8 @@ class AdjointSystem {
   // reference BLAS, small supernodes, and the conversion for our solves, against a P solve of
   // 12 flops and a K product of about 18 flops per stored entry). Measured against timed runs
   // on wind_reference.json: 70, 85, 170 iterations at 12^2, 24^2, 48^2; estimated 63, 101, 192.
+  // With bending (wind.json: 16 colours, a denser P) it overestimates: 189 at 24^2 against about
+  // 110 measured (bigger supernodes run the factorisation faster per flop).
   double hessianFactorCost() const;
 
  private:

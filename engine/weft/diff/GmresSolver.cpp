@@ -38,29 +38,35 @@ LinearSolveResult GmresSolver::solve(AdjointSystem& system, const NodeMatrix& rh
   GmresResult r;
   if (switched_ && hessianRun_ < kAutomaticReprobe) {
     const bool fresh = !factorValid_ || lastIterations_ > kAutomaticRefactor;
-    if (fresh) factorValid_ = system.factorClampedHessian();
+    if (fresh) factorizations_ += (factorValid_ = system.factorClampedHessian());
     if (factorValid_) {
       hessian = true;
       ++hessianRun_;
+      ++hessianSteps_;
       r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_);
       lastIterations_ = r.iterations;
       // A fresh factor that needs many iterations does not model this K (contacts, Delta R).
       switched_ = !fresh || r.iterations <= kAutomaticPIterations;
-      return {r.converged, false, r.iterations, r.residual};
+          return {r.converged, false, r.iterations, r.residual};
     }
   }
   // A step after a run of Hessian steps only checks whether P has become cheap; any other step
-  // gives P as many iterations as a factorisation costs before buying one (the ski-rental
-  // rule: never more than twice the cost of the better choice made in hindsight).
+  // gives P as many iterations as a factorisation costs, shared among the steps a factor serves
+  // (counted in this pass, starting from a prior of kAutomaticPriorReuse), before buying one:
+  // the ski-rental rule, never far from the better choice made in hindsight.
   const bool reprobe = switched_;
-  const int pBudget = reprobe ? kAutomaticPIterations
-                              : std::max(kAutomaticPIterations, static_cast<int>(std::lround(system.hessianFactorCost())));
+  const double stepsPerFactor = double(hessianSteps_ + kAutomaticPriorReuse) / double(factorizations_ + 1);
+  const int pBudget =
+      reprobe ? kAutomaticPIterations
+              : std::max(kAutomaticPIterations, static_cast<int>(std::lround(system.hessianFactorCost() / stepsPerFactor)));
   hessianRun_ = 0;
   r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, std::min(maxIterations_, pBudget), restart_,
                    warmStart_);
   switched_ = false;
   if (!r.converged && r.iterations < maxIterations_ && (factorValid_ = system.factorClampedHessian())) {
     // P is slow here: continue from the z it reached, preconditioned by the Hessian.
+    ++factorizations_;
+    ++hessianSteps_;
     hessian = true;
     const int spent = r.iterations;
     r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_ - spent, restart_,

@@ -18,15 +18,17 @@
 // one per step: P is right where contacts pin the cloth's soft out-of-plane modes or the cloth
 // is slack (Slope: 1-5 iterations per step), the Hessian where the cloth hangs free in tension
 // (Wind: 60-130 iterations with P, 2-5 with the Hessian), and the factorisation costs as much
-// as 60-200 iterations with P (AdjointSystem::hessianFactorCost, from operation counts). A step
-// first runs with P for as many iterations as a factorisation costs (at least
-// kAutomaticPIterations); if that does not converge, the Hessian is factored and the solve
-// continues from where P left it: never more than twice the cost of the better choice in
-// hindsight. If the Hessian then converged within kAutomaticPIterations more, the following steps start
-// with it (a backward pass walks one trajectory, whose stiffness changes slowly), probing P
-// again every kAutomaticReprobe steps and dropping back to P as soon as the Hessian needs more
-// than kAutomaticPIterations (the hard iterations come from the contact part Delta R, which
-// the Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
+// as 60-400 iterations with P (AdjointSystem::hessianFactorCost, from operation counts). A step
+// first runs with P for as many iterations as a factorisation costs divided by the steps a
+// factor serves (counted in the pass, from a prior of kAutomaticPriorReuse; at least
+// kAutomaticPIterations); if P has not converged by then, the Hessian is factored and the solve
+// continues from where P left it (the ski-rental rule). If the Hessian then converged within
+// kAutomaticPIterations more, the following steps start with it (a backward pass walks one
+// trajectory, whose stiffness changes slowly), its factor kept until a solve needs more than
+// kAutomaticRefactor iterations, probing P again (for kAutomaticPIterations iterations) every
+// kAutomaticReprobe steps and dropping back to P as soon as a fresh factor needs more than
+// kAutomaticPIterations (the hard iterations come from the contact part Delta R, which the
+// Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
 // The choice depends on iteration and operation counts only, so repeated runs stay
 // bit-identical.
 // Each step starts from the previous step's z when warmStart is set (the adjoint varies
@@ -47,6 +49,9 @@ class GmresSolver final : public AdjointLinearSolver {
   static constexpr int kAutomaticReprobe = 10;
   // Automatic: iterations with a kept Hessian factor beyond which the next step refactors.
   static constexpr int kAutomaticRefactor = 6;
+  // Automatic: the steps a factor is assumed to serve before any has (on Wind at 24^2, a kept
+  // factor served 3-5 steps; a prior of 1 kept P at 120-150 iterations per step there).
+  static constexpr int kAutomaticPriorReuse = 2;
   GmresSolver(double tolerance, int maxIterations, int restart = 50, bool warmStart = false,
               Preconditioner preconditioner = Preconditioner::P)
       : tolerance_(tolerance),
@@ -69,6 +74,8 @@ class GmresSolver final : public AdjointLinearSolver {
   int hessianRun_ = 0;
   bool factorValid_ = false;  // the system holds a clamped-Hessian factor of an earlier step
   int lastIterations_ = 0;    // of the last solve with that factor
+  int factorizations_ = 0;    // Hessian factors made, and steps solved with one, in this pass
+  int hessianSteps_ = 0;
   Gmres gmres_;
 };
 
