@@ -146,21 +146,16 @@ TEST(SelfCollisionDetector, ExcludesOnlyMeshNeighboursThatStartWithinTheReach) {
   EXPECT_TRUE(cloths) << "the stacked cloths were not paired";
 }
 
-// KNOWN FAILURE, disabled until the contact iteration converges here. The wall check used to
-// include the initial state, which the scene places 9.3 mm across the x = -0.2 wall (now it
-// starts at state 1 and checks that the scene still starts across). What remains is
-// convergence: with the PD iteration (lumped-mass predictor, Eq. 12) the steps run out of
-// solver.pd_iterations and a node ends 12.6 mm behind the x wall (state 1; 32 pair records in
-// 80 steps); with the Newton contact solve (solver.contact = "newton", set below; rerun after
-// commit 1d20daf) 35 of the 80 steps end unconverged, steps 2-6 at residuals of 2-2400 m/s^2
-// (their line searches stall after non-monotone steps), node 0 ends state 5 5.1 mm behind the
-// x wall and 6 mm behind the z wall, and the cloth slides flat into the corner with only 15 pair
-// records (the check wants more than 40). The contact law holds a node to its constraint only
-// at the step's fixed point, and an unconverged step's result (the best Newton iterate, or the
-// last PD global solve) is not projected onto the constraints. Projecting it (nodes moved back
-// along the frozen normals, pairs sharing by inverse mass) was tried outside the tree: this
-// scene then blew up from step 16 on, so that alone is not the fix.
-TEST(SelfCollision, DISABLED_ClothCrumpledIntoACornerKeepsNodesApart) {
+// A cloth thrown into the corner of the floor and two walls, crumpling onto itself. It runs the
+// Newton contact solve (solver.contact = "newton", set below): 13 of its 80 steps still end
+// unconverged, none with a node behind a wall or a pair too close. That needed the Newton
+// matrix to differentiate coupled contacts (corner nodes, pairs sharing nodes) through the
+// fixed point of their sweeps (ContactSolver::addLawJacobian): linearised one contact at a
+// time, 35 steps ended unconverged and a node ended state 5 5.1 mm behind the x wall. With the
+// PD iteration (DiffCloth Eq. 12) the steps run out of pd_iterations and a node ends 12.6 mm
+// behind the x wall. The scene starts 9.3 mm across the x = -0.2 wall, so the walls are checked
+// from state 1 on (and that it still starts across).
+TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
   nlohmann::json doc = test::clothScene(0.5, 12, Vec3(0.05, 0.25, 0.05), 0.01, 300.0, 1e-4, 0.2);
   doc["cloths"][0]["mesh"]["transform"]["rotate_deg"] = {20, 0, 30};
   doc["cloths"][0]["initial_velocity"] = {-1.5, -1.0, -1.5};

@@ -3,8 +3,6 @@
 #include <weft/contact/ContactLawJacobian.h>
 #include <weft/contact/SignoriniCoulomb.h>
 
-#include <Eigen/Dense>
-
 #include <algorithm>
 
 namespace weft {
@@ -12,6 +10,10 @@ namespace {
 
 // Below this many independent updates a parallel region costs more than it saves.
 constexpr int kParallelMinimum = 512;
+// The linearised sweeps of addLawJacobian stop when no contact's impulse changes by more than
+// this fraction of the largest free velocity, or at the cap.
+constexpr double kLinearTolerance = 1e-12;
+constexpr int kLinearSweeps = 1000;
 
 }  // namespace
 
@@ -26,7 +28,7 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
   auto slotFor = [&](int node) {
     if (slotOf_[node] < 0) {
       slotOf_[node] = static_cast<int>(slots_.size());
-      slots_.push_back(Slot{node, mass[node], Vec3::Zero(), Vec3::Zero(), Mat3::Zero(), Mat3::Zero()});
+      slots_.push_back(Slot{node, mass[node], Vec3::Zero(), Vec3::Zero(), Mat3::Zero()});
     }
     return slotOf_[node];
   };
@@ -107,28 +109,6 @@ void ContactSolver::addImpulses(double scale, NodeMatrix& rhs) const {
   for (const Slot& s : slots_) rhs.row(s.node) += scale * s.impulse.transpose();
 }
 
-Mat3 ContactSolver::coupledLaw(int begin, int end) const {
-  // The sweeps over one node's k obstacle contacts converge to r_c = m L_c(f/m + sum_{d != c}
-  // r_d / m - reference_c) for every c (the node's mass m is every contact's). Differentiating,
-  // with s_c = dr_c / m, q = df / m and J_c = dL_c/dw in c's branch:
-  //   s_c - J_c sum_{d != c} s_d = J_c q,
-  // a 3k system whose sum over c gives d(total impulse)/df. Two stick contacts (J = -I each)
-  // make it singular: the total -f is determined, its split between the walls is not. The
-  // minimum-norm solution then still gives the total, which is all the Newton matrix uses.
-  const int k = end - begin;
-  Eigen::MatrixXd system = Eigen::MatrixXd::Identity(3 * k, 3 * k), rhs(3 * k, 3);
-  for (int i = 0; i < k; ++i) {
-    const Mat3& law = contacts_[begin + i].law;
-    rhs.middleRows<3>(3 * i) = law;
-    for (int j = 0; j < k; ++j)
-      if (j != i) system.block<3, 3>(3 * i, 3 * j) = -law;
-  }
-  const Eigen::MatrixXd s = system.completeOrthogonalDecomposition().solve(rhs);
-  Mat3 total = Mat3::Zero();
-  for (int i = 0; i < k; ++i) total += s.middleRows<3>(3 * i);
-  return total;
-}
-
 int ContactSolver::linearize() {
   for (Slot& s : slots_) s.pinned.setZero();
   int changed = 0;
@@ -142,32 +122,62 @@ int ContactSolver::linearize() {
     if (c.branch == ContactBranch::Stick || !pinned.isZero(0.0)) pinned.setIdentity();
     else pinned = c.normal * c.normal.transpose();
   }
-  const int groups = static_cast<int>(groupStart_.size()) - 1;
-  for (int g = 0; g < groups; ++g) {
-    const int begin = groupStart_[g], end = groupStart_[g + 1];
-    slots_[contacts_[begin].a].obstacleLaw =
-        end - begin == 1 ? contacts_[begin].law : coupledLaw(begin, end);
-  }
   return changed;
 }
 
 void ContactSolver::addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const {
   // r_c = m_eff du(w), w = f_a / m_a (- f_b / m_b) - reference (DiffCloth Eq. 12's per-node law).
   const int groups = static_cast<int>(groupStart_.size()) - 1;
+  if (!coupled_) {
+    // One contact per node: each impulse depends on its own node's momentum only.
 #pragma omp parallel for schedule(static) if (groups > kParallelMinimum)
-  for (int g = 0; g < groups; ++g) {
-    const Slot& a = slots_[contacts_[groupStart_[g]].a];
-    out.row(a.node) += (a.obstacleLaw * q.row(a.node).transpose()).transpose();
+    for (int g = 0; g < groups; ++g) {
+      const Contact& c = contacts_[groupStart_[g]];
+      const int node = slots_[c.a].node;
+      out.row(node) += (c.law * q.row(node).transpose()).transpose();
+    }
+    return;
   }
-  for (std::size_t k = pairBegin_; k < contacts_.size(); ++k) {
+  // Coupled contacts (a node on two obstacles, pairs sharing nodes with each other or with
+  // obstacle contacts): the sweeps of solve() converge to a fixed point whose derivative is the
+  // fixed point of the same sweeps linearised in each contact's branch, r_c = m_eff J_c w_c with
+  // w_c built from the other contacts' linearised impulses. Run in solve()'s order until they
+  // stop changing. Where the fixed point leaves a split undetermined (two sticks on one node),
+  // the sweeps still settle on one split with the determined total.
+  const int contactCount = static_cast<int>(contacts_.size());
+  linearImpulse_.assign(contactCount, Vec3::Zero());
+  linearTotal_.assign(slots_.size(), Vec3::Zero());
+  double scale = 0.0;
+  for (const Slot& s : slots_) scale = std::max(scale, q.row(s.node).norm() / s.mass);
+  if (scale == 0.0) return;
+  auto update = [&](int k) {
     const Contact& c = contacts_[k];
-    if (c.branch == ContactBranch::TakeOff) continue;
-    const Slot &a = slots_[c.a], &b = slots_[c.b];
-    const Vec3 w = q.row(a.node).transpose() / a.mass - q.row(b.node).transpose() / b.mass;
-    const Vec3 delta = c.effectiveMass * (c.law * w);
-    out.row(a.node) += delta.transpose();
-    out.row(b.node) -= delta.transpose();
+    const Slot& a = slots_[c.a];
+    Vec3 w = (q.row(a.node).transpose() + linearTotal_[c.a] - linearImpulse_[k]) / a.mass;
+    if (c.b >= 0) {
+      const Slot& b = slots_[c.b];
+      w -= (q.row(b.node).transpose() + linearTotal_[c.b] + linearImpulse_[k]) / b.mass;
+    }
+    const Vec3 impulse = c.effectiveMass * (c.law * w);
+    const Vec3 delta = impulse - linearImpulse_[k];
+    linearImpulse_[k] = impulse;
+    linearTotal_[c.a] += delta;
+    if (c.b >= 0) linearTotal_[c.b] -= delta;
+    return delta.norm() / c.effectiveMass;
+  };
+  for (int sweep = 0; sweep < kLinearSweeps; ++sweep) {
+    double change = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : change) if (groups > kParallelMinimum)
+    for (int g = 0; g < groups; ++g)
+      for (int k = groupStart_[g]; k < groupStart_[g + 1]; ++k) change = std::max(change, update(k));
+    for (std::size_t l = 0; l + 1 < layerStart_.size(); ++l) {
+      const int begin = pairBegin_ + layerStart_[l], end = pairBegin_ + layerStart_[l + 1];
+#pragma omp parallel for schedule(static) reduction(max : change) if (end - begin > kParallelMinimum)
+      for (int k = begin; k < end; ++k) change = std::max(change, update(k));
+    }
+    if (change <= kLinearTolerance * scale) break;
   }
+  for (std::size_t s = 0; s < slots_.size(); ++s) out.row(slots_[s].node) += linearTotal_[s].transpose();
 }
 
 void ContactSolver::pinnedVelocity(const NodeMatrix& r, NodeMatrix& z) const {

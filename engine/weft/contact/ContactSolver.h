@@ -57,12 +57,10 @@ class ContactSolver {
 
   // Linearisation of the last solve, for the semismooth Newton contact solve (Simulator):
   // the impulses r(f) as a function of the free momentum f, differentiated in each contact's
-  // branch (ContactLawJacobian.h). Obstacle contacts sharing a node (a corner, two walls) are
-  // differentiated together, through the fixed point their Gauss-Seidel sweeps converge to;
-  // self-collision pairs are differentiated one at a time (their coupling through shared nodes
-  // is left out), which makes the Newton matrix inexact there but never the solution: the
-  // Newton solve stops on the true residual. Returns how many contacts changed branch since the
-  // previous linearisation of the step.
+  // branch (ContactLawJacobian.h). Coupled contacts (a node on two obstacles, self-collision
+  // pairs sharing nodes) are differentiated through the fixed point their Gauss-Seidel sweeps
+  // converge to, by the same sweeps linearised (addLawJacobian). Returns how many contacts
+  // changed branch since the previous linearisation of the step.
   int linearize();
   // out += h dr/df q for q = h df (impulse-per-momentum blocks; out and q are m x 3).
   void addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const;
@@ -80,7 +78,6 @@ class ContactSolver {
     Vec3 freeVelocity;  // f / m
     Vec3 impulse;       // total contact impulse on the node
     Mat3 pinned;        // projector onto the prescribed velocity directions (linearize())
-    Mat3 obstacleLaw;   // d(total obstacle impulse)/df on the node (linearize())
   };
   struct Contact {
     int a, b;  // slots (b = -1 for an obstacle contact)
@@ -97,7 +94,6 @@ class ContactSolver {
   };
   Vec3 freeVelocity(const Contact& c) const;  // w: the contact's velocity without its own impulse
   double update(Contact& c);  // one Gauss-Seidel update; returns |delta r| / m
-  Mat3 coupledLaw(int begin, int end) const;  // obstacleLaw of a node with several contacts
 
   std::vector<int> slotOf_;  // per node
   std::vector<Slot> slots_;
@@ -107,6 +103,7 @@ class ContactSolver {
   int pairBegin_ = 0;
   bool coupled_ = false;  // some node has more than one contact
   double lastChange_ = 0.0;
+  mutable std::vector<Vec3> linearImpulse_, linearTotal_;  // addLawJacobian's sweeps (per contact, slot)
 };
 
 }  // namespace weft
