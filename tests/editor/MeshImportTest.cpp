@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 
 namespace weft::editor {
 namespace {
@@ -233,6 +234,21 @@ bool canExport(const std::string& format) {
   return false;
 }
 
+// The grid written by assimp's exporter as `format` to `name` in `dir`, named as the import
+// dialog's options name it; nullopt (after a test failure) when that could not be done.
+std::optional<MeshImportOptions> exportedGrid(const TempDir& dir, const std::string& format,
+                                              const std::string& name) {
+  if (!canExport(format)) {
+    ADD_FAILURE() << "this assimp cannot write " << format;
+    return std::nullopt;
+  }
+  MeshImportOptions o;
+  o.file = dir.file(name);
+  exportGrid(format, o.file);
+  if (::testing::Test::HasFatalFailure()) return std::nullopt;
+  return o;
+}
+
 // Imports `o.file` as a new garment the way the dialog does; the new cloth's mesh (what the
 // engine reads from the file), or nullptr after a test failure.
 const TriangleMesh* importGarmentMesh(EditorSession& session, const MeshImportOptions& o) {
@@ -252,15 +268,11 @@ const TriangleMesh* importGarmentMesh(EditorSession& session, const MeshImportOp
 // comes back connected: its 16 vertices (numbered in order of first use), its 18 triangles in
 // order, at the file's coordinates (no unit scale: the exporter writes UnitScaleFactor 1).
 TEST(MeshImport, FbxGarmentComesBackConnected) {
-  ASSERT_TRUE(canExport("fbxa")) << "this assimp cannot write ASCII FBX";
   TempDir dir;
-  const std::string file = dir.file("grid.fbx");
-  exportGrid("fbxa", file);
-  ASSERT_FALSE(HasFatalFailure());
-
+  const std::optional<MeshImportOptions> exported = exportedGrid(dir, "fbxa", "grid.fbx");
+  ASSERT_TRUE(exported);
+  const MeshImportOptions& o = *exported;
   EditorSession session("");
-  MeshImportOptions o;
-  o.file = file;
   const MeshImport preview = session.previewGarment(o);
   ASSERT_TRUE(preview.ok()) << preview.error;
   EXPECT_EQ(preview.triangles, 18);
@@ -301,16 +313,11 @@ TEST(MeshImport, FbxGarmentComesBackConnected) {
 
 // The same grid as glTF 2.0 from the same exporter: the file's vertices, in the file's order.
 TEST(MeshImport, GltfGarmentFromAssimpsExporterKeepsItsVertices) {
-  ASSERT_TRUE(canExport("gltf2"));
   TempDir dir;
-  const std::string file = dir.file("grid.gltf");
-  exportGrid("gltf2", file);
-  ASSERT_FALSE(HasFatalFailure());
-
+  const std::optional<MeshImportOptions> exported = exportedGrid(dir, "gltf2", "grid.gltf");
+  ASSERT_TRUE(exported);
   EditorSession session("");
-  MeshImportOptions o;
-  o.file = file;
-  const TriangleMesh* imported = importGarmentMesh(session, o);
+  const TriangleMesh* imported = importGarmentMesh(session, *exported);
   ASSERT_NE(imported, nullptr);
   const TriangleMesh& cloth = *imported;
   EXPECT_EQ(cloth.vertexCount(), 16);
@@ -318,7 +325,7 @@ TEST(MeshImport, GltfGarmentFromAssimpsExporterKeepsItsVertices) {
   for (int v = 0; v < 16; ++v)
     EXPECT_LT((cloth.vertices.row(v).transpose() - gridPoint(v % 4, v / 4)).norm(), 1e-6)
         << "vertex " << v;
-  EXPECT_TRUE(session.previewGarment(o).warnings.empty());
+  EXPECT_TRUE(session.previewGarment(*exported).warnings.empty());
 }
 
 }  // namespace
