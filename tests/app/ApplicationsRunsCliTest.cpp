@@ -298,12 +298,18 @@ void checkPaperScene(const Built& b, int paperVertices, int steps) {
   EXPECT_GT((t.positions.back() - x).rowwise().norm().maxCoeff(), 1e-5);
 }
 
+// The task's scene on its paper mesh, shortened to `steps`, with the shared checks made.
+Built buildChecked(const TempDir& dir, const std::string& task, int steps, int paperVertices) {
+  Built b = build(dir, task, steps);
+  checkPaperScene(b, paperVertices, steps);
+  return b;
+}
+
 TEST(PaperMeshScenes, TShirtRecordsItsTargetFromTheHiddenValues) {
   REQUIRE_PAPER_MESHES();
   TempDir dir;
   const int steps = 4;
-  const Built b = build(dir, "tshirt", steps);
-  checkPaperScene(b, 1426, steps);
+  const Built b = buildChecked(dir, "tshirt", steps, 1426);
   // 18 hanger vertices remapped to 18 distinct shoulder vertices of the paper shirt, at its top.
   ASSERT_EQ(b.scene.cloths[0].attachments.size(), 1u);
   const auto& fixed = b.scene.cloths[0].attachments[0].vertices;
@@ -342,8 +348,7 @@ TEST(PaperMeshScenes, TShirtRecordsItsTargetFromTheHiddenValues) {
 TEST(PaperMeshScenes, HatTargetSitsOnTheHead) {
   REQUIRE_PAPER_MESHES();
   TempDir dir;
-  const Built b = build(dir, "hat", 5);
-  checkPaperScene(b, 579, 5);
+  const Built b = buildChecked(dir, "hat", 5, 579);
   ASSERT_EQ(b.scene.cloths[0].attachments.size(), 2u);
   // The two handles hold brim vertices on opposite sides (-X and +X of the hat).
   const NodeMatrix& x = b.scene.cloths[0].mesh.vertices;
@@ -367,8 +372,7 @@ TEST(PaperMeshScenes, HatTargetSitsOnTheHead) {
 TEST(PaperMeshScenes, SockKeepsItsKeypointsAndHoldsTheCuff) {
   REQUIRE_PAPER_MESHES();
   TempDir dir;
-  const Built b = build(dir, "sock", 3);
-  checkPaperScene(b, 1055, 3);
+  const Built b = buildChecked(dir, "sock", 3, 1055);
   ASSERT_EQ(b.scene.cloths[0].attachments.size(), 4u);
   // Keypoint lists keep their length (they pair with positions).
   const auto& points = b.scene.task->loss["keypoints"]["points"];
@@ -384,8 +388,7 @@ TEST(PaperMeshScenes, SockKeepsItsKeypointsAndHoldsTheCuff) {
 TEST(PaperMeshScenes, DressHemlineIsTheSkirtsHem) {
   REQUIRE_PAPER_MESHES();
   TempDir dir;
-  const Built b = build(dir, "dress", 5);
-  checkPaperScene(b, 681, 5);
+  const Built b = buildChecked(dir, "dress", 5, 681);
   const NodeMatrix& x = b.scene.cloths[0].mesh.vertices;
   const double ymin = x.col(1).minCoeff(), ymax = x.col(1).maxCoeff(), h = ymax - ymin;
   const auto hem = b.scene.task->loss["hemline"]["vertices"].get<std::vector<int>>();
@@ -398,8 +401,7 @@ TEST(PaperMeshScenes, FlagHangsFromItsPole) {
   REQUIRE_PAPER_MESHES();
   TempDir dir;
   const int steps = 5;
-  const Built b = build(dir, "flag", steps);
-  checkPaperScene(b, 540, steps);
+  const Built b = buildChecked(dir, "flag", steps, 540);
   // The pole side is at -X: the fixed vertices lie along the flag's left edge.
   const NodeMatrix& x = b.scene.cloths[0].mesh.vertices;
   const double xmin = x.col(0).minCoeff(), width = extent(x).x();

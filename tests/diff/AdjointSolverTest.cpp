@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <random>
 
 namespace weft {
@@ -38,11 +39,18 @@ NodeMatrix randomBlock(int m, unsigned seed) {
   return b;
 }
 
-TEST(AdjointSystem, AssembledMatrixMatchesTheProductAndIsSymmetric) {
-  const Scene scene = withTightForwardSolver(test::parse(test::windClothScene(6, 15)), 1e-8);
+// The adjoint system at the last state of `document`'s forward run, converged to 1e-8.
+std::unique_ptr<AdjointSystem> systemAtLastState(const nlohmann::json& document) {
+  const Scene scene = withTightForwardSolver(test::parse(document), 1e-8);
   const ForwardPass pass = runForwardPass(scene);
-  AdjointSystem system(scene);
-  system.prepare(pass.trajectory.positions.back());
+  auto system = std::make_unique<AdjointSystem>(scene);
+  system->prepare(pass.trajectory.positions.back());
+  return system;
+}
+
+TEST(AdjointSystem, AssembledMatrixMatchesTheProductAndIsSymmetric) {
+  const std::unique_ptr<AdjointSystem> prepared = systemAtLastState(test::windClothScene(6, 15));
+  AdjointSystem& system = *prepared;
   ASSERT_TRUE(system.hasDeltaP());
   const Eigen::SparseMatrix<double> k = system.assembleK();
   const int m = system.nodeCount();
@@ -74,10 +82,8 @@ double fixedPointSpectralRadius(AdjointSystem& system) {
 }
 
 TEST(AdjointSolvers, AllThreeGiveTheSameSolution) {
-  const Scene scene = withTightForwardSolver(test::parse(test::softWindClothScene(6, 15)), 1e-8);
-  const ForwardPass pass = runForwardPass(scene);
-  AdjointSystem system(scene);
-  system.prepare(pass.trajectory.positions.back());
+  const std::unique_ptr<AdjointSystem> prepared = systemAtLastState(test::softWindClothScene(6, 15));
+  AdjointSystem& system = *prepared;
   EXPECT_LT(fixedPointSpectralRadius(system), 1.0);
   const NodeMatrix g = randomBlock(system.nodeCount(), 2);
   FixedPointSolver fixedPoint(1e-12, 500);
@@ -102,10 +108,8 @@ TEST(AdjointSolvers, AllThreeGiveTheSameSolution) {
 // exact solution it must stop at once; from a perturbed one it must reach the same solution as
 // from zero, with fewer iterations when the guess is close.
 TEST(AdjointSolvers, GmresWarmStartReachesTheSameSolution) {
-  const Scene scene = withTightForwardSolver(test::parse(test::windClothScene(6, 15)), 1e-8);
-  const ForwardPass pass = runForwardPass(scene);
-  AdjointSystem system(scene);
-  system.prepare(pass.trajectory.positions.back());
+  const std::unique_ptr<AdjointSystem> prepared = systemAtLastState(test::windClothScene(6, 15));
+  AdjointSystem& system = *prepared;
   const NodeMatrix g = randomBlock(system.nodeCount(), 4);
   GmresSolver cold(1e-10, 500, 500), warm(1e-10, 500, 500, /*warmStart=*/true);
   NodeMatrix fromZero = NodeMatrix::Constant(system.nodeCount(), 3, 7.0);  // ignored: cold start
@@ -126,10 +130,8 @@ TEST(AdjointSolvers, GmresWarmStartReachesTheSameSolution) {
 // system to the same solution as the direct LU, and on a hanging cloth in tension, where P is a
 // poor model of K = P - Delta P, in a fraction of the iterations P needs.
 TEST(AdjointSolvers, ClampedHessianPreconditionerNeedsFewIterations) {
-  const Scene scene = withTightForwardSolver(test::parse(test::windClothScene(10, 20)), 1e-8);
-  const ForwardPass pass = runForwardPass(scene);
-  AdjointSystem system(scene);
-  system.prepare(pass.trajectory.positions.back());
+  const std::unique_ptr<AdjointSystem> prepared = systemAtLastState(test::windClothScene(10, 20));
+  AdjointSystem& system = *prepared;
   ASSERT_TRUE(system.hasDeltaP());
   const NodeMatrix g = randomBlock(system.nodeCount(), 6);
   GmresSolver byP(1e-10, 1000, 1000);
@@ -153,10 +155,8 @@ TEST(AdjointSolvers, ClampedHessianPreconditionerNeedsFewIterations) {
 // the mass) it never factors the Hessian.
 TEST(AdjointSolvers, AutomaticPreconditionerSwitchesToTheHessianOnlyWherePIsSlow) {
   {
-    const Scene scene = withTightForwardSolver(test::parse(test::windClothScene(10, 20)), 1e-8);
-    const ForwardPass pass = runForwardPass(scene);
-    AdjointSystem system(scene);
-    system.prepare(pass.trajectory.positions.back());
+    const std::unique_ptr<AdjointSystem> prepared = systemAtLastState(test::windClothScene(10, 20));
+    AdjointSystem& system = *prepared;
     GmresSolver automatic(1e-10, 1000, 1000, false, GmresSolver::Preconditioner::Automatic);
     GmresSolver byHessian(1e-10, 1000, 1000, false, GmresSolver::Preconditioner::ClampedHessian);
     DirectLuSolver direct;
@@ -186,10 +186,8 @@ TEST(AdjointSolvers, AutomaticPreconditionerSwitchesToTheHessianOnlyWherePIsSlow
     }
   }
   {
-    const Scene scene = withTightForwardSolver(test::parse(test::softWindClothScene(6, 25)), 1e-8);
-    const ForwardPass pass = runForwardPass(scene);
-    AdjointSystem system(scene);
-    system.prepare(pass.trajectory.positions.back());
+    const std::unique_ptr<AdjointSystem> prepared = systemAtLastState(test::softWindClothScene(6, 25));
+    AdjointSystem& system = *prepared;
     ASSERT_TRUE(system.hasDeltaP());
     // At a backward pass's default tolerance, 1e-4, P needs under kAutomaticPIterations here.
     GmresSolver automatic(1e-4, 1000, 1000, false, GmresSolver::Preconditioner::Automatic);
