@@ -95,14 +95,10 @@ TEST(ApplicationsRunsCli, EveryRunIsStoredAndResumeReadsItBack) {
   // Resumed: nothing is run again, the tables come out the same.
   auto again = args;
   again.push_back("--resume");
-  const auto t0 = std::chrono::steady_clock::now();
   const auto second = runWeft(again);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_EQ(second.exitCode, 0) << describe(second);
   EXPECT_NE(second.out.find("0 run(s) made, 3 resumed"), std::string::npos) << second.out;
   EXPECT_EQ(second.err.find("napkin_4x4, lbfgsb, seed 1..."), std::string::npos) << second.err;
-  EXPECT_LT(seconds, 1.5);
   EXPECT_EQ(test::readFile(out + "/applications.csv"), csv);
 
   // A stored run is read, not recomputed: an edited loss comes through to the tables.

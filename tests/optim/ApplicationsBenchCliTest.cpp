@@ -60,6 +60,51 @@ TEST(ApplicationsBenchCli, RunsEveryMethodAndSeedWithinTheBudget) {
     EXPECT_NE(md.find(heading), std::string::npos) << heading;
   EXPECT_TRUE(std::filesystem::exists(out + "/loss_napkin_4x4.png") ||
               r.err.find("gnuplot") != std::string::npos);
+  // The Table 4 analogue: one timed forward and backward pass of the napkin's 50 steps.
+  EXPECT_NE(md.find("Seconds per pass (DiffCloth Table 4)"), std::string::npos);
+  EXPECT_EQ(md.find("Beside the paper"), std::string::npos) << "the paper has no napkin row";
+  const auto passes = splitLines(test::readFile(out + "/passes.csv"));
+  ASSERT_EQ(passes.size(), 2u);
+  const auto p = splitCommas(passes[1]);
+  ASSERT_EQ(p.size(), 10u) << passes[1];
+  EXPECT_EQ(p[0], "napkin_4x4");
+  EXPECT_EQ(p[1], "48");  // 16 nodes
+  EXPECT_EQ(p[2], "50");
+  EXPECT_GT(std::stod(p[4]), 0.0);             // forward s
+  EXPECT_GT(std::stod(p[5]), 0.0);             // backward s
+  EXPECT_EQ(p[7], "100") << "GMRES converges on every step of the free napkin";
+  EXPECT_EQ(p[8], "0");                        // unconverged forward steps
+  EXPECT_GT(std::stod(p[9]), 0.0);             // mean L-BFGS-B evaluation of the runs
+}
+
+// A task the paper tabulates gets its row beside DiffCloth's published figures (Tables 2-4).
+TEST(ApplicationsBenchCli, PaperTasksArePrintedBesideThePublishedFigures) {
+  TempDir dir;
+  const std::string out = dir.file("bench");
+  // flag: 100 steps, so one gradient evaluation or two values.
+  const auto r = runWeft({"bench", "applications", "--tasks", "flag", "--seeds", "1", "--budget",
+                          "200", "--out", out, "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const std::string md = test::readFile(out + "/applications.md");
+  const auto section = md.find("## Beside the paper (DiffCloth Tables 2-4)");
+  ASSERT_NE(section, std::string::npos) << md;
+  const std::string beside = md.substr(section, md.find("\n## ", section + 1) - section);
+  EXPECT_NE(beside.find("| flag | Weft | 8 | 1 |"), std::string::npos) << beside;
+  // Table 2: 4.77 / 10.57 / 38.89 / 25.57 / 40.14; Table 3: 6800 / 17300 / 24800, 96 %;
+  // Table 4: 13.7 s / 1.6 s.
+  EXPECT_NE(beside.find("| Flag | DiffCloth | 8 | 10 | 4.77 | 10.57 | 38.89 | 25.57 | 40.14 | 6800 | "
+                        "17300 | 24800 | 2.54 | 96 | 13.7 | 1.6 |"),
+            std::string::npos)
+      << beside;
+  const auto passes = splitLines(test::readFile(out + "/passes.csv"));
+  ASSERT_EQ(passes.size(), 2u);
+  const auto p = splitCommas(passes[1]);
+  ASSERT_EQ(p.size(), 10u) << passes[1];
+  EXPECT_EQ(p[0], "flag");
+  EXPECT_EQ(p[2], "100");
+  const double converged = std::stod(p[7]);
+  EXPECT_GE(converged, 0.0);
+  EXPECT_LE(converged, 100.0);
 }
 
 TEST(ApplicationsBenchCli, BadInputExitsTwo) {

@@ -11,11 +11,20 @@ namespace weft {
 SimulationObjective::SimulationObjective(const Scene& scene, const ParameterSet& parameters)
     : scene_(scene), parameters_(parameters), space_(scene, parameters), loss_(scene) {}
 
+namespace {
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}  // namespace
+
 double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& gradient) {
   const auto start = std::chrono::steady_clock::now();
   const Scene scene = parameters_.withValues(scene_, space_.toValues(z));
   const ForwardPass forward = runForwardPass(scene);
   unconverged_ += forward.unconvergedSteps;
+  const double forwardSeconds = secondsSince(start);
+  forwardSeconds_ += forwardSeconds;
+  ++forwardPasses_;
   const GradientResult r = backpropagate(scene, forward.trajectory, loss_, parameters_, scene.solver.backward);
   gradient = space_.gradientToCoordinates(z, r.gradient);
   backward_.solves += r.solver.solves;
@@ -26,7 +35,10 @@ double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& 
   backward_.fallbacks += r.solver.fallbacks;
   backward_.maxResidual = std::max(backward_.maxResidual, r.solver.maxResidual);
   backward_.seconds += r.solver.seconds;
-  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = secondsSince(start);
+  backwardSeconds_ += seconds - forwardSeconds;
+  ++backwardPasses_;
+  seconds_ += seconds;
   return r.loss;
 }
 
@@ -38,7 +50,10 @@ double SimulationObjective::value(const Eigen::VectorXd& z) {
   const ForwardPass forward = runForwardPass(scene);
   unconverged_ += forward.unconvergedSteps;
   const double loss = loss_.value(forward.trajectory);
-  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = secondsSince(start);
+  forwardSeconds_ += seconds;
+  ++forwardPasses_;
+  seconds_ += seconds;
   return loss;
 }
 

@@ -32,6 +32,12 @@ class SimulationObjective : public Objective {
   const AdjointSolverStats& backwardStats() const { return backward_; }
   int unconvergedForwardSteps() const { return unconverged_; }
   double seconds() const { return seconds_; }
+  // Wall seconds in forward passes (of evaluate() and value()) and in backward passes (the adjoint
+  // and the loss gradient, evaluate() only): DiffCloth Table 4's "Fwd." and "Back.".
+  double forwardSeconds() const { return forwardSeconds_; }
+  double backwardSeconds() const { return backwardSeconds_; }
+  int forwardPasses() const { return forwardPasses_; }
+  int backwardPasses() const { return backwardPasses_; }
 
  private:
   Scene scene_;
@@ -41,6 +47,10 @@ class SimulationObjective : public Objective {
   AdjointSolverStats backward_;
   int unconverged_ = 0;
   double seconds_ = 0.0;
+  double forwardSeconds_ = 0.0;
+  double backwardSeconds_ = 0.0;
+  int forwardPasses_ = 0;
+  int backwardPasses_ = 0;
 };
 
 }  // namespace weft
