@@ -11,6 +11,7 @@
 #include "SceneOverrideOption.h"
 
 #include <weft/core/Error.h>
+#include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/Backpropagation.h>
 #include <weft/diff/GradientCheck.h>
 #include <weft/diff/ParameterSet.h>
@@ -73,12 +74,14 @@ int gradcheckCommand(const std::vector<std::string>& args) {
   char summary[512];
   std::snprintf(summary, sizeof summary,
                 "gradcheck: %s: %zu parameters, loss %.6e, max relative error %.3e; backward %s: %d steps, "
-                "%lld iterations (max %d per step), %d not converged, %d fallbacks; %d forward runs "
-                "(%d unconverged steps), %.2f s",
+                "%lld iterations (max %d per step), %d not converged, %d fallbacks, adjoint growth %.2g; "
+                "%d forward runs (%d unconverged steps), %.2f s",
                 scene.name.c_str(), report.entries.size(), report.loss, report.maxRelativeError(),
                 report.backwardMethod.c_str(), b.solves, b.iterations, b.maxIterations, b.notConverged, b.fallbacks,
-                report.forwardRuns, report.unconvergedSteps, report.seconds);
+                b.adjointGrowth, report.forwardRuns, report.unconvergedSteps, report.seconds);
   std::fprintf(cl.has("--json") ? stderr : stdout, "%s\n", summary);
+  const std::string growth = adjointGrowthWarning(b, report.backwardMethod, report.backwardTolerance);
+  if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
   return 0;
 }
 

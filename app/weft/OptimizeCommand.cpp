@@ -20,6 +20,7 @@
 #include "bench/BenchTable.h"
 
 #include <weft/core/Error.h>
+#include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/Backpropagation.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/optim/Optimizer.h>
@@ -157,9 +158,15 @@ int optimizeCommand(const std::vector<std::string>& args) {
                     {"solves", b.solves},
                     {"iterations", b.iterations},
                     {"not_converged", b.notConverged},
-                    {"fallbacks", b.fallbacks}}},
+                    {"fallbacks", b.fallbacks},
+                    {"adjoint_growth", b.adjointGrowth}}},
       {"unconverged_forward_steps", objective.unconvergedForwardSteps()},
   };
+  if (usesGradient) {
+    const std::string growth =
+        adjointGrowthWarning(b, scene.solver.backward.method, scene.solver.backward.tolerance);
+    if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
+  }
   std::string plotNote;
   PlotSeries series{"loss", {}, {}};
   for (const LogEntry& e : log.entries()) series.x.push_back(static_cast<double>(e.steps)), series.y.push_back(e.loss);

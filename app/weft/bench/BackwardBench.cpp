@@ -124,7 +124,8 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
                     "solve_ms_per_step", "rest_ms_per_step", "iterations_per_step", "max_iterations",
                     "not_converged", "fallbacks", "fail_percent", "speedup_vs_direct", "gradient_rel_error",
                     "forward_ms_per_step", "forward_unconverged", "peak_rss_mb", "delta_p_ms_per_step",
-                    "delta_r_ms_per_step", "fallback_ms_per_step", "cpu_ms_per_step", "cpu_speedup_vs_direct"});
+                    "delta_r_ms_per_step", "fallback_ms_per_step", "cpu_ms_per_step", "cpu_speedup_vs_direct",
+                    "adjoint_growth"});
   std::vector<PlotSeries> plot;
 
   const std::filesystem::path scratch =
@@ -199,7 +200,8 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
                    formatNumber(1e3 * forwardSeconds / steps), std::to_string(forward.unconvergedSteps),
                    formatNumber(peakRssMegabytes()), formatNumber(1e3 * g.deltaPSeconds / steps),
                    formatNumber(1e3 * g.deltaRSeconds / steps), formatNumber(1e3 * s.fallbackSeconds / steps),
-                   formatNumber(1e3 * cpuSeconds / steps), formatNumber(directCpuSeconds / cpuSeconds, 3)});
+                   formatNumber(1e3 * cpuSeconds / steps), formatNumber(directCpuSeconds / cpuSeconds, 3),
+                   formatNumber(s.adjointGrowth, 3)});
         plot[firstSeries + m].x.push_back(n);
         plot[firstSeries + m].y.push_back(perStep);
       }
@@ -232,7 +234,9 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
       "to the direct row's. The target run (data only) uses the scene's own solver settings. fail % = steps where the iterative "
       "method did not converge within its cap (200 iterations) and fell back to the direct LU. "
       "gradient_rel_error = |g - g_direct| / |g_direct|. peak_rss_mb = the process's peak resident set "
-      "(getrusage maxrss) after that row: cumulative over all rows so far.";
+      "(getrusage maxrss) after that row: cumulative over all rows so far. adjoint_growth = max |z_n| over "
+      "the first nonzero |z_n| of the pass (diff/AdjointGrowth.h): an iterative solve's gradient error "
+      "is of the order of tolerance x sqrt(adjoint_growth) / 100.";
   table.writeCsv(out.file("backward.csv"));
   table.writeMarkdown(out.file("backward.md"), "Backward pass: adjoint solvers (weft bench backward)", preamble);
   std::string reason;

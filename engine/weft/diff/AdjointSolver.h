@@ -26,6 +26,9 @@ struct AdjointSolverStats {
   double maxResidual = 0.0;   // largest relative residual accepted
   double seconds = 0.0;
   double fallbackSeconds = 0.0;  // of `seconds`, spent in the direct fallback after a failed solve
+  // Set by the backward pass (AdjointGrowth.h): max |z_n| over the first nonzero |z_n|; over
+  // several passes, the largest.
+  double adjointGrowth = 1.0;
 };
 
 class AdjointSolver {

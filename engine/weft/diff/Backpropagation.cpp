@@ -1,6 +1,7 @@
 #include <weft/diff/Backpropagation.h>
 
 #include <weft/core/Error.h>
+#include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/AdjointSystem.h>
 #include <weft/diff/ParameterPartials.h>
 
@@ -32,6 +33,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
   NodeMatrix dLdvNext = NodeMatrix::Zero(m, 3);  // dL/dv_{n+1} through the steps after n+1
   NodeMatrix rhs(m, 3), z = NodeMatrix::Zero(m, 3), wbar = NodeMatrix::Zero(m, 3), dLdv(m, 3);
   Eigen::MatrixX3d y;
+  AdjointGrowth growth;
   for (int n = steps - 1; n >= 0; --n) {
     const NodeMatrix& x0 = trajectory.positions[n];
     const NodeMatrix& v0 = trajectory.velocities[n];
@@ -46,6 +48,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
     result.deltaRSeconds += std::chrono::duration<double>(contactDone - prepareStart).count();
     result.deltaPSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - contactDone).count();
     solver.solve(system, rhs, z, n + 1);
+    growth.observe(z);
     // wbar = R'^T z: what the contact impulses pass on of z (zero without contact).
     if (system.hasContact()) contact->applyTransposed(z, wbar, y);
     else wbar.setZero();
@@ -63,6 +66,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
   result.dLdv0 = dLdvNext;
   partials.accumulateInitial(result.dLdv0, result.gradient);
   result.solver = solver.stats();
+  result.solver.adjointGrowth = growth.factor();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

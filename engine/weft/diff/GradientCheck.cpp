@@ -32,6 +32,7 @@ GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parame
 
   GradientCheckReport report;
   report.backwardMethod = backward.method;
+  report.backwardTolerance = backward.tolerance;
   const ForwardPass base = runForwardPass(scene);
   ++report.forwardRuns;
   report.unconvergedSteps += base.unconvergedSteps;

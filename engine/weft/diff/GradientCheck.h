@@ -39,6 +39,7 @@ struct GradientCheckReport {
   std::vector<GradientCheckEntry> entries;
   AdjointSolverStats backward;
   std::string backwardMethod;
+  double backwardTolerance = 0.0;
   int forwardRuns = 0;
   int unconvergedSteps = 0;  // over all forward runs
   double seconds = 0.0;

@@ -35,6 +35,7 @@ double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& 
   backward_.fallbacks += r.solver.fallbacks;
   backward_.maxResidual = std::max(backward_.maxResidual, r.solver.maxResidual);
   backward_.seconds += r.solver.seconds;
+  backward_.adjointGrowth = std::max(backward_.adjointGrowth, r.solver.adjointGrowth);
   const double seconds = secondsSince(start);
   backwardSeconds_ += seconds - forwardSeconds;
   ++backwardPasses_;
