@@ -168,8 +168,9 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-TEST(MeshReader, AssimpGltfKeepsVertexOrderAndCount) {
-  // glTF 2.0 with an embedded buffer: float32 positions, uint16 indices.
+// glTF 2.0 holding the scrambled strip as mesh 0 (an embedded buffer: float32 positions, uint16
+// indices), placed by `nodes` (a JSON array) of which scene 0 lists `roots`.
+std::string stripGltf(const std::string& nodes = R"([{"mesh": 0}])", const std::string& roots = "[0]") {
   std::string buffer;
   for (const auto& p : kPositions)
     for (double c : p) {
@@ -183,8 +184,8 @@ TEST(MeshReader, AssimpGltfKeepsVertexOrderAndCount) {
       buffer.append(reinterpret_cast<const char*>(&i), 2);
     }
   std::ostringstream g;
-  g << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
-  "nodes": [{"mesh": 0}],
+  g << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": )" << roots << R"(}],
+  "nodes": )" << nodes << R"(,
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
   "buffers": [{"byteLength": )"
     << buffer.size() << R"(, "uri": "data:application/octet-stream;base64,)" << base64(buffer)
@@ -196,8 +197,49 @@ TEST(MeshReader, AssimpGltfKeepsVertexOrderAndCount) {
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 7, "type": "VEC3",
                  "min": [0, 0, 0], "max": [2, 0.5, 1]},
                 {"bufferView": 1, "componentType": 5123, "count": 15, "type": "SCALAR"}]})";
+  return g.str();
+}
+
+TEST(MeshReader, AssimpGltfKeepsVertexOrderAndCount) {
   TempDir dir;
-  expectScrambledStrip(readMesh(dir.write("strip.gltf", g.str())));
+  expectScrambledStrip(readMesh(dir.write("strip.gltf", stripGltf())));
+}
+
+// An exporter stores an object's placement in its nodes, not in its vertices: the strip is read
+// where the node hierarchy puts it (parent then child transform), once per node that references
+// it, and a mirroring node lists each triangle's corners the other way round.
+TEST(MeshReader, AssimpAppliesNodeTransformsAndInstances) {
+  // Node 0 (root): translation (10, 0, 0) and uniform scale 2; its child node 1: a quarter turn
+  // about z (quaternion (0, 0, sin 45, cos 45)) holding the mesh. Node 2 (a second root): the same
+  // mesh mirrored in x.
+  const std::string nodes = R"([
+    {"translation": [10, 0, 0], "scale": [2, 2, 2], "children": [1]},
+    {"rotation": [0, 0, 0.7071067811865476, 0.7071067811865476], "mesh": 0},
+    {"scale": [-1, 1, 1], "mesh": 0}])";
+  TempDir dir;
+  const TriangleMesh mesh = readMesh(dir.write("placed.gltf", stripGltf(nodes, "[0, 2]")));
+  ASSERT_EQ(mesh.vertexCount(), 14);
+  ASSERT_EQ(mesh.triangleCount(), 10);
+  for (int i = 0; i < 7; ++i) {
+    SCOPED_TRACE(i);
+    const double x = kPositions[i][0], y = kPositions[i][1], z = kPositions[i][2];
+    // First instance: x' = 10 + 2 R_z(90) x = (10 - 2y, 2x, 2z); float precision.
+    EXPECT_NEAR(mesh.vertices(i, 0), 10.0 - 2.0 * y, 1e-5);
+    EXPECT_NEAR(mesh.vertices(i, 1), 2.0 * x, 1e-5);
+    EXPECT_NEAR(mesh.vertices(i, 2), 2.0 * z, 1e-5);
+    // Second: mirrored, (-x, y, z).
+    EXPECT_EQ(mesh.vertices(7 + i, 0), -x);
+    EXPECT_EQ(mesh.vertices(7 + i, 1), y);
+    EXPECT_EQ(mesh.vertices(7 + i, 2), z);
+  }
+  for (int t = 0; t < 5; ++t) {
+    SCOPED_TRACE(t);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(mesh.triangles(t, k), kTriangles[t][k]);
+    // The mirrored copy: the same corners, second and third swapped.
+    EXPECT_EQ(mesh.triangles(5 + t, 0), 7 + kTriangles[t][0]);
+    EXPECT_EQ(mesh.triangles(5 + t, 1), 7 + kTriangles[t][2]);
+    EXPECT_EQ(mesh.triangles(5 + t, 2), 7 + kTriangles[t][1]);
+  }
 }
 
 TEST(MeshReader, FailuresAreInputErrors) {

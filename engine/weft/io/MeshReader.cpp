@@ -127,6 +127,16 @@ void joinCoincidentCorners(TriangleMesh& part) {
     for (int k = 0; k < 3; ++k) part.triangles(t, k) = joined[static_cast<std::size_t>(part.triangles(t, k))];
 }
 
+// Where each of the file's meshes sits: the global transform (the product of the node
+// transforms from the root down) of every node that references it, in depth-first order.
+void collectPlacements(const aiNode* node, const aiMatrix4x4& parent,
+                       std::vector<std::vector<aiMatrix4x4>>& placements) {
+  const aiMatrix4x4 global = parent * node->mTransformation;
+  for (unsigned i = 0; i < node->mNumMeshes; ++i)
+    if (node->mMeshes[i] < placements.size()) placements[node->mMeshes[i]].push_back(global);
+  for (unsigned c = 0; c < node->mNumChildren; ++c) collectPlacements(node->mChildren[c], global, placements);
+}
+
 TriangleMesh readWithAssimp(const std::string& path) {
   checkPlyHeader(path);
   const bool fbx = lowerExtension(path) == ".fbx";
@@ -135,26 +145,40 @@ TriangleMesh readWithAssimp(const std::string& path) {
   const aiScene* scene = importer.ReadFile(path, 0);
   if (!scene || !scene->mRootNode)
     throw InputError(path, "mesh", std::string("cannot read mesh: ") + importer.GetErrorString());
+  // The file's node transforms place its meshes (a glTF or FBX exporter puts an object's
+  // translation, rotation and scale there, not into the vertices): each mesh is read where its
+  // node puts it, once per node that references it, in mesh order (so a file without transforms
+  // reads exactly as its vertex lists are stored); a mesh no node references stays where it is.
+  std::vector<std::vector<aiMatrix4x4>> placements(scene->mNumMeshes);
+  collectPlacements(scene->mRootNode, aiMatrix4x4(), placements);
   TriangleMesh mesh;
   mesh.vertices.resize(0, 3);
   for (unsigned k = 0; k < scene->mNumMeshes; ++k) {
     const aiMesh* in = scene->mMeshes[k];
-    TriangleMesh part;
-    part.vertices.resize(in->mNumVertices, 3);
-    for (unsigned i = 0; i < in->mNumVertices; ++i)
-      part.vertices.row(i) << in->mVertices[i].x, in->mVertices[i].y, in->mVertices[i].z;
-    std::vector<int> tri;
-    for (unsigned f = 0; f < in->mNumFaces; ++f) {
-      const aiFace& face = in->mFaces[f];
-      for (unsigned j = 1; j + 1 < face.mNumIndices; ++j) {
-        tri.push_back(static_cast<int>(face.mIndices[0]));
-        tri.push_back(static_cast<int>(face.mIndices[j]));
-        tri.push_back(static_cast<int>(face.mIndices[j + 1]));
+    if (placements[k].empty()) placements[k].push_back(aiMatrix4x4());
+    for (const aiMatrix4x4& placement : placements[k]) {
+      TriangleMesh part;
+      part.vertices.resize(in->mNumVertices, 3);
+      for (unsigned i = 0; i < in->mNumVertices; ++i) {
+        const aiVector3D p = placement * in->mVertices[i];
+        part.vertices.row(i) << p.x, p.y, p.z;
       }
+      // A mirroring placement (negative determinant) would turn the surface inside out: the
+      // corners are listed the other way round to keep its outward side.
+      const bool mirrored = placement.Determinant() < 0.0f;
+      std::vector<int> tri;
+      for (unsigned f = 0; f < in->mNumFaces; ++f) {
+        const aiFace& face = in->mFaces[f];
+        for (unsigned j = 1; j + 1 < face.mNumIndices; ++j) {
+          tri.push_back(static_cast<int>(face.mIndices[0]));
+          tri.push_back(static_cast<int>(face.mIndices[mirrored ? j + 1 : j]));
+          tri.push_back(static_cast<int>(face.mIndices[mirrored ? j : j + 1]));
+        }
+      }
+      part.triangles = Eigen::Map<TriangleIndices>(tri.data(), static_cast<int>(tri.size() / 3), 3);
+      if (fbx) joinCoincidentCorners(part);
+      mesh.append(part);
     }
-    part.triangles = Eigen::Map<TriangleIndices>(tri.data(), static_cast<int>(tri.size() / 3), 3);
-    if (fbx) joinCoincidentCorners(part);
-    mesh.append(part);
   }
   if (mesh.vertexCount() == 0) throw InputError(path, "mesh", "the file holds no mesh");
   return mesh;
