@@ -2,7 +2,8 @@
 // signed distances computed here independently (by clamping to the solid), their normals
 // against central finite differences of the distance (the normal is the distance gradient away
 // from the medial axis), their closest points, and the `reach` early-out; and the box's contact
-// face for a point its relative motion took inside it (BoxShape::sampleMoved).
+// face and the cylinder's contact surface for a point its relative motion took inside it
+// (BoxShape::sampleMoved, CylinderShape::sampleMoved).
 
 #include <weft/contact/BoxShape.h>
 #include <weft/contact/CapsuleShape.h>
@@ -246,6 +247,77 @@ TEST_F(BoxEntryFace, OutsideOrAlreadyInsideIsTheSignedDistanceSample) {
     if (pInside && !fromInside) continue;
     SurfaceSample a, b;
     const bool hitA = box.sample(p, 1.0, a), hitB = box.sampleMoved(p, from, 1.0, b);
+    ASSERT_EQ(hitA, hitB);
+    EXPECT_EQ(a.distance, b.distance);
+    EXPECT_EQ(a.normal, b.normal);
+    EXPECT_EQ(a.point, b.point);
+    (pInside ? inside : outside)++;
+  }
+  EXPECT_GT(outside, 100);
+  EXPECT_GT(inside, 20);
+}
+
+// CylinderShape::sampleMoved, the same rule for a cylinder whose flat cap may lie flush with a
+// floor: a point inside that came from outside gets the surface (side or cap) its path crossed.
+// The cylinder's axis is tilted; points are given in its frame: (radial x, radial y, axial), the
+// caps at axial +-0.1 and the side at radius 0.1.
+class CylinderEntrySurface : public ::testing::Test {
+ protected:
+  const Vec3 axis = kRotation.col(2), radialX = kRotation.col(0), radialY = kRotation.col(1);
+  const CylinderShape cylinder{kCentre - 0.1 * axis, kCentre + 0.1 * axis, 0.1};
+  Vec3 world(double x, double y, double a) const { return kCentre + x * radialX + y * radialY + a * axis; }
+};
+
+TEST_F(CylinderEntrySurface, SideEntryNearTheCapGetsTheSideNormal) {
+  // 1 mm above the bottom cap, 1 mm outside the side at the start; 10 mm across the side: the
+  // cylinder standing on a floor sweeping over a node lying there.
+  const Vec3 from = world(0.101, 0.0, -0.099), p = world(0.091, 0.0, -0.099);
+  SurfaceSample nearest, entered;
+  ASSERT_TRUE(cylinder.sample(p, 0.01, nearest));
+  EXPECT_LT((nearest.normal + axis).norm(), 1e-12) << "the nearest surface is the bottom cap";
+  ASSERT_TRUE(cylinder.sampleMoved(p, from, 0.01, entered));
+  EXPECT_LT((entered.normal - radialX).norm(), 1e-12) << entered.normal.transpose();
+  EXPECT_NEAR(entered.distance, -0.009, 1e-12);
+  EXPECT_LT((entered.point - world(0.1, 0.0, -0.099)).norm(), 1e-12);
+}
+
+TEST_F(CylinderEntrySurface, TheSurfaceCrossedNotAPreferredOne) {
+  SurfaceSample s;
+  // Up through the bottom cap 1 mm inside the rim: the cap's normal, although the side is the
+  // nearest surface at the end.
+  ASSERT_TRUE(cylinder.sampleMoved(world(0.0, 0.099, -0.09), world(0.0, 0.099, -0.11), 0.01, s));
+  EXPECT_LT((s.normal + axis).norm(), 1e-12);
+  EXPECT_NEAR(s.distance, -0.01, 1e-12);
+  // Diagonally past the rim, outside both at the start: the side (radius 0.1) is crossed at 20 %
+  // of the path, the cap plane (-0.1) at 67 %: in through the cap.
+  ASSERT_TRUE(cylinder.sampleMoved(world(0.092, 0.0, -0.095), world(0.102, 0.0, -0.11), 0.01, s));
+  EXPECT_LT((s.normal + axis).norm(), 1e-12);
+  EXPECT_NEAR(s.distance, -0.005, 1e-12);
+  // The side crossed last: the cap plane at 29 %, the side at 47 % (radially along -y here).
+  ASSERT_TRUE(cylinder.sampleMoved(world(0.0, -0.092, -0.095), world(0.0, -0.107, -0.102), 0.01, s));
+  EXPECT_LT((s.normal + radialY).norm(), 1e-12) << s.normal.transpose();
+  EXPECT_NEAR(s.distance, -0.008, 1e-12);
+  // A path that ends on the axis: the normal where it crossed the side.
+  ASSERT_TRUE(cylinder.sampleMoved(world(0.0, 0.0, 0.0), world(0.0, 0.2, 0.0), 0.2, s));
+  EXPECT_LT((s.normal - radialY).norm(), 1e-12) << s.normal.transpose();
+  EXPECT_NEAR(s.distance, -0.1, 1e-12);
+}
+
+TEST_F(CylinderEntrySurface, OutsideOrAlreadyInsideIsTheSignedDistanceSample) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  int outside = 0, inside = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    const Vec3 p = world(u(rng), u(rng), u(rng)), from = world(0.6 * u(rng), 0.6 * u(rng), 0.6 * u(rng));
+    const auto within = [&](const Vec3& q) {
+      const Vec3 o = q - kCentre;
+      const double a = o.dot(axis);
+      return std::abs(a) <= 0.1 && (o - a * axis).norm() <= 0.1;
+    };
+    const bool pInside = within(p);
+    if (pInside && !within(from)) continue;
+    SurfaceSample a, b;
+    const bool hitA = cylinder.sample(p, 1.0, a), hitB = cylinder.sampleMoved(p, from, 1.0, b);
     ASSERT_EQ(hitA, hitB);
     EXPECT_EQ(a.distance, b.distance);
     EXPECT_EQ(a.normal, b.normal);

@@ -1,6 +1,6 @@
 // Hard contact cases (spec: "hard cases stay numerically stable"): a 20 m/s impact on a plane
 // and on a 1 cm plate (no tunnelling), a cloth squeezed between two obstacles (nodes in two
-// contacts at once), and a kinematic obstacle pushing a cloth across the floor.
+// contacts at once), and kinematic obstacles (a box, a cylinder) pushing a cloth across the floor.
 
 #include "ContactTestSupport.h"
 
@@ -10,7 +10,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+#include <utility>
 
 namespace weft {
 namespace {
@@ -111,6 +113,44 @@ TEST(HardContact, MovingObstaclePushesTheCloth) {
     RecordProperty(std::string("pushed_shift_mm_") + method, std::to_string(shift * 1e3));
     RecordProperty(std::string("closest_to_face_mm_") + method, std::to_string(closest * 1e3));
     EXPECT_GT(shift, 0.15);
+  }
+}
+
+// The same with a cylinder standing on the floor (its bottom cap flush with it), which sweeps
+// over the cloth with its round side: the nodes it reaches are nearer its bottom cap than its
+// side and get the side's normal only through CylinderShape::sampleMoved.
+TEST(HardContact, MovingCylinderPushesTheCloth) {
+  nlohmann::json doc = test::clothScene(0.3, 10, Vec3(0, kSkin, 0), 0.01, 1000.0);
+  test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.2);
+  const double radius = 0.1;
+  test::addObstacle(doc, "cylinder", {{"a", {-0.3, 0.0, 0}}, {"b", {-0.3, 0.1, 0}}, {"radius", radius}}, 0.2);
+  doc["obstacles"][1]["motion"] = {
+      {"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.4}, {"offset", {0.4, 0, 0}}}}}};
+  // Measured: the Newton contact solve keeps every node in the skin (closest 1.0 mm outside);
+  // the PD solve, on this stiff cloth pressed into the cylinder's curve, stops at pd_iterations on
+  // some steps with nodes up to 3.8 mm inside (its known limitation, README "Contact"). With the
+  // nearest-surface rule nodes ended 99 mm inside and the cloth moved 0.11 m instead of 0.35.
+  const std::pair<const char*, double> methods[] = {{"pd", -5e-3}, {"newton", kSkin - 3 * kTolerance}};
+  for (const auto& [method, bound] : methods) {
+    SCOPED_TRACE(method);
+    doc["solver"]["contact"] = method;
+    const test::ContactRun run = test::runScene(doc, 40);
+    double closest = 1.0;  // the smallest distance from the axis, less the radius, below the top
+    for (int n = 1; n <= run.trajectory.stepCount(); ++n) {
+      const NodeMatrix& x = run.trajectory.positions[n];
+      ASSERT_TRUE(x.allFinite());
+      const double axisX = -0.3 + 1.0 * n * 0.01;
+      for (int i = 0; i < x.rows(); ++i)
+        if (x(i, 1) < 0.1) {
+          const double outside = std::hypot(x(i, 0) - axisX, x(i, 2)) - radius;
+          ASSERT_GT(outside, bound) << "step " << n << " node " << i;
+          closest = std::min(closest, outside);
+        }
+    }
+    const double shift = run.trajectory.positions.back().col(0).mean() - run.trajectory.positions.front().col(0).mean();
+    RecordProperty(std::string("pushed_shift_mm_") + method, std::to_string(shift * 1e3));
+    RecordProperty(std::string("closest_to_side_mm_") + method, std::to_string(closest * 1e3));
+    EXPECT_GT(shift, 0.3);
   }
 }
 

@@ -1,5 +1,6 @@
 #include <weft/contact/CylinderShape.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace weft {
@@ -33,6 +34,40 @@ bool CylinderShape::sample(const Vec3& p, double reach, SurfaceSample& out) cons
   }
   out.distance = distance;
   out.point = p - distance * out.normal;
+  return true;
+}
+
+bool CylinderShape::sampleMoved(const Vec3& p, const Vec3& from, double reach, SurfaceSample& out) const {
+  const Vec3 offset = p - middle_, startOffset = from - middle_;
+  const double axial = offset.dot(axis_), startAxial = startOffset.dot(axis_);
+  const Vec3 radialVector = offset - axial * axis_, startRadial = startOffset - startAxial * axis_;
+  const double radial = radialVector.norm();
+  const bool inside = std::abs(axial) <= halfLength_ && radial <= radius_;
+  const bool startedOutside = std::abs(startAxial) > halfLength_ || startRadial.norm() > radius_;
+  if (!inside || !startedOutside) return sample(p, reach, out);
+  // The solid is the slab |axial| <= h intersected with the infinite cylinder radial <= r; the
+  // segment enters it where it enters the later of the two (t in (0, 1], t = 1 at p).
+  double capEntry = -1.0, sideEntry = -1.0;
+  const double side = startAxial >= 0.0 ? 1.0 : -1.0;
+  const double above = side * startAxial - halfLength_;
+  if (above > 0.0) capEntry = above / (side * startAxial - side * axial);  // denominator >= above
+  const double startExcess = startRadial.squaredNorm() - radius_ * radius_;
+  if (startExcess > 0.0) {
+    // |q0 + t d|^2 = r^2 with q0 outside and q0 + d inside: the smaller root, in (0, 1].
+    const Vec3 d = radialVector - startRadial;
+    const double a = d.squaredNorm(), b = startRadial.dot(d);
+    sideEntry = (-b - std::sqrt(std::max(b * b - a * startExcess, 0.0))) / a;
+  }
+  if (capEntry >= sideEntry) {
+    out.normal = side * axis_;
+    out.distance = side * axial - halfLength_;
+  } else {
+    // Through the side: its normal at p (or, on the axis, where the path crossed the side).
+    const Vec3 entry = startRadial + sideEntry * (radialVector - startRadial);
+    out.normal = radial > 1e-12 * radius_ ? Vec3(radialVector / radial) : Vec3(entry.normalized());
+    out.distance = radial - radius_;
+  }
+  out.point = p - out.distance * out.normal;
   return true;
 }
 
