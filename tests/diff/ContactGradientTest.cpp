@@ -216,5 +216,35 @@ TEST(ContactGradient, NewtonForwardSlipAndCoupledContacts) {
   }
 }
 
+// Nodes sticking to the floor and the wall at once have no unique impulse split (T^T = [I I; I I]
+// for the two contacts of such a node: singular). The backward pass takes the minimum-norm split
+// (ContactAdjoint::kSingularCouplingShift); the node's motion depends on the total only, so the
+// gradient still matches finite differences. Before, the backward pass failed with exit 3 (seen
+// on the Sock task, step 399 of its first L-BFGS-B evaluation).
+TEST(ContactGradient, NodesStickingToTwoObstaclesAtOnce) {
+  TempDir dir;
+  nlohmann::json doc = cornerScene();
+  doc["obstacles"][0]["friction"] = 2.0;
+  doc["obstacles"][1]["friction"] = 2.0;
+  doc["gravity"] = {2.0, -9.8, 0.0};  // pressed into the wall
+  doc["cloths"][0]["initial_velocity"] = {0.05, 0.0, 0.0};
+  doc["solver"]["contact"] = "newton";
+  const Scene scene = withTask(dir, doc, {{"gravity.0", 2.5}},
+                               {"gravity.0", "cloths.0.material.density", "cloths.0.initial_velocity.0"});
+  const ForwardPass pass = runForwardPass(withTightForwardSolver(scene, 1e-8));
+  int doubleSticks = 0;  // (step, node) with a stick on both planes
+  for (const StepContacts& step : pass.trajectory.contacts) {
+    std::vector<int> floor, wall;
+    for (const ContactPoint& p : step.points)
+      if (p.branch == ContactBranch::Stick) (p.obstacle == 0 ? floor : wall).push_back(p.node);
+    for (int node : floor) doubleSticks += std::count(wall.begin(), wall.end(), node) > 0;
+  }
+  EXPECT_GE(doubleSticks, 10);
+  for (const char* method : {"gmres", "direct"}) {
+    SCOPED_TRACE(method);
+    test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options(method)));
+  }
+}
+
 }  // namespace
 }  // namespace weft

@@ -130,10 +130,19 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
   tTransposed_.setFromTriplets(entries.begin(), entries.end());
   tTransposed_.makeCompressed();
   tSolver_.compute(tTransposed_);
+  if (tSolver_.info() != Eigen::Success) {
+    // A node sticking to two obstacles (or pairs sticking around a node) has no unique impulse
+    // split: two sticks on one node give T^T = [I I; I I]. The node's motion depends on the total
+    // impulse only, which every solution gives; the forward's Gauss-Seidel picked one split. A
+    // shift of the diagonal makes the solve pick the minimum-norm split (as the shift goes to 0),
+    // and the direct fallback's augmented system takes the same shifted block.
+    for (int k = 0; k < 3 * count; ++k) tTransposed_.coeffRef(k, k) += kSingularCouplingShift;
+    tSolver_.compute(tTransposed_);
+  }
   if (tSolver_.info() != Eigen::Success)
     throw NumericalError(step, "backward",
                          "the contacts sharing a node have no unique impulse split (singular contact coupling "
-                         "of " + std::to_string(count) + " contacts)");
+                         "of " + std::to_string(count) + " contacts, also with the diagonal shifted by 1e-9)");
 }
 
 void ContactAdjoint::applyTransposed(const NodeMatrix& z, NodeMatrix& wbar, Eigen::MatrixX3d& y) const {
