@@ -187,6 +187,31 @@ TEST(AnalyticShapeDegenerate, CentreOfSphereAndAxisOfCapsule) {
 namespace weft {
 namespace {
 
+// sampleMoved's other cases: for random points p and path starts `from` (drawn by `draw`), unless
+// p is inside and `from` outside, the answer is sample(p)'s. Counts the outside and inside points
+// checked.
+void expectSampleMovedIsSampleOtherwise(const ObstacleShape& shape, const std::function<bool(const Vec3&)>& within,
+                                        const std::function<void(std::mt19937&, Vec3&, Vec3&)>& draw,
+                                        unsigned seed) {
+  std::mt19937 rng(seed);
+  int outside = 0, inside = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    Vec3 p, from;
+    draw(rng, p, from);
+    const bool pInside = within(p);
+    if (pInside && !within(from)) continue;
+    SurfaceSample a, b;
+    const bool hitA = shape.sample(p, 1.0, a), hitB = shape.sampleMoved(p, from, 1.0, b);
+    ASSERT_EQ(hitA, hitB);
+    EXPECT_EQ(a.distance, b.distance);
+    EXPECT_EQ(a.normal, b.normal);
+    EXPECT_EQ(a.point, b.point);
+    (pInside ? inside : outside)++;
+  }
+  EXPECT_GT(outside, 100);
+  EXPECT_GT(inside, 20);
+}
+
 // BoxShape::sampleMoved: a point inside the box that came from outside gets the face its path
 // crossed, not the nearest face; everything else is sample()'s answer. The box is rotated, and
 // the points are given in its body frame (x = 0.1 is a side face, y = -0.05 the bottom).
@@ -235,26 +260,14 @@ TEST_F(BoxEntryFace, TheFaceCrossedNotAPreferredOne) {
 TEST_F(BoxEntryFace, OutsideOrAlreadyInsideIsTheSignedDistanceSample) {
   // Outside the box (every node resting in a skin) the frame is the smooth distance gradient
   // whatever the path; a path that starts inside has no entry face: the nearest face.
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
-  int outside = 0, inside = 0;
-  for (int trial = 0; trial < 5000; ++trial) {
-    const Vec3 p = kCentre + Vec3(u(rng), u(rng), u(rng));
-    const Vec3 from = kCentre + 0.3 * Vec3(u(rng), u(rng), u(rng));
-    const Vec3 local = kRotation.transpose() * (p - kCentre), start = kRotation.transpose() * (from - kCentre);
-    const bool pInside = (local.cwiseAbs() - half).maxCoeff() <= 0.0;
-    const bool fromInside = (start.cwiseAbs() - half).maxCoeff() <= 0.0;
-    if (pInside && !fromInside) continue;
-    SurfaceSample a, b;
-    const bool hitA = box.sample(p, 1.0, a), hitB = box.sampleMoved(p, from, 1.0, b);
-    ASSERT_EQ(hitA, hitB);
-    EXPECT_EQ(a.distance, b.distance);
-    EXPECT_EQ(a.normal, b.normal);
-    EXPECT_EQ(a.point, b.point);
-    (pInside ? inside : outside)++;
-  }
-  EXPECT_GT(outside, 100);
-  EXPECT_GT(inside, 20);
+  expectSampleMovedIsSampleOtherwise(
+      box, [&](const Vec3& q) { return ((kRotation.transpose() * (q - kCentre)).cwiseAbs() - half).maxCoeff() <= 0.0; },
+      [](std::mt19937& rng, Vec3& p, Vec3& from) {
+        std::uniform_real_distribution<double> u(-0.4, 0.4);
+        p = kCentre + Vec3(u(rng), u(rng), u(rng));
+        from = kCentre + 0.3 * Vec3(u(rng), u(rng), u(rng));
+      },
+      7);
 }
 
 // CylinderShape::sampleMoved, the same rule for a cylinder whose flat cap may lie flush with a
@@ -304,28 +317,19 @@ TEST_F(CylinderEntrySurface, TheSurfaceCrossedNotAPreferredOne) {
 }
 
 TEST_F(CylinderEntrySurface, OutsideOrAlreadyInsideIsTheSignedDistanceSample) {
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
-  int outside = 0, inside = 0;
-  for (int trial = 0; trial < 5000; ++trial) {
-    const Vec3 p = world(u(rng), u(rng), u(rng)), from = world(0.6 * u(rng), 0.6 * u(rng), 0.6 * u(rng));
-    const auto within = [&](const Vec3& q) {
-      const Vec3 o = q - kCentre;
-      const double a = o.dot(axis);
-      return std::abs(a) <= 0.1 && (o - a * axis).norm() <= 0.1;
-    };
-    const bool pInside = within(p);
-    if (pInside && !within(from)) continue;
-    SurfaceSample a, b;
-    const bool hitA = cylinder.sample(p, 1.0, a), hitB = cylinder.sampleMoved(p, from, 1.0, b);
-    ASSERT_EQ(hitA, hitB);
-    EXPECT_EQ(a.distance, b.distance);
-    EXPECT_EQ(a.normal, b.normal);
-    EXPECT_EQ(a.point, b.point);
-    (pInside ? inside : outside)++;
-  }
-  EXPECT_GT(outside, 100);
-  EXPECT_GT(inside, 20);
+  expectSampleMovedIsSampleOtherwise(
+      cylinder,
+      [&](const Vec3& q) {
+        const Vec3 o = q - kCentre;
+        const double a = o.dot(axis);
+        return std::abs(a) <= 0.1 && (o - a * axis).norm() <= 0.1;
+      },
+      [&](std::mt19937& rng, Vec3& p, Vec3& from) {
+        std::uniform_real_distribution<double> u(-0.2, 0.2);
+        p = world(u(rng), u(rng), u(rng));
+        from = world(0.6 * u(rng), 0.6 * u(rng), 0.6 * u(rng));
+      },
+      11);
 }
 
 }  // namespace
