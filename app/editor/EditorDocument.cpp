@@ -81,16 +81,19 @@ void EditorDocument::saveAs(const std::string& file) {
   // edit: the document must equal the file just written (clean, and Save writes the same), and
   // undoing it could only bring back references that name nothing from the new folder. So the
   // whole history is rebased with it: every undo and redo state keeps naming the files it named.
-  // The editor's own target file is not moved: it is written next to the scene, wherever that is.
-  auto rebase = [&](nlohmann::json& document, const nlohmann::json& sidecar) {
+  // The editor's own target file is not moved: it is written next to the scene, wherever that is,
+  // under the new scene's name (FinalTargets.h, finalTargetFileAfterSaveAs).
+  auto rebase = [&](nlohmann::json& document, nlohmann::json& sidecar) {
+    renameFinalTargetFile(document, sidecar, file_, file);
     std::vector<std::string> keep;
     if (!ownedFinalTargetFile(document, sidecar).empty()) keep.push_back("task.loss.final.target");
     rebaseSceneFiles(document, from, to, keep);
   };
-  nlohmann::json saved = document_;
-  rebase(saved, sidecar_);
+  nlohmann::json saved = document_, savedSidecar = sidecar_;
+  rebase(saved, savedSidecar);
   writeFileAtomically(file, saved.dump(2) + "\n");  // throws: nothing has changed yet
   document_ = std::move(saved);
+  sidecar_ = std::move(savedSidecar);
   for (std::vector<Step>* stack : {&undo_, &redo_})
     for (Step& step : *stack) rebase(step.before, step.sidecarBefore);
   const bool directoryChanged =

@@ -76,8 +76,10 @@ std::string EditorSession::writeTargets(const std::string& sceneFile) {
     return "the final targets were not written: the scene does not validate (save again once it does)";
   // Targets read from an opened scene are written only once edited (the scene then names the
   // editor's file); until then the scene's own file stays as it is.
-  const std::string name = ownedFinalTargetFile(document_.document(), document_.sidecar());
-  if (name.empty()) return "";
+  const std::string owned = ownedFinalTargetFile(document_.document(), document_.sidecar());
+  if (owned.empty()) return "";
+  // Written before a Save As renames it (EditorDocument::saveAs): under the name it will have.
+  const std::string name = finalTargetFileAfterSaveAs(owned, document_.file(), sceneFile);
   const std::string directory = std::filesystem::absolute(sceneFile).parent_path().string();
   writeTargetNpy(resolveScenePath(directory, name), finalTargetMatrix(list, buildClothModel(*scene).rest.vertices));
   return "";

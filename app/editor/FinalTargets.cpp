@@ -37,6 +37,22 @@ std::string finalTargetFileName(const std::string& sceneFile) {
   return stem + "-final-target.npy";
 }
 
+std::string finalTargetFileAfterSaveAs(const std::string& name, const std::string& oldScene,
+                                       const std::string& newScene) {
+  return name == finalTargetFileName(oldScene) ? finalTargetFileName(newScene) : name;
+}
+
+void renameFinalTargetFile(nlohmann::json& document, nlohmann::json& sidecar, const std::string& oldScene,
+                           const std::string& newScene) {
+  if (!sidecar.contains("final_targets") || !sidecar["final_targets"].is_object()) return;
+  nlohmann::json& file = sidecar["final_targets"]["file"];
+  if (!file.is_string()) return;
+  const std::string renamed = finalTargetFileAfterSaveAs(file.get<std::string>(), oldScene, newScene);
+  nlohmann::json* named = findJsonPath(document, "task.loss.final.target");
+  if (named && *named == file) *named = renamed;
+  file = renamed;
+}
+
 std::string ownedFinalTargetFile(const nlohmann::json& document, const nlohmann::json& sidecar) {
   if (finalTargets(sidecar).empty()) return "";
   const nlohmann::json& file = sidecar["final_targets"].value("file", nlohmann::json());

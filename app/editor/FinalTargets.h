@@ -35,6 +35,15 @@ std::vector<FinalTarget> finalTargets(const nlohmann::json& sidecar);
 // ("untitled-final-target.npy" for a document without a file).
 std::string finalTargetFileName(const std::string& sceneFile);
 
+// Save As from `oldScene` to `newScene`: the name the editor's own target file takes. It follows
+// the scene ("<stem>-final-target.npy"), so that a copy saved beside the original does not share,
+// and overwrite, the original's file; a name the user chose (any other) is kept.
+std::string finalTargetFileAfterSaveAs(const std::string& name, const std::string& oldScene,
+                                       const std::string& newScene);
+// Renames the sidecar's target file, and the final term naming it, by that rule.
+void renameFinalTargetFile(nlohmann::json& document, nlohmann::json& sidecar, const std::string& oldScene,
+                           const std::string& newScene);
+
 // The target file the editor writes when `document` is saved: the sidecar holds targets and the
 // final term names the sidecar's own file. "" otherwise (no targets, or targets read from a file
 // the scene still names: that file is the scene's, not the editor's). The name is relative to the

@@ -170,9 +170,9 @@ TEST(ScenePathRebase, SessionSaveAsWritesItsTargetsBesideTheNewSceneAndKeepsTheR
   EXPECT_EQ(session.saveAs(copy), "");
   const nlohmann::json saved = readJson(copy);
   EXPECT_EQ(saved["cloths"][1]["mesh"]["file"], "../project/meshes/strip.obj");
-  // The editor's own target file goes with the scene (written beside it), so its name stays.
-  EXPECT_EQ(saved["task"]["loss"]["final"]["target"], "scene-final-target.npy");
-  EXPECT_TRUE(fs::is_regular_file(dir.file("elsewhere/scene-final-target.npy")));
+  // The editor's own target file goes with the scene (written beside it, named after it).
+  EXPECT_EQ(saved["task"]["loss"]["final"]["target"], "copy-final-target.npy");
+  EXPECT_TRUE(fs::is_regular_file(dir.file("elsewhere/copy-final-target.npy")));
   EXPECT_FALSE(fs::exists(dir.file("project/scene-final-target.npy")))
       << "nothing written to the old folder";
   // The engine builds the task from the new place (the target file read and shape-checked).
@@ -181,6 +181,35 @@ TEST(ScenePathRebase, SessionSaveAsWritesItsTargetsBesideTheNewSceneAndKeepsTheR
 
   EXPECT_FALSE(session.cacheStale()) << "the same files, so the same run";
   EXPECT_EQ(session.availableFrames(), 3);
+}
+
+// Save As beside the original: the copy gets its own target file, so editing the copy's targets
+// never rewrites the original's (both used to name scene-final-target.npy).
+TEST(ScenePathRebase, SaveAsBesideTheOriginalGivesTheCopyItsOwnTargetFile) {
+  TempDir dir;
+  fs::create_directories(dir.file("project/meshes"));
+  dir.write("project/meshes/strip.obj", kStripObj);
+  const std::string original =
+      test::writeScene(dir.file("project/scene.json"), sceneWithMesh("meshes/strip.obj"));
+  EditorSession session("");
+  session.open(original);
+  ASSERT_TRUE(session.document().valid()) << session.document().validationError();
+  ASSERT_EQ(session.setTarget(3, Vec3(0.1, 0.2, 0.3)), "");
+  ASSERT_EQ(session.save(), "");
+  const std::string originalTargets = test::readFile(dir.file("project/scene-final-target.npy"));
+
+  const std::string copy = dir.file("project/copy.json");
+  ASSERT_EQ(session.saveAs(copy), "");
+  EXPECT_EQ(readJson(copy)["task"]["loss"]["final"]["target"], "copy-final-target.npy");
+  EXPECT_EQ(test::readFile(dir.file("project/copy-final-target.npy")), originalTargets)
+      << "the same targets, in the copy's own file";
+  ASSERT_EQ(session.setTarget(3, Vec3(0.4, 0.5, 0.6)), "");
+  ASSERT_EQ(session.save(), "");
+  EXPECT_NE(test::readFile(dir.file("project/copy-final-target.npy")), originalTargets);
+  EXPECT_EQ(test::readFile(dir.file("project/scene-final-target.npy")), originalTargets)
+      << "the original's targets are untouched";
+  EXPECT_EQ(readJson(original)["task"]["loss"]["final"]["target"], "scene-final-target.npy");
+  EXPECT_NO_THROW(TaskLoss{loadScene(copy)});
 }
 
 }  // namespace
