@@ -316,10 +316,20 @@ std::optional<Vec3> EditorSession::objectOrigin() const {
   return std::nullopt;
 }
 
+RigidPose EditorSession::shownPose() const {
+  const Scene* scene = document_.scene();
+  if (!scene || active_.kind != EditorObject::Kind::Obstacle || active_.index >= int(scene->obstacles.size()))
+    return RigidPose();
+  const Obstacle& o = scene->obstacles[std::size_t(active_.index)];
+  return o.motion ? poseAt(*o.motion, timelineTime()) : RigidPose();
+}
+
 std::optional<Gizmo> EditorSession::gizmo(int width, int height) const {
   const auto origin = objectOrigin();
   if (!origin || !origin->allFinite()) return std::nullopt;
-  return Gizmo(origin->cast<float>(), objectRotates(document_.document(), active_), camera_, width, height);
+  // A moving obstacle's gizmo sits on the obstacle as the viewport shows it at this time.
+  const Vec3 shown = shownPose().apply(*origin);
+  return Gizmo(shown.cast<float>(), objectRotates(document_.document(), active_), camera_, width, height);
 }
 
 GizmoHandle EditorSession::pickGizmo(float x, float y, int width, int height) const {
@@ -374,11 +384,24 @@ std::string EditorSession::dragGizmo(float x, float y) {
     return "";
   }
   nlohmann::json entry = drag_->start;
+  // A moving obstacle is dragged where it is shown; the scene holds its rest pose, which the
+  // motion turns by R: a world move d is R^T d at rest. A turn about a world axis is one about a
+  // rest axis only while R is the identity.
+  const Mat3 shownRotation = shownPose().rotation;
+  const bool turned = !shownRotation.isApprox(Mat3::Identity(), 1e-12);
+  if (turned && isRotation(handle))
+    return active_.path() + ": its motion has turned it at this time; turn it at a time where it is not turned "
+                            "(e.g. frame 0)";
   try {
-    if (isRotation(handle))
+    if (isRotation(handle)) {
       rotateObject(entry, active_.kind, axis, amount, drag_->centre);
-    else
+    } else if (!turned) {
       translateObject(entry, active_.kind, axis, amount);
+    } else {
+      const Vec3 atRest = shownRotation.transpose() * (amount * Vec3::Unit(axis));
+      for (int k = 0; k < 3; ++k)
+        if (atRest[k] != 0.0) translateObject(entry, active_.kind, k, atRest[k]);
+    }
   } catch (const std::exception& e) {
     return active_.path() + ": " + e.what();
   }

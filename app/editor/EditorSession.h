@@ -16,6 +16,7 @@
 #include "StepStatsSeries.h"
 #include "VertexInspector.h"
 
+#include <weft/contact/ContactObstacle.h>
 #include <weft/physics/ClothModel.h>
 #include <weft/render/Camera.h>
 #include <weft/render/RenderScene.h>
@@ -187,8 +188,12 @@ class EditorSession {
                           const std::string& coalesceKey = "");
   std::optional<Vec3> shownPosition(int node);  // double precision, unlike the render frame
   std::string setParameterValues(const std::string& label, const std::vector<double>& values);
-  // Where the active object's gizmo sits, from the validated scene; nullopt when it cannot.
+  // The active object's centre in the scene's own (rest) coordinates, from the validated scene;
+  // nullopt when it cannot be found. A handle's is where its keys put it at the shown time.
   std::optional<Vec3> objectOrigin() const;
+  // Where a moving obstacle is shown at the timeline's time (its motion's pose; identity for
+  // everything else): the gizmo sits at shownPose().apply(objectOrigin()).
+  RigidPose shownPose() const;
   std::string handleError() const;  // why keys cannot be edited now ("" when they can)
   void dropStaleActiveObject();
 

@@ -273,5 +273,62 @@ TEST(EditorSessionGizmo, OneUndoStepPerDragAndAnObjectGoneMidDrag) {
   EXPECT_EQ(session.draggedHandle(), GizmoHandle::None);
 }
 
+// A moving obstacle's gizmo sits where the viewport shows it at the timeline's time, and a drag
+// there moves it by what was dragged: along the world axis while its motion only translates it,
+// and the rest pose by R^T (the drag) once the motion has turned it.
+TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
+  EditorSession session("");
+  nlohmann::json doc = EditorDocument::defaultSceneDocument();  // dt 0.01
+  doc["obstacles"] = nlohmann::json::parse(R"([{"box": {"center": [0, 0, 0], "size": [0.4, 0.4, 0.4]},
+      "friction": 0.3, "motion": {"keyframes": [{"time": 0.0, "offset": [0, 0, 0]},
+                                               {"time": 0.4, "offset": [0.4, 0, 0]}]}}])");
+  session.newDocument(doc);
+  ASSERT_EQ(session.setActiveObject("obstacles.0"), "");
+  session.camera() = frontCamera();
+  session.playback().scrub(20, session.timelineFrames());  // t = 0.2 s: offset (0.2, 0, 0)
+  const auto g = session.gizmo(kWidth, kHeight);
+  ASSERT_TRUE(g);
+  EXPECT_NEAR(g->origin().x(), 0.2f, 1e-6f);
+  EXPECT_NEAR(g->origin().y(), 0.0f, 1e-6f);
+  const auto grab = g->grabPixel(GizmoHandle::TranslateY);
+  ASSERT_TRUE(grab);
+  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight), "");
+  ASSERT_EQ(session.dragGizmo(grab->x(), grab->y() - 20.0f), "");
+  session.endGizmoDrag();
+  const nlohmann::json* centre = session.document().find("obstacles.0.box.center");
+  ASSERT_TRUE(centre);
+  EXPECT_NEAR((*centre)[1].get<double>(), 20.0 * g->metresPerPixel(), 1e-6);
+  EXPECT_EQ((*centre)[0], 0.0) << "the rest pose moves by the drag, not to where it is shown";
+
+  // Turning about y at 90 degrees per second: at t = 1 s (frame 100) R is a quarter turn, so a
+  // drag along world +x moves the rest pose along R^T x = +z.
+  doc["obstacles"][0]["motion"] =
+      nlohmann::json::parse(R"({"rotate": {"center": [0, 0, 0], "axis": [0, 1, 0], "degrees_per_second": 90.0}})");
+  session.newDocument(doc);
+  ASSERT_EQ(session.setActiveObject("obstacles.0"), "");
+  session.camera() = frontCamera();
+  session.playback().scrub(100, session.timelineFrames());
+  const auto turned = session.gizmo(kWidth, kHeight);
+  ASSERT_TRUE(turned);
+  const auto grabX = turned->grabPixel(GizmoHandle::TranslateX);
+  ASSERT_TRUE(grabX);
+  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateX, grabX->x(), grabX->y(), kWidth, kHeight), "");
+  ASSERT_EQ(session.dragGizmo(grabX->x() + 20.0f, grabX->y()), "");
+  session.endGizmoDrag();
+  centre = session.document().find("obstacles.0.box.center");
+  ASSERT_TRUE(centre);
+  const double moved = 20.0 * turned->metresPerPixel();
+  EXPECT_NEAR((*centre)[0].get<double>(), 0.0, 1e-9 * moved);
+  EXPECT_NEAR((*centre)[2].get<double>(), moved, 1e-6) << "R^T x = z for a quarter turn about y";
+  // A turn about a world axis is refused while the motion has it turned, and nothing changes.
+  const nlohmann::json before = session.document().document();
+  const auto ring = turned->grabPixel(GizmoHandle::RotateZ);
+  ASSERT_TRUE(ring);
+  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::RotateZ, ring->x(), ring->y(), kWidth, kHeight), "");
+  EXPECT_NE(session.dragGizmo(ring->x() + 15.0f, ring->y() + 15.0f).find("its motion has turned it"), std::string::npos);
+  session.endGizmoDrag();
+  EXPECT_EQ(session.document().document(), before);
+}
+
 }  // namespace
 }  // namespace weft::editor
