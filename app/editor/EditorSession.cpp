@@ -200,8 +200,12 @@ std::string EditorSession::clickObject(float x, float y, int width, int height) 
   if (showingCache_)
     if (const auto f = cache_.frame(std::min(playback_.frame(), cache_.frameCount() - 1)))
       time = f->state * shown->time.dt;
+  // Planes count where they are drawn (the renderer's square around the rest of the frame).
+  const render::Bounds bounds = render::sceneBounds(*frame);
+  const DrawnPlaneExtent planes{bounds.empty() ? Vec3(camera_.target.cast<double>()) : Vec3(bounds.center().cast<double>()),
+                                double(render::planeHalfSize(bounds))};
   const auto hit = pickObject(*shown, time, frame->cloth, pixelRay(camera_, x, y, width, height),
-                              camera_.farPlane);
+                              camera_.farPlane, planes);
   return setActiveObject(hit ? hit->object.path() : "");
 }
 

@@ -1,5 +1,7 @@
 #include "ObjectPicking.h"
 
+#include <weft/render/ShapeTessellation.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -33,9 +35,24 @@ std::optional<double> traceShape(const ObstacleShape& shape, const RigidPose& po
   return std::nullopt;
 }
 
+namespace {
+
+bool insideDrawnSquare(const Obstacle& plane, const RigidPose& pose, const DrawnPlaneExtent& extent,
+                       const Vec3& hit) {
+  const Vec3 normal = (pose.rotation * plane.normal).normalized();
+  const Vec3 point = pose.apply(plane.point);
+  const Vec3 centre = extent.centre - (extent.centre - point).dot(normal) * normal;
+  render::Vec3f e1, e2;
+  render::perpendicularFrame(normal.cast<float>(), e1, e2);
+  const Vec3 d = hit - centre;
+  return std::abs(d.dot(e1.cast<double>())) <= extent.halfSize && std::abs(d.dot(e2.cast<double>())) <= extent.halfSize;
+}
+
+}  // namespace
+
 std::optional<ObjectHit> pickObject(const Scene& scene, double time,
                                     const render::SurfaceMesh& cloth, const Ray& ray,
-                                    double maxDistance) {
+                                    double maxDistance, const std::optional<DrawnPlaneExtent>& planes) {
   std::optional<ObjectHit> best;
   auto offer = [&](EditorObject::Kind kind, int index, double distance) {
     if (best && best->distance <= distance) return;
@@ -50,8 +67,11 @@ std::optional<ObjectHit> pickObject(const Scene& scene, double time,
     if (!shape) continue;
     // Where the viewport draws it: the frame builder moves an obstacle by the same motion.
     const RigidPose pose = o.motion ? poseAt(*o.motion, time) : RigidPose();
-    if (const auto t = traceShape(*shape, pose, ray, maxDistance))
+    if (const auto t = traceShape(*shape, pose, ray, maxDistance)) {
+      const Vec3 hit = ray.origin.cast<double>() + *t * ray.direction.cast<double>().normalized();
+      if (o.shape == Obstacle::Shape::Plane && planes && !insideDrawnSquare(o, pose, *planes, hit)) continue;
       offer(EditorObject::Kind::Obstacle, int(k), *t);
+    }
   }
   std::vector<int> offsets{0};
   for (const Cloth& c : scene.cloths) offsets.push_back(offsets.back() + c.mesh.vertexCount());

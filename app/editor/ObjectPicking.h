@@ -24,6 +24,14 @@ namespace weft::editor {
 std::optional<double> traceShape(const ObstacleShape& shape, const RigidPose& pose, const Ray& ray,
                                  double maxDistance);
 
+// The square a plane is drawn as (render::planeHalfSize): centred on `centre` projected onto the
+// plane, sides along render::perpendicularFrame of its normal. A plane is infinite to contact,
+// but a click beside its drawn square is on the background.
+struct DrawnPlaneExtent {
+  Vec3 centre = Vec3::Zero();
+  double halfSize = 0.0;
+};
+
 struct ObjectHit {
   EditorObject object;    // an obstacle or a cloth
   double distance = 0.0;  // along the ray, m
@@ -33,8 +41,10 @@ struct ObjectHit {
 // motion's pose then), or a cloth of `cloth`, the cloths drawn as one mesh in scene order
 // (RenderScene::cloth). Cloths are skipped when `cloth` does not have the scene's vertex count.
 // nullopt when it meets nothing.
+// With `planes`, a plane counts only inside its drawn square.
 std::optional<ObjectHit> pickObject(const Scene& scene, double time,
                                     const render::SurfaceMesh& cloth, const Ray& ray,
-                                    double maxDistance);
+                                    double maxDistance,
+                                    const std::optional<DrawnPlaneExtent>& planes = std::nullopt);
 
 }  // namespace weft::editor

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cmath>
 
 namespace weft::editor {
@@ -138,6 +140,24 @@ TEST(ObjectPicking, ObstaclesArePickedWhereTheirMotionHasTakenThem) {
   EXPECT_FALSE(pickObject(scene, 0.0, cloth, downAt(2.0, 0.0), 100.0));
   EXPECT_FALSE(pickObject(scene, 1.0, cloth, downAt(0.0, 0.0), 100.0)) << "it has moved away";
   EXPECT_TRUE(pickObject(scene, 1.0, cloth, downAt(2.0, 0.0), 100.0));
+}
+
+// A plane is infinite to contact but drawn as a square (render::planeHalfSize around the frame's
+// centre): with that extent a click beside the square is on the background.
+TEST(ObjectPicking, APlaneIsPickedWhereItIsDrawn) {
+  nlohmann::json doc = test::gridScene(0.2, 1, 0.01, 1);
+  doc["cloths"][0]["mesh"]["transform"] = {{"translate", {0.0, 1.0, 0.0}}};
+  doc["obstacles"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  const Scene scene = test::parse(doc);
+  const render::SurfaceMesh cloth = clothSurface(scene);
+  const DrawnPlaneExtent square{Vec3(0.5, 1.0, 0.0), 2.0};  // x, z in [-1.5, 2.5] x [-2, 2]
+  for (const auto& [x, z, inside] : {std::tuple{0.0, 0.0, true}, {2.4, 1.9, true}, {-1.4, -1.9, true},
+                                      {2.6, 0.0, false}, {0.0, -2.1, false}, {-1.6, 0.0, false}}) {
+    SCOPED_TRACE(std::to_string(x) + ", " + std::to_string(z));
+    EXPECT_TRUE(pickObject(scene, 0.0, cloth, downAt(x, z), 100.0)) << "infinite without an extent";
+    const auto hit = pickObject(scene, 0.0, cloth, downAt(x, z), 100.0, square);
+    EXPECT_EQ(hit.has_value(), inside);
+  }
 }
 
 // The hanging cloth (x in [-0.5, 0.5], y in [0.5, 1.5], z = 0) with a sphere in front of its

@@ -29,6 +29,8 @@ void extendRows(Bounds& b, const PointMatrix& m) {
 
 }  // namespace
 
+float planeHalfSize(const Bounds& bounds) { return 2.5f * bounds.radius(); }
+
 Bounds sceneBounds(const RenderScene& scene) {
   Bounds b;
   extendRows(b, scene.cloth.positions);

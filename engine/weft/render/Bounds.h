@@ -23,4 +23,9 @@ struct Bounds {
 // unbounded and left out (they are drawn sized to the rest).
 Bounds sceneBounds(const RenderScene& scene);
 
+// How a plane is drawn for a frame with these bounds: a square of this half size, centred on the
+// bounds' centre projected onto the plane, with sides along perpendicularFrame(normal)
+// (ShapeTessellation.h). What picking treats as the plane's extent.
+float planeHalfSize(const Bounds& bounds);
+
 }  // namespace weft::render

@@ -275,7 +275,7 @@ void Renderer::drawLines(const std::vector<float>& vertices, float widthPixels, 
 }
 
 void Renderer::drawGround(const RenderScene& scene, const RenderStyle& style, const Frame& f) {
-  const float halfSize = 2.5f * f.radius;
+  const float halfSize = planeHalfSize(f.bounds);
   const float spacing = niceSpacing(0.25f * f.radius);
   LitMesh& fills = cleared(r_->shapes);
   std::vector<float>& lines = r_->vertices;
