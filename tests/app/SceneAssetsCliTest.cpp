@@ -113,8 +113,10 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
                                             "fail_percent", "speedup_vs_direct", "gradient_rel_error",
                                             "forward_ms_per_step", "forward_unconverged", "peak_rss_mb",
                                             "delta_p_ms_per_step", "delta_r_ms_per_step", "fallback_ms_per_step",
-                                            "cpu_ms_per_step", "cpu_speedup_vs_direct"};
+                                            "cpu_ms_per_step", "cpu_speedup_vs_direct", "adjoint_growth"};
   EXPECT_EQ(rows[0], columns);
+  // The adjoint's growth over each pass (diff/AdjointGrowth.h): at least 1 by definition.
+  for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_GE(std::stod(rows[i].back()), 1.0) << "row " << i;
   // GMRES at tolerance 1e-6 gives the direct solve's gradient to about 6e-7 on Wind here (1e-5 in
   // the full 200-step run, where errors of the per-step solves accumulate); at 1e-4 about 1e-5.
   // Slope goes through the contact adjoint (every node slipping).
