@@ -5,6 +5,7 @@
 #include "EditorSession.h"
 
 #include <weft/core/Error.h>
+#include <weft/core/ProcessCpuTime.h>
 
 #include <imgui.h>
 
@@ -27,14 +28,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// CPU time of the whole process (every thread: the UI, llvmpipe's rasterizer threads, a worker):
-// on a machine shared with other jobs the wall time of a frame includes waiting for a core, the
-// CPU time is the work the frame took.
-double processCpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
+// CPU time of the whole process (every thread: the UI, llvmpipe's rasterizer threads, a worker).
+double processCpuMs() { return 1e3 * processCpuSeconds(); }
 
 struct FrameTime {
   double wall = 0, cpu = 0;  // ms

@@ -30,6 +30,7 @@
 #include "PaperTables.h"
 
 #include <weft/core/Error.h>
+#include <weft/core/ProcessCpuTime.h>
 #include <weft/diff/ParameterSet.h>
 #include <weft/io/AtomicFile.h>
 #include <weft/io/StagedDirectory.h>
@@ -43,7 +44,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -151,12 +151,6 @@ Eigen::VectorXd randomStart(const ParameterSpace& space, unsigned seed) {
   Eigen::VectorXd u(z0.size());
   for (int i = 0; i < u.size(); ++i) u[i] = uniform(random);
   return box.repairedCoordinates(u);
-}
-
-double processCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 PassTiming timePasses(const Scene& scene, const ParameterSet& parameters) {

@@ -11,6 +11,7 @@
 #include "../CommandLine.h"
 #include "../Commands.h"
 
+#include <weft/core/ProcessCpuTime.h>
 #include <weft/diff/Backpropagation.h>
 #include <weft/diff/ForwardPass.h>
 #include <weft/diff/ParameterSet.h>
@@ -27,7 +28,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -80,14 +80,6 @@ std::vector<BackwardCase> backwardCases(const std::vector<std::string>& names) {
                        1e-7});
   }
   return cases;
-}
-
-// CPU seconds of this process (one thread: the benchmark's own work), so that the rows can be
-// compared on a machine shared with other jobs, where wall-clock time is inflated by waiting.
-double processCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
 double peakRssMegabytes() {
