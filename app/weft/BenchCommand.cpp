@@ -25,15 +25,23 @@ int benchCommand(const std::vector<std::string>& arguments) {
                           arguments[i + 1] != "applications";
     args.push_back("--paper-meshes=" + (hasValue ? arguments[++i] : std::string()));
   }
-  CommandLine cl(args, {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks", "--seeds", "--budget",
-                        "--contact", "--paper-meshes"},
-                 {"--quick", "--resume"});
+  CommandLine cl(
+      args,
+      {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks", "--seeds",
+       "--budget", "--contact", "--paper-meshes", "--subdivisions", "--resolution"},
+      {"--quick", "--resume"});
   if (cl.positional().size() != 1)
-    cl.fail("NAME", "bench takes one benchmark name: forward, backward, continuity, contact, applications or render");
+    cl.fail("NAME",
+            "bench takes one benchmark name: forward, backward, continuity, contact, applications "
+            "or render");
   const std::string name = cl.positional()[0];
   const std::string out = cl.value("--out", "out/bench-" + name);
+  for (const char* option : {"--subdivisions", "--resolution"})
+    if (cl.has(option) && name != "continuity")
+      cl.fail(option, "applies to the continuity benchmark only");
   if (name == "applications") {
-    if (cl.has("--resolutions")) cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
+    if (cl.has("--resolutions"))
+      cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
     if (cl.has("--contact")) cl.fail("--contact", "applies to the contact benchmark only");
     return applicationsBenchmark(cl, out);
   }
@@ -44,9 +52,11 @@ int benchCommand(const std::vector<std::string>& arguments) {
     cl.fail("--contact", "applies to the contact and continuity benchmarks only");
   if (name == "forward") return forwardBenchmark(cl, out);
   if (name == "backward") return backwardBenchmark(cl, out);
-  if (cl.has("--resolutions")) cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
+  if (cl.has("--resolutions"))
+    cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
   if (name == "continuity") return continuityBenchmark(cl, out);
-  cl.fail("NAME", "unknown benchmark '" + name + "' (known: forward, backward, continuity, contact, applications, render)");
+  cl.fail("NAME", "unknown benchmark '" + name +
+                      "' (known: forward, backward, continuity, contact, applications, render)");
 }
 
 }  // namespace weft::cli

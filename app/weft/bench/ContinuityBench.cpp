@@ -8,9 +8,12 @@
 //
 // A curve sampled at spacing d has neighbour differences of about slope * d where it is
 // continuous, and a difference that does not shrink with d at a jump. The summary therefore
-// reports, per curve, the largest neighbour difference and its ratio to the median one.
+// reports, per curve, the largest neighbour difference, its ratio to the median one, and its
+// ratio to the largest difference at twice the spacing (about 0.5 continuous, about 1 a jump).
 //
-// --contact pd|newton|active_set sets solver.contact for every run (default: the scene's own);
+// --contact scene|pd|newton|active_set sets solver.contact for every run (default newton, which
+// converges these steps in a few solves; "scene" keeps the scene's own); --subdivisions the
+// triangulated sphere's (default 2, 320 triangles); --resolution the cloth's quads per side;
 // a speed read after steps that ended above solver.pd_tolerance carries their unconverged part,
 // so the summary also gives the largest count of such steps over the mu samples.
 
@@ -22,6 +25,7 @@
 
 #include <weft/core/Error.h>
 #include <weft/io/StagedDirectory.h>
+#include <weft/mesh/SphereProjection.h>
 #include <weft/physics/Simulator.h>
 #include <weft/scene/SceneLoader.h>
 
@@ -65,14 +69,27 @@ struct Sample {
   int failedStep = 0;  // the step that threw a NumericalError, 0 if none
 };
 
-// Fig. 2's setting from the sphere scene: the scene's cloth and sphere, without self-collision
-// (the experiment isolates contact with the sphere), the cloth's lowest point lowered to 2 mm
-// above the top of the sphere so it starts in contact, keeping the scene's horizontal offset
-// (so that with little friction it slides off).
+// The cloth's horizontal extent spans polar angles on the sphere from asin(0.05) to asin(0.37),
+// whose tangents (the friction a node needs to stick there on its own) run from 0.05 to 0.40:
+// the paper's sweep over [0, 0.35] then crosses from sliding to sticking.
+constexpr double kNearEdge = 0.05, kFarEdge = 0.37;
+
+// Fig. 2's setting, from the scene's cloth, material, time step and solver: the cloth lies on
+// the sphere (laid onto it by projectOntoSphere, so its rest shape is the curved patch: it
+// starts unstretched, at rest and with every node in contact) and slides down one side, without
+// self-collision (the experiment isolates contact with the sphere). The sphere keeps the
+// scene's centre; its radius is scaled to the cloth (kNearEdge, kFarEdge), so that with large
+// friction every node sticks and with little the whole cloth slides, as the paper describes.
+// The triangulated spheres are inscribed in the analytic one, so the cloth starts up to their
+// sagitta above their faces and settles onto them in the first steps.
 Scene makeScene(const std::string& file, Surface surface, int subdivisions, double mu, int steps,
-                const std::string& contact) {
+                const std::string& contact, int resolution) {
   std::vector<SceneOverride> overrides = {{"time.steps", std::to_string(steps)}};
   if (contact != "scene") overrides.push_back({"solver.contact", "\"" + contact + "\""});
+  if (resolution > 0) {
+    const std::string r = std::to_string(resolution);
+    overrides.push_back({"cloths.0.mesh.grid.resolution", "[" + r + "," + r + "]"});
+  }
   Scene scene = loadScene(file, overrides);
   if (scene.cloths.size() != 1 || scene.obstacles.size() != 1 ||
       scene.obstacles[0].shape != Obstacle::Shape::Sphere)
@@ -82,8 +99,17 @@ Scene makeScene(const std::string& file, Surface surface, int subdivisions, doub
   sphere.friction = mu;
   Cloth& cloth = scene.cloths[0];
   cloth.selfCollision.reset();
-  const double top = sphere.center.y() + sphere.radius + sphere.thickness + 2e-3;
-  cloth.mesh.vertices.col(1).array() += top - cloth.mesh.vertices.col(1).minCoeff();
+  NodeMatrix& x = cloth.mesh.vertices;
+  if (x.col(1).maxCoeff() - x.col(1).minCoeff() > 1e-9)
+    throw InputError(file, "cloths.0.mesh",
+                     "the continuity benchmark needs a flat grid cloth in the XZ plane");
+  const double width = x.col(0).maxCoeff() - x.col(0).minCoeff();
+  sphere.radius = width / (kFarEdge - kNearEdge);
+  const double x0 = sphere.center.x() + kNearEdge * sphere.radius - x.col(0).minCoeff();
+  const double z0 = sphere.center.z() - 0.5 * (x.col(2).maxCoeff() + x.col(2).minCoeff());
+  x.col(0).array() += x0;
+  x.col(2).array() += z0;
+  cloth.mesh = projectOntoSphere(cloth.mesh, sphere.center, sphere.radius + sphere.thickness);
   if (surface != Surface::Analytic) {
     sphere.mesh = icosphere(sphere.center, sphere.radius, subdivisions);
     sphere.shape = Obstacle::Shape::Mesh;
@@ -134,7 +160,7 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
   const std::string file = cl.value("--scene", assetFile("scenes/sphere.json"));
   const int threads = cl.integer("--threads", 1, 1, 1024);
   const std::vector<std::string> contacts =
-      benchNames(cl, "--contact", "scene", {"scene", "pd", "newton", "active_set"});
+      benchNames(cl, "--contact", "newton", {"scene", "pd", "newton", "active_set"});
   if (contacts.size() != 1) cl.fail("--contact", "bench continuity takes one contact solve");
   const std::string contact = contacts.front();
   omp_set_num_threads(threads);
@@ -145,10 +171,14 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
   // in a test).
   const int samples = quick ? 5 : 29;
   const std::vector<int> recordAt = quick ? std::vector<int>{10, 20} : std::vector<int>{50, 200};
-  const int subdivisions = 3;  // 1280 triangles, edges about as long as the cloth's
+  // 320 triangles: on the scaled sphere an edge is about 0.8 of the cloth's width and
+  // neighbouring faces meet at about 15 degrees.
+  const int subdivisions = cl.integer("--subdivisions", 2, 0, 5);
+  const int resolution = cl.integer("--resolution", 0, 0, 400);  // 0: the scene's grid
   const std::vector<Surface> surfaces = {Surface::Analytic, Surface::FlatMesh, Surface::SmoothMesh};
 
-  const Scene probeScene = makeScene(file, Surface::Analytic, subdivisions, 0.0, recordAt.back(), contact);
+  const Scene probeScene =
+      makeScene(file, Surface::Analytic, subdivisions, 0.0, recordAt.back(), contact, resolution);
   // Grid vertex (i, j) is j * (n + 1) + i: corner, middle of the first row, centre.
   const int vertices = probeScene.cloths[0].mesh.vertexCount();
   const int side = static_cast<int>(std::lround(std::sqrt(double(vertices))));
@@ -165,7 +195,8 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
       surfaces.size(), std::vector<std::vector<std::vector<double>>>(
                            recordAt.size(), std::vector<std::vector<double>>(probes.size())));
   // unconvergedMax[surface][recorded step]: the most steps at the iteration cap over mu
-  std::vector<std::vector<int>> unconvergedMax(surfaces.size(), std::vector<int>(recordAt.size(), 0));
+  std::vector<std::vector<int>> unconvergedMax(surfaces.size(),
+                                               std::vector<int>(recordAt.size(), 0));
   std::vector<double> mus;
   for (int k = 0; k < samples; ++k) mus.push_back(0.35 * k / (samples - 1));
   const auto start = std::chrono::steady_clock::now();
@@ -173,7 +204,8 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
     for (double mu : mus) {
       std::fprintf(stderr, "\rcontinuity: %s mu %.4f   ", surfaceName(surfaces[s]), mu);
       const Sample sample = simulate(
-          makeScene(file, surfaces[s], subdivisions, mu, recordAt.back(), contact), probes, recordAt);
+          makeScene(file, surfaces[s], subdivisions, mu, recordAt.back(), contact, resolution),
+          probes, recordAt);
       for (std::size_t r = 0; r < recordAt.size(); ++r) {
         unconvergedMax[s][r] = std::max(unconvergedMax[s][r], sample.unconverged[r]);
         for (std::size_t p = 0; p < probes.size(); ++p) {
@@ -191,35 +223,48 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  // Per curve: the largest difference between neighbouring mu samples, where it is, and its
-  // ratio to the median difference.
-  BenchTable summary({"surface", "step", "node", "max_jump", "at_mu", "median_jump", "jump_ratio", "speed_range",
-                      "unconverged_max"});
+  // Per curve: the largest difference between neighbouring mu samples, where it is, its ratio to
+  // the median nonzero difference (a stuck cloth's zero speeds are not a scale), and how the
+  // largest difference shrinks when the spacing halves: against every second sample, a
+  // continuous curve gives about 0.5 (its steepest slope times the spacing), a jump about 1.
+  BenchTable summary({"surface", "step", "node", "max_jump", "at_mu", "median_jump", "jump_ratio",
+                      "halving_ratio", "speed_range", "unconverged_max"});
+  const auto largestJump = [](const std::vector<double>& c, std::size_t stride) {
+    double worst = 0.0;
+    for (std::size_t k = stride; k < c.size(); k += stride)
+      worst = std::max(worst, std::abs(c[k] - c[k - stride]));
+    return worst;
+  };
   for (std::size_t s = 0; s < surfaces.size(); ++s)
     for (std::size_t r = 0; r < recordAt.size(); ++r)
       for (std::size_t p = 0; p < probes.size(); ++p) {
         const std::vector<double>& c = curves[s][r][p];
+        const auto [lo, hi] = std::minmax_element(c.begin(), c.end());
+        const double range = *hi - *lo;
         std::vector<double> jumps;
         double worst = 0.0, at = 0.0;
         for (std::size_t k = 1; k < c.size(); ++k) {
           const double d = std::abs(c[k] - c[k - 1]);
-          jumps.push_back(d);
+          if (d > 1e-9 * range) jumps.push_back(d);
           if (!(d <= worst)) worst = d, at = 0.5 * (mus[k] + mus[k - 1]);
         }
         const double med = median(jumps);
-        const auto [lo, hi] = std::minmax_element(c.begin(), c.end());
+        const double coarse = largestJump(c, 2);
         summary.add({surfaceName(surfaces[s]), std::to_string(recordAt[r]), probes[p].label,
                      formatNumber(worst, 4), formatNumber(at, 4), formatNumber(med, 4),
-                     formatNumber(med > 0 ? worst / med : 0.0, 3), formatNumber(*hi - *lo, 4),
+                     formatNumber(med > 0 ? worst / med : 0.0, 3),
+                     formatNumber(coarse > 0 ? worst / coarse : 0.0, 3), formatNumber(range, 4),
                      std::to_string(unconvergedMax[s][r])});
       }
 
   const std::string preamble =
       "DiffCloth Fig. 2 (Sec. 5.1): cloth of " + file + " (" + std::to_string(n) + "x" +
-      std::to_string(n) +
-      " quads) starting 2 mm above the top of its sphere, without self-collision, solver.contact " +
-      (contact == "scene" ? std::string("as in the scene") : "\"" + contact + "\"") + ", h = " +
-      formatNumber(probeScene.time.dt, 4) + " s. Friction mu swept over [0, 0.35] in " +
+      std::to_string(n) + " quads) lying on a sphere of radius " +
+      formatNumber(probeScene.obstacles[0].radius, 4) +
+      " m (the cloth spans polar angles with tangents 0.05 to 0.40), at rest and unstretched, "
+      "without self-collision, solver.contact " +
+      (contact == "scene" ? std::string("as in the scene") : "\"" + contact + "\"") +
+      ", h = " + formatNumber(probeScene.time.dt, 4) + " s. Friction mu swept over [0, 0.35] in " +
       std::to_string(samples) +
       " samples; speeds (m/s) of the corner A, edge-centre B and centre C nodes at the listed "
       "steps (unconverged_steps: steps so far that ended above solver.pd_tolerance). Surfaces: the "
@@ -235,10 +280,13 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
       out.file("continuity.md"), "Continuity of contact branches (weft bench continuity)",
       preamble +
           "\n\nPer curve, the largest speed difference between neighbouring mu samples "
-          "(max_jump, at_mu), the median one, and jump_ratio = max_jump / median_jump. A "
-          "continuous curve keeps the ratio moderate (kinks at branch switches included); a "
-          "discontinuity shows as a jump far above the median that does not shrink with the mu "
-          "spacing. unconverged_max: the most steps, up to the listed one, that ended above "
+          "(max_jump, at_mu), the median nonzero one, jump_ratio = max_jump / median_jump, and "
+          "halving_ratio = max_jump / the largest difference between every second sample. A "
+          "continuous curve keeps jump_ratio moderate (kinks at branch switches included) and "
+          "halving_ratio near 0.5 (halving the spacing halves its differences); a discontinuity "
+          "shows as a jump far above the median that does not shrink with the spacing "
+          "(halving_ratio "
+          "near 1). unconverged_max: the most steps, up to the listed one, that ended above "
           "solver.pd_tolerance, over the mu samples. Every sample: continuity.csv; plots: "
           "continuity_step*.png.");
   for (std::size_t r = 0; r < recordAt.size(); ++r) {
