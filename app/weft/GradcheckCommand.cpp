@@ -9,6 +9,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "SceneOverrideOption.h"
+#include "SceneWarnings.h"
 
 #include <weft/core/Error.h>
 #include <weft/diff/AdjointGrowth.h>
@@ -48,7 +49,7 @@ int gradcheckCommand(const std::vector<std::string>& args) {
   }
 
   const Scene scene = loadScene(file, parseOverrides(cl));
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  printSceneWarnings(scene);
   if (!scene.task) throw InputError(file, "task", "the scene has no task; gradcheck needs task.loss and parameters");
   const std::vector<std::string> paths = cl.values("--param");
   const ParameterSet parameters = paths.empty() ? ParameterSet::fromTask(scene) : ParameterSet::fromPaths(scene, paths);

@@ -13,6 +13,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "SceneOverrideOption.h"
+#include "SceneWarnings.h"
 
 #include <weft/core/Error.h>
 #include <weft/diff/ForwardPass.h>
@@ -187,7 +188,7 @@ int landscapeCommand(const std::vector<std::string>& args) {
       throw InputError(file, "--range " + path, "is not one of the --param paths");
 
   const Scene scene = loadScene(file, parseOverrides(cl));
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  printSceneWarnings(scene);
   if (!scene.task) throw InputError(file, "task", "the scene has no task; landscape needs task.loss");
   const ParameterSet parameters = ParameterSet::fromPaths(scene, paths);
   const TaskLoss loss(scene);

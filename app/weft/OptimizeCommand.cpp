@@ -17,6 +17,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "SceneOverrideOption.h"
+#include "SceneWarnings.h"
 #include "bench/BenchTable.h"
 
 #include <weft/core/Error.h>
@@ -73,7 +74,7 @@ int optimizeCommand(const std::vector<std::string>& args) {
     cl.fail("--budget", "must be a positive whole number of simulated steps");
 
   const Scene scene = loadScene(file, parseOverrides(cl));
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  printSceneWarnings(scene);
   if (!scene.task) throw InputError(file, "task", "the scene has no task; optimize needs task.loss and parameters");
   const ParameterSet parameters = ParameterSet::fromTask(scene);
   if (parameters.empty()) throw InputError(file, "task.parameters", "no parameters to optimise");

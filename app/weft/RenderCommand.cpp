@@ -6,6 +6,7 @@
 #include "RenderJob.h"
 #include "RunFolder.h"
 #include "SceneOverrideOption.h"
+#include "SceneWarnings.h"
 
 #include <weft/core/Error.h>
 #include <weft/io/StagedDirectory.h>
@@ -172,7 +173,7 @@ int renderCommand(const std::vector<std::string>& args) {
     run.scene = loadScene(input, parseOverrides(cl));
     run.path = input;
   }
-  for (const std::string& w : run.scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  printSceneWarnings(run.scene);
   const int available = fromRun ? int(run.states.size()) - 1 : run.scene.time.steps;
   const int last = range.last.value_or(available);
   if (range.first > available || last > available)

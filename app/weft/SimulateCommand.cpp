@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "SceneOverrideOption.h"
+#include "SceneWarnings.h"
 
 #include <weft/core/Error.h>
 #include <weft/io/StagedDirectory.h>
@@ -29,7 +30,7 @@ int simulateCommand(const std::vector<std::string>& args) {
   const int threads = applyThreads(cl);
   Scene scene = loadScene(file, parseOverrides(cl));
   const int steps = cl.integer("--steps", scene.time.steps, 0, 10000000);
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  printSceneWarnings(scene);
   const std::string outDir = cl.value("--out", "out/" + scene.name);
   StagedDirectory out(outDir);  // fails early on an unusable --out, before simulating
 
