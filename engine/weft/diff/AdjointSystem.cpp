@@ -95,10 +95,9 @@ bool AdjointSystem::factorClampedHessian() {
 }
 
 double AdjointSystem::hessianFactorCost() const {
-  constexpr double kHessianFlopsPerPFlop = 26.0, kFactorSlowdown = 3.0;
-  const double iteration = 12.0 * cholesky_.factorEntries() + 18.0 * static_cast<double>(system_.nonZeros());
-  const double factor = kFactorSlowdown * kHessianFlopsPerPFlop * cholesky_.factorFlops();
-  return 3.0 * probe_->colourCount() + factor / iteration;
+  constexpr double kFactorSlowdown = 3.0;
+  return 3.0 * probe_->colourCount() +
+         kFactorSlowdown * cholesky_.blockFactorFlopRatio(static_cast<double>(system_.nonZeros()));
 }
 
 void AdjointSystem::solveClampedHessian(NodeMatrix& inOut) {

@@ -155,6 +155,8 @@ class Simulator {
   Eigen::SparseMatrix<double> stiffness_;
   SparseCholesky stiffnessCholesky_;
   bool stiffnessFactored_ = false;
+  // Iterations with P one factorisation of K+ costs, from operation counts (solveContactNewton).
+  double pIterationsPerFactor_ = 0.0;
   NodeMatrix coupling_;
   Gmres gmres_;
   std::vector<NodeMatrix> projections_, derivativeRows_;
