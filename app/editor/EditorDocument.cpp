@@ -3,6 +3,7 @@
 #include "FinalTargets.h"
 #include "ScenePathRebase.h"
 
+#include <weft/contact/HandleObstacleCheck.h>
 #include <weft/core/Error.h>
 #include <weft/io/AtomicFile.h>
 #include <weft/scene/JsonPath.h>
@@ -237,8 +238,12 @@ bool EditorDocument::restore(std::vector<Step>& from, std::vector<Step>& to) {
 
 void EditorDocument::revalidate() {
   try {
-    scene_ = std::make_shared<const Scene>(
-        parseScene(document_, file_.empty() ? displayName() : file_, directory()));
+    const std::string name = file_.empty() ? displayName() : file_;
+    Scene scene = parseScene(document_, name, directory());
+    // The engine's checks of a valid scene (a handle driven into an obstacle), shown with the
+    // loader's warnings as the command line prints them.
+    for (const std::string& w : handlesEnteringObstacles(scene)) scene.warnings.push_back(name + ": " + w);
+    scene_ = std::make_shared<const Scene>(std::move(scene));
     error_.clear();
   } catch (const std::exception& e) {
     // InputError carries "<file>: <path>: <what>"; anything else is still a message, never a crash.

@@ -58,6 +58,28 @@ TEST(EditorDocument, InvalidValueIsKeptAndReportedNeverClamped) {
   EXPECT_TRUE(doc.validationError().empty());
 }
 
+TEST(EditorDocument, WarnsOfAHandleDrivenIntoAnObstacleAndForgetsItWhenMovedOut) {
+  // A handle on corner 0 of a 1 m cloth at the origin moves 1 m along +X over 1 s, through a
+  // sphere of radius 0.2 at (0, 0, -0.5) (corner 0 rests at (-0.5, 0, -0.5)).
+  nlohmann::json scene = test::gridScene(1.0, 4, 0.01, 100);
+  scene["cloths"][0]["attachments"] = {
+      {{"vertices", {0}},
+       {"kind", "handle"},
+       {"trajectory",
+        {{"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 1.0}, {"offset", {1.0, 0, 0}}}}}}}}};
+  scene["obstacles"] = {{{"sphere", {{"center", {0, 0, -0.5}}, {"radius", 0.2}}}, {"friction", 0.3}}};
+  EditorDocument doc(scene);
+  ASSERT_TRUE(doc.valid()) << doc.validationError();
+  ASSERT_EQ(doc.scene()->warnings.size(), 1u);
+  EXPECT_NE(doc.scene()->warnings[0].find("cloths.0.attachments.0: the handle's targets enter obstacles.0 (sphere)"),
+            std::string::npos)
+      << doc.scene()->warnings[0];
+  // Moving the sphere off the handle's path clears the warning on the next validation.
+  EXPECT_EQ(doc.setValue("obstacles.0.sphere.center", nlohmann::json::array({0, 0.5, -0.5})), "");
+  ASSERT_TRUE(doc.valid());
+  EXPECT_TRUE(doc.scene()->warnings.empty());
+}
+
 TEST(EditorDocument, MalformedEditsAreRefusedAndLeaveTheDocument) {
   EditorDocument doc(test::hangingClothScene(1.0, 4, 0.01, 10, 100.0));
   const nlohmann::json before = doc.document();
