@@ -238,11 +238,10 @@ bool EditorDocument::restore(std::vector<Step>& from, std::vector<Step>& to) {
 
 void EditorDocument::revalidate() {
   try {
-    const std::string name = file_.empty() ? displayName() : file_;
-    Scene scene = parseScene(document_, name, directory());
+    Scene scene = parseScene(document_, file_.empty() ? displayName() : file_, directory());
     // The engine's checks of a valid scene (a handle driven into an obstacle), shown with the
     // loader's warnings as the command line prints them.
-    for (const std::string& w : handlesEnteringObstacles(scene)) scene.warnings.push_back(name + ": " + w);
+    for (std::string& w : handlesEnteringObstacles(scene)) scene.warnings.push_back(std::move(w));
     scene_ = std::make_shared<const Scene>(std::move(scene));
     error_.clear();
   } catch (const std::exception& e) {

@@ -80,8 +80,21 @@ TEST(SceneAssets, ContinuityBenchQuickWritesCsv) {
   EXPECT_EQ(rows.size(), 1u + 5 * 3 * 2 * 3);
   for (std::size_t i = 1; i < rows.size(); ++i)
     EXPECT_EQ(rows[i].back(), "0") << "numerical failure in row " << i;
-  EXPECT_TRUE(fs::exists(out + "/continuity_summary.csv"));
   EXPECT_TRUE(fs::exists(out + "/continuity.md"));
+  // On the analytic sphere every step converges and each curve is continuous: halving the mu
+  // spacing halves its largest difference (DiffCloth Fig. 2; a jump would keep the ratio near 1).
+  const auto summary = readCsv(out + "/continuity_summary.csv");
+  ASSERT_EQ(summary.size(), 1u + 3 * 2 * 3);
+  ASSERT_EQ(summary[0][7], "halving_ratio");
+  ASSERT_EQ(summary[0][9], "unconverged_max");
+  int analytic = 0;
+  for (std::size_t i = 1; i < summary.size(); ++i) {
+    if (summary[i][0] != "analytic") continue;
+    ++analytic;
+    EXPECT_LT(std::stod(summary[i][7]), 0.6) << "row " << i;
+    EXPECT_EQ(summary[i][9], "0") << "row " << i;
+  }
+  EXPECT_EQ(analytic, 2 * 3);
 }
 
 TEST(SceneAssets, ContactBenchQuickWritesCsv) {

@@ -7,7 +7,12 @@ namespace weft {
 
 std::vector<std::string> handlesEnteringObstacles(const Scene& scene) {
   std::vector<std::string> messages;
-  if (scene.obstacles.empty()) return messages;
+  bool handles = false;
+  for (const Cloth& cloth : scene.cloths)
+    for (const Attachment& a : cloth.attachments) handles |= a.kind == Attachment::Kind::Handle;
+  // Built only when there is something to check (a mesh obstacle's shape builds its BVH): the
+  // editor runs this on every edit.
+  if (!handles || scene.obstacles.empty()) return messages;
   std::vector<std::unique_ptr<ObstacleShape>> shapes;
   for (const Obstacle& o : scene.obstacles) shapes.push_back(makeObstacleShape(o));
   for (std::size_t c = 0; c < scene.cloths.size(); ++c) {
@@ -39,7 +44,7 @@ std::vector<std::string> handlesEnteringObstacles(const Scene& scene) {
             "%.3g s, up to %.1f mm deep; the attachment will pull its vertices into the obstacle "
             "against the contact, and steps may not converge",
             c, a, k, shapes[k]->name(), first, 1e3 * deepest);
-        messages.push_back(what);
+        messages.push_back(scene.file + ": " + what);
       }
     }
   }

@@ -13,7 +13,8 @@
 
 namespace weft {
 
-// One message per (cloth, attachment, obstacle) whose handle targets, sampled at every step's
+// One message, "<scene file>: <attachment path>: <what>" as the loader's warnings are, per
+// (cloth, attachment, obstacle) whose handle targets, sampled at every step's
 // end time, go deeper than the obstacle's surface (its skin not counted): the first time and the
 // deepest depth. Static and moving obstacles (at the same time) alike.
 std::vector<std::string> handlesEnteringObstacles(const Scene& scene);

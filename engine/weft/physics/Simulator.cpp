@@ -8,8 +8,8 @@
 #include <weft/physics/StretchConstraint.h>
 #include <weft/physics/WindForce.h>
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,9 +30,9 @@ double secondsSince(Clock::time_point start) {
 constexpr int kRefactorIterations = 20;
 // GMRES iterations a step's first linear solve may take with P before K+ is factorised.
 constexpr int kPIterations = 5;
-// Above this many iterations with P per factorisation of K+ (pIterationsPerFactor_), a step
-// starts from the previous step's factor of K+ instead of P.
-constexpr int kPMaxIterations = 30;
+// Where one factorisation of K+ costs more than this many iterations with P (keepStiffnessFactor_),
+// a step starts from the previous step's factor of K+ instead of P.
+constexpr double kKeepFactorAbovePIterations = 30.0;
 // Measured seconds per flop of CHOLMOD's supernodal factorisation of K+ over those of an
 // iteration with P (reference BLAS, one thread; 48x48 Slope: 200 ms per factorisation, 2.5 ms
 // per iteration, against a flop ratio of 116).
@@ -131,8 +131,9 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
   assembleAndFactorize();
   moduleSeconds_[solverModule_] += secondsSince(start);
   // From operation counts, not timings, so that runs repeat exactly.
-  pIterationsPerFactor_ =
-      kFactorTimePerFlopRatio * cholesky_.blockFactorFlopRatio(static_cast<double>(system_.nonZeros()));
+  keepStiffnessFactor_ = kFactorTimePerFlopRatio * cholesky_.blockFactorFlopRatio(
+                                                     static_cast<double>(system_.nonZeros())) >
+                         kKeepFactorAbovePIterations;
 }
 
 Simulator::~Simulator() = default;
@@ -648,11 +649,11 @@ void Simulator::solveContactNewton() {
   bool atIterate = true;  // rhs_ and the contact impulses belong to iterate_
   double bestMeasure = measure;
   best = iterate_;
-  // Where a factorisation of K+ costs more than kPMaxIterations iterations with P (about 24x24
-  // quads and up), the factor of an earlier step is kept as the preconditioner (refactorised
+  // Where a factorisation of K+ costs more than kKeepFactorAbovePIterations iterations with P
+  // (about 24x24 quads and up), the factor of an earlier step is kept as the preconditioner (refactorised
   // when a solve with it is slow, as within a step): on Slope at 48x48, K+ was factorised anew
   // on 10 of 100 steps at 200 ms each, where the previous steps' factor served.
-  bool factored = stiffnessFactored_ && pIterationsPerFactor_ >= kPMaxIterations;
+  bool factored = stiffnessFactored_ && keepStiffnessFactor_;
   stiffnessFactored_ = factored;  // (preconditionContact uses P until K+ is factorised)
   double forcing = 0.1, previous = 0.0;
   int lastIterations = 0, relaxed = 0, iteration = 0;

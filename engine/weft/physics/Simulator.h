@@ -155,8 +155,9 @@ class Simulator {
   Eigen::SparseMatrix<double> stiffness_;
   SparseCholesky stiffnessCholesky_;
   bool stiffnessFactored_ = false;
-  // Iterations with P one factorisation of K+ costs, from operation counts (solveContactNewton).
-  double pIterationsPerFactor_ = 0.0;
+  // A factorisation of K+ costs so many iterations with P that a step starts from the previous
+  // step's factor (solveContactNewton).
+  bool keepStiffnessFactor_ = false;
   NodeMatrix coupling_;
   Gmres gmres_;
   std::vector<NodeMatrix> projections_, derivativeRows_;
