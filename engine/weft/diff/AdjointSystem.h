@@ -95,7 +95,7 @@ class AdjointSystem {
   std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
   Eigen::SparseMatrix<double> system_;
   SparseCholesky cholesky_;
-  SparseCholesky hessianCholesky_;
+  SparseCholesky hessianCholesky_{SparseCholesky::Use::Preconditioner};
   NodeMatrix preparedX_;
   bool anyDerivative_ = false;
   mutable std::vector<NodeMatrix> rows_;  // per-constraint derivative rows (work buffers)

@@ -111,7 +111,7 @@ class Simulator {
   void preconditionContact(const NodeMatrix& scaled, NodeMatrix& z);
   void multiplySystem(const NodeMatrix& in, NodeMatrix& out) const;  // one-coordinate P, 3 columns
   void multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out);
-  double residualOf(const NodeMatrix& systemTimesChange) const;  // fills projections_, returns energy g(x)
+  double residualOf(const NodeMatrix& systemTimesChange) const;  // the convergence measure of P (x_global - x)
   void assembleAndFactorize();
   void diagnoseNonFinite(const NodeMatrix& lastGood) const;
 
