@@ -109,8 +109,11 @@ void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displa
     extent += (upper_[k] - lower_[k]).maxCoeff();
     largestDistance = std::max(largestDistance, (1.0 + kMarginFraction) * distance_[i]);
   }
-  // Cells the size of a typical box: O(1) cells per box and O(1) boxes per cell.
-  const double cell = std::max(n > 0 ? extent / n : 0.0, largestDistance);
+  // Cells twice the size of a typical box: O(1) cells per box and O(1) boxes per cell. Cells of
+  // one box size put each box in about 8 cells, and the table's scattered writes then cost more
+  // than the extra pair tests of larger cells (Slope at 96^2 quads: 3.2 against 1.9-2.8 ms per
+  // detection for 1.5-3 box sizes).
+  const double cell = kCellOverBoxSize * std::max(n > 0 ? extent / n : 0.0, largestDistance);
   candidates_.clear();
   if (n > 1) grid_.overlappingPairs(lower_, upper_, cell, candidates_);
   lastCandidates_ = static_cast<int>(candidates_.size());

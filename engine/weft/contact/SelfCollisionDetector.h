@@ -44,6 +44,7 @@ class SelfCollisionDetector {
   // neighbours may be: 2 covers the detours of a regular grid (at most sqrt 2, across the
   // diagonals its triangles do not have) and of reasonably shaped triangles.
   static constexpr double kPathFactor = 2.0;
+  static constexpr double kCellOverBoxSize = 2.0;  // broad-phase cell size, in typical swept boxes
   int lastCandidateCount() const { return lastCandidates_; }
 
  private:

@@ -47,12 +47,14 @@ void SpatialHashGrid::overlappingPairs(const std::vector<Vec3>& lower, const std
   while (buckets < 2u * static_cast<unsigned>(total)) buckets <<= 1;
   const unsigned mask = buckets - 1;
   unsorted_.resize(total);
+  lowerCell_.resize(3 * static_cast<std::size_t>(n));
   bucketOf_.resize(total);
   // 2. The entries, with their buckets.
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     int lo[3], hi[3];
     for (int k = 0; k < 3; ++k) lo[k] = cellCoordinate(lower[i][k], inv), hi[k] = cellCoordinate(upper[i][k], inv);
+    for (int k = 0; k < 3; ++k) lowerCell_[3 * static_cast<std::size_t>(i) + k] = lo[k];
     int e = itemStart_[i];
     for (int x = lo[0]; x <= hi[0]; ++x)
       for (int y = lo[1]; y <= hi[1]; ++y)
@@ -89,14 +91,18 @@ void SpatialHashGrid::overlappingPairs(const std::vector<Vec3>& lower, const std
         for (int q = p + 1; q < bucketStart_[b + 1]; ++q) {
           const Entry& eq = entries_[q];
           if (ep.cell[0] != eq.cell[0] || ep.cell[1] != eq.cell[1] || ep.cell[2] != eq.cell[2]) continue;
+          // Reported from this cell only if it holds the intersection's lower corner: the larger
+          // of the two boxes' lower cells in each axis (floor is monotonic).
           const int a = ep.item, c = eq.item;
-          bool overlap = true, here = true;
-          for (int k = 0; k < 3 && overlap; ++k) {
-            const double lo = std::max(lower[a][k], lower[c][k]), hi = std::min(upper[a][k], upper[c][k]);
-            overlap = lo <= hi;
-            here = here && cellCoordinate(lo, inv) == ep.cell[k];
-          }
-          if (overlap && here) local.emplace_back(std::min(a, c), std::max(a, c));
+          const int* cellA = lowerCell_.data() + 3 * static_cast<std::size_t>(a);
+          const int* cellC = lowerCell_.data() + 3 * static_cast<std::size_t>(c);
+          if (std::max(cellA[0], cellC[0]) != ep.cell[0] || std::max(cellA[1], cellC[1]) != ep.cell[1] ||
+              std::max(cellA[2], cellC[2]) != ep.cell[2])
+            continue;
+          const Vec3 &lowA = lower[a], &lowC = lower[c], &upA = upper[a], &upC = upper[c];
+          if (lowA.x() <= upC.x() && lowC.x() <= upA.x() && lowA.y() <= upC.y() && lowC.y() <= upA.y() &&
+              lowA.z() <= upC.z() && lowC.z() <= upA.z())
+            local.emplace_back(std::min(a, c), std::max(a, c));
         }
       }
     }

@@ -30,6 +30,7 @@ class SpatialHashGrid {
   std::vector<int> itemStart_;          // entries of item i: [itemStart_[i], itemStart_[i + 1])
   std::vector<Entry> unsorted_, entries_;
   std::vector<unsigned> bucketOf_;
+  std::vector<int> lowerCell_;  // the cell of each box's lower corner, 3 per box
   std::vector<int> bucketStart_;
   std::vector<std::vector<std::pair<int, int>>> perThread_;
 };
