@@ -190,5 +190,42 @@ TEST(StretchConstraint, CollapsedTriangleStaysFinite) {
   }
 }
 
+// The projection's derivative (applyDerivative, prepared at x) against central differences of
+// project, for stretched, compressed, sheared and bent-out-of-plane triangles. The `definite`
+// variant clamps dQ (the Newton contact solve's and the adjoint's K+): where every singular value
+// of F is at least 1 it is the same derivative, where one is below 1 it must differ.
+TEST(StretchConstraint, ProjectionDerivativeMatchesFiniteDifferences) {
+  const NodeMatrix rest = restTriangle();
+  StretchConstraint c(rest, oneTriangle(), {kStiffness});
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  const Mat3 stretch = Eigen::Vector3d(1.3, 1.1, 1.2).asDiagonal();
+  const Mat3 compress = Eigen::Vector3d(0.6, 0.8, 0.7).asDiagonal();
+  Mat3 shear = Mat3::Identity();
+  shear(0, 1) = 0.4;
+  for (const Mat3& deform : {stretch, compress, shear}) {
+    NodeMatrix x = rest * (randomRotation(rng) * deform).transpose();
+    x.row(2) += 0.05 * Vec3(normal(rng), normal(rng), normal(rng)).transpose();
+    NodeMatrix dx(3, 3);
+    for (int i = 0; i < 9; ++i) dx(i / 3, i % 3) = normal(rng);
+    const double h = 1e-6;
+    NodeMatrix plus = NodeMatrix::Zero(2, 3), minus = NodeMatrix::Zero(2, 3);
+    c.project(x + h * dx, plus);
+    c.project(x - h * dx, minus);
+    const NodeMatrix difference = (plus - minus) / (2.0 * h);
+    NodeMatrix exact = NodeMatrix::Zero(2, 3), clamped = NodeMatrix::Zero(2, 3);
+    c.prepareDerivative(x, false);
+    c.applyDerivative(dx, exact);
+    EXPECT_LT((exact - difference).norm(), 1e-7 * difference.norm());
+    c.prepareDerivative(x, true);
+    c.applyDerivative(dx, clamped);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(evaluate(c, x).f));
+    if (svd.singularValues().minCoeff() >= 1.0)
+      EXPECT_LT((clamped - exact).norm(), 1e-12 * exact.norm());
+    else
+      EXPECT_GT((clamped - exact).norm(), 1e-3 * exact.norm());
+  }
+}
+
 }  // namespace
 }  // namespace weft

@@ -4,12 +4,15 @@
 #include <weft/scene/Scene.h>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace weft {
 namespace {
+
+// Smallest singular value of F the derivative divides by (a collapsed triangle's is 0).
+constexpr double kSmallestStretch = 1e-12;
 
 // Orthonormal frame of a triangle: e1 along x1 - x0, e2 Gram-Schmidt of x2 - x0. Both the rest
 // and the current frame are built this way, so T^T F always has a positive determinant and the
@@ -157,22 +160,23 @@ void StretchConstraint::prepareDerivative(const NodeMatrix& x, bool definite) {
     d.q = project(f, x0, x1, x2);
     d.n = d.q.col(0).cross(d.q.col(1));
     // S = Q^T F is symmetric positive (semi-)definite: F = Q S is the polar decomposition.
-    Eigen::Matrix2d s2 = d.q.transpose() * f;
-    s2(0, 1) = s2(1, 0) = 0.5 * (s2(0, 1) + s2(1, 0));
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(s2);
-    const Eigen::Vector2d sigma = eig.eigenvalues().cwiseMax(1e-12);
-    const Eigen::Matrix2d v = eig.eigenvectors();
-    Eigen::Vector2d inv = sigma.cwiseInverse();
-    double rot = 2.0 / (sigma[0] + sigma[1]);
-    if (definite) {
-      // The Hessian of |F - Q(F)|^2 / 2 is I - dQ/dF with eigenvalues 1 - 2/(s1+s2) (in-plane
-      // rotation) and 1 - 1/s_i (out of plane); clamping dQ's to at most 1 keeps them >= 0.
-      inv = inv.cwiseMin(1.0);
-      rot = std::min(rot, 1.0);
-    }
-    const Eigen::Matrix2d b = v * inv.asDiagonal() * v.transpose();
+    // Its eigenvalues in closed form (an iterative 2x2 eigensolver was a third of this loop).
+    const Eigen::Matrix2d s2 = d.q.transpose() * f;
+    const double sa = s2(0, 0), sb = 0.5 * (s2(0, 1) + s2(1, 0)), sc = s2(1, 1);
+    const double mean = 0.5 * (sa + sc), radius = std::hypot(0.5 * (sa - sc), sb);
+    const double sigma0 = std::max(mean - radius, kSmallestStretch), sigma1 = std::max(mean + radius, kSmallestStretch);
+    // The Hessian of |F - Q(F)|^2 / 2 is I - dQ/dF with eigenvalues 1 - 2/(s1+s2) (in-plane
+    // rotation) and 1 - 1/s_i (out of plane); `definite` clamps dQ's to at most 1, keeping them >= 0.
+    const double cap = definite ? 1.0 : std::numeric_limits<double>::infinity();
+    const double rot = std::min(2.0 / (sigma0 + sigma1), cap);
+    // B = g(S), g(s) = min(1 / s, cap) on the clamped eigenvalues: g0 I + (g1 - g0) v1 v1^T with
+    // v1 the eigenvector of the larger one, v1 v1^T = (I + [[cos 2t, sin 2t], [sin 2t, -cos 2t]]) / 2.
+    const double g0 = std::min(1.0 / sigma0, cap), g1 = std::min(1.0 / sigma1, cap);
+    const double cos2 = radius > 0.0 ? 0.5 * (sa - sc) / radius : 1.0, sin2 = radius > 0.0 ? sb / radius : 0.0;
+    const double lift = 0.5 * (g1 - g0);
+    const double b00 = g0 + lift * (1.0 + cos2), b01 = lift * sin2, b11 = g0 + lift * (1.0 - cos2);
     d.rot = rot;
-    d.b00 = b(0, 0), d.b01 = b(0, 1), d.b11 = b(1, 1);
+    d.b00 = b00, d.b01 = b01, d.b11 = b11;
   }
 }
 
