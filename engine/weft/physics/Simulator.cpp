@@ -154,22 +154,26 @@ void Simulator::assembleAndFactorize() {
     throw NumericalError(0, "solver", "system matrix P is not positive definite");
 }
 
-double Simulator::localStep(const NodeMatrix& x) {
+double Simulator::localStep(const NodeMatrix& x, bool energy) {
   // Inertia term of g (DiffCloth Eq. 3): |x - y|^2_M / (2 h^2).
-  double energy = 0.0;
-  for (int c = 0; c < 3; ++c)
-    energy += model_.mass.dot((x.col(c) - y_.col(c)).cwiseAbs2());
-  energy *= 0.5 / (h_ * h_);
+  double total = 0.0;
+  if (energy) {
+    for (int c = 0; c < 3; ++c)
+      total += model_.mass.dot((x.col(c) - y_.col(c)).cwiseAbs2());
+    total *= 0.5 / (h_ * h_);
+  }
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
-    const auto start = Clock::now();
     // A family whose projections are all zero only needs its energy (for the safeguard).
-    energy += constraints_[c]->projectsToZero() ? constraints_[c]->energy(x)
-                                                : constraints_[c]->project(x, projections_[c]);
+    if (constraints_[c]->projectsToZero() && !energy) continue;
+    const auto start = Clock::now();
+    const double e = constraints_[c]->projectsToZero() ? constraints_[c]->energy(x)
+                                                       : constraints_[c]->project(x, projections_[c]);
+    if (energy) total += e;
     const double s = secondsSince(start);
     moduleSeconds_[constraintModule_[c]] += s;
     stats_.moduleSeconds[constraintModule_[c]] += s;
   }
-  return energy;
+  return total;
 }
 
 template <class Fn>
@@ -534,7 +538,7 @@ void Simulator::solveWithContact() {
 }
 
 double Simulator::contactResidual(const NodeMatrix& x, NodeMatrix& residual) {
-  localStep(x);
+  localStep(x, false);  // (the Newton solve's test is the residual, not the energy)
   assembleContactRhs(x, residual);
   double measure = 0.0;
   timed(solverModule_, [&] {

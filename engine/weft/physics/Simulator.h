@@ -81,7 +81,10 @@ class Simulator {
 
  private:
   int addModule(const std::string& name);
-  double localStep(const NodeMatrix& x);
+  // Projections of every constraint at x, into projections_; returns g(x)'s constraint and
+  // inertia energy, or 0 without `energy` (then families whose projections are all zero are
+  // skipped: they only contribute to it).
+  double localStep(const NodeMatrix& x, bool energy = true);
   template <class Fn>
   void timed(int module, Fn&& fn);
   void globalStep();
@@ -153,7 +156,7 @@ class Simulator {
   NodeMatrix lawInput_, pinnedPart_;                       // solver.contact = "newton" only
   std::unique_ptr<ColouredProbe> stiffnessProbe_;          // K+ (factorizeStiffness)
   Eigen::SparseMatrix<double> stiffness_;
-  SparseCholesky stiffnessCholesky_;
+  SparseCholesky stiffnessCholesky_{SparseCholesky::Use::Preconditioner};
   bool stiffnessFactored_ = false;
   // A factorisation of K+ costs so many iterations with P that a step starts from the previous
   // step's factor (solveContactNewton).
