@@ -56,6 +56,9 @@ double peakMemoryMb() {
 struct RunResult {
   int vertices = 0, steps = 0, failedStep = 0;
   double secondsPerStep = 0.0;
+  // The median step's wall time: the steady cost, without the one-off work a mean spreads over
+  // the run (the first factorisations, the landing on the obstacle).
+  double medianStepSeconds = 0.0;
   double pd = 0.0, detection = 0.0, selfCollision = 0.0, contactSolve = 0.0;  // s per step
   double meanContacts = 0.0;
   int maxContacts = 0;
@@ -81,10 +84,13 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
   const std::vector<std::string>& names = sim.moduleNames();
   long long iterations = 0, contacts = 0;
   double contactSweeps = 0.0, solveSeconds = 0.0;
+  std::vector<double> stepSeconds;
   const auto start = std::chrono::steady_clock::now();
   try {
     for (int s = 0; s < steps; ++s) {
+      const auto stepStart = std::chrono::steady_clock::now();
       const StepStats& st = sim.step();
+      stepSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - stepStart).count());
       const int c = st.takeoff + st.stick + st.slip;
       contacts += c;
       r.maxContacts = std::max(r.maxContacts, c);
@@ -108,6 +114,10 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double n = std::max(1, r.steps);
   r.secondsPerStep = seconds / n;
+  if (!stepSeconds.empty()) {
+    std::nth_element(stepSeconds.begin(), stepSeconds.begin() + stepSeconds.size() / 2, stepSeconds.end());
+    r.medianStepSeconds = stepSeconds[stepSeconds.size() / 2];
+  }
   for (std::size_t m = 0; m < names.size(); ++m) {
     const double t = sim.moduleSeconds()[m] / n;
     if (names[m] == "contact_detection")
@@ -168,7 +178,7 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
   const bool peakResets = resetPeakMemory();
 
   // clang-format off
-  BenchTable table({"scene", "contact", "quads", "vertices", "steps", "ms_per_step", "ms_pd", "ms_detection",
+  BenchTable table({"scene", "contact", "quads", "vertices", "steps", "ms_per_step", "ms_median_step", "ms_pd", "ms_detection",
                     "ms_self_collision", "ms_contact_solve", "contacts_mean", "contacts_max",
                     "takeoff_end", "stick_end", "slip_end", "us_solve_per_contact",
                     "ns_per_contact_sweep", "pd_iterations", "converged_steps", "peak_mb",
@@ -198,6 +208,7 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
                  std::to_string(r.vertices),
                  std::to_string(r.steps),
                  formatNumber(1e3 * r.secondsPerStep),
+                 formatNumber(1e3 * r.medianStepSeconds),
                  formatNumber(1e3 * r.pd),
                  formatNumber(1e3 * r.detection),
                  formatNumber(1e3 * r.selfCollision),
@@ -238,7 +249,9 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
       "quads, each run for the listed steps from the scene's start, " +
       std::to_string(threads) +
       " thread(s). contact: the contact solve (solver.contact; scene = the scene file's own: "
-      "newton for slope, pd for sphere and crumple). ms_* are milliseconds per step by module: ms_pd is the PD solve with the "
+      "newton for slope, pd for sphere and crumple). ms_per_step is the mean over the run's steps, "
+      "ms_median_step the median step (without the one-off work the mean spreads over the run: "
+      "the first factorisations, the landing). The other ms_* are milliseconds per step by module: ms_pd is the PD solve with the "
       "energies and forces it evaluates, ms_detection obstacle contact detection, "
       "ms_self_collision node-node self-collision detection, ms_contact_solve the "
       "Signorini-Coulomb solve (and, for newton, its linearisation). Contacts count node-obstacle contacts and "
