@@ -11,6 +11,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+
 
 namespace weft {
 namespace {
@@ -162,36 +165,46 @@ TEST(SelfCollisionDetector, ExcludesOnlyMeshNeighboursThatStartWithinTheReach) {
 // behind the x wall. The scene starts 9.3 mm across the x = -0.2 wall, so the walls are checked
 // from state 1 on (and that it still starts across).
 TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
-  nlohmann::json doc = test::clothScene(0.5, 12, Vec3(0.05, 0.25, 0.05), 0.01, 300.0, 1e-4, 0.2);
-  doc["cloths"][0]["mesh"]["transform"]["rotate_deg"] = {20, 0, 30};
-  doc["cloths"][0]["initial_velocity"] = {-1.5, -1.0, -1.5};
-  doc["cloths"][0]["self_collision"] = {{"radius", kRadius}, {"friction", 0.3}};
-  test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.4);
-  test::addObstacle(doc, "plane", {{"point", {-0.2, 0, 0}}, {"normal", {1, 0, 0}}}, 0.4);
-  test::addObstacle(doc, "plane", {{"point", {0, 0, -0.2}}, {"normal", {0, 0, 1}}}, 0.4);
-  doc["solver"]["contact"] = "newton";
-  const test::ContactRun run = test::runScene(doc, 80);
   // A hard case for the Newton contact solve: some steps stall unconverged, and such a step can
-  // leave a node inside a wall (up to 22 mm) or a pair at half its distance. Measured on six runs
-  // whose initial velocities differ by 1e-7 relative: 56-69 of 80 steps converged, and every
-  // converged step held the walls' 1 mm skin and every pair's distance exactly; which steps stall
-  // depends on rounding. So the contacts are checked where the solve converged, and enough steps
-  // must converge.
-  int converged = 0;
-  for (const StepStats& s : run.trajectory.steps) converged += s.converged;
-  EXPECT_GE(converged, 50) << "of 80 steps";
-  expectFiniteAndPairsApart(run, "corner", /*convergedOnly=*/true);
-  // Held by the walls and the floor (1 mm skin each), within a millimetre, from the first step
-  // on: the tilted cloth starts with a corner 9.3 mm across the x = -0.2 wall (state 0), which
-  // the first step's contact pushes back out.
-  const Trajectory& t = run.trajectory;
-  ASSERT_LT(t.positions.front().col(0).minCoeff(), -0.2) << "the scene no longer starts across the wall";
-  for (int n = 1; n <= t.stepCount(); ++n) {
-    if (!convergedState(run, n)) continue;
-    const NodeMatrix& x = t.positions[n];
-    ASSERT_GT(x.col(0).minCoeff(), -0.2 + 1e-3 - 1e-3) << "state " << n;
-    ASSERT_GT(x.col(1).minCoeff(), 1e-3 - 1e-3) << "state " << n;
-    ASSERT_GT(x.col(2).minCoeff(), -0.2 + 1e-3 - 1e-3) << "state " << n;
+  // leave a node inside a wall or a pair closer than its distance; which steps stall depends on
+  // rounding. So the scene is run three times, its initial velocity differing by 1e-7 relative,
+  // and on each run the contacts are checked where the solve converged, and enough steps must
+  // converge. What the stalled steps did is printed (2026-12-02: 69, 63 and 56 of 80 steps
+  // converged; stalled steps up to 21.7 mm past a wall's plane, pairs down to 0.70 of their
+  // distance).
+  for (int run_ = 0; run_ < 3; ++run_) {
+    SCOPED_TRACE("run " + std::to_string(run_));
+    nlohmann::json doc = test::clothScene(0.5, 12, Vec3(0.05, 0.25, 0.05), 0.01, 300.0, 1e-4, 0.2);
+    doc["cloths"][0]["mesh"]["transform"]["rotate_deg"] = {20, 0, 30};
+    doc["cloths"][0]["initial_velocity"] = {-1.5 * (1.0 + 1e-7 * run_), -1.0, -1.5};
+    doc["cloths"][0]["self_collision"] = {{"radius", kRadius}, {"friction", 0.3}};
+    test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.4);
+    test::addObstacle(doc, "plane", {{"point", {-0.2, 0, 0}}, {"normal", {1, 0, 0}}}, 0.4);
+    test::addObstacle(doc, "plane", {{"point", {0, 0, -0.2}}, {"normal", {0, 0, 1}}}, 0.4);
+    doc["solver"]["contact"] = "newton";
+    const test::ContactRun run = test::runScene(doc, 80);
+    int converged = 0;
+    for (const StepStats& s : run.trajectory.steps) converged += s.converged;
+    EXPECT_GE(converged, 50) << "of 80 steps";
+    expectFiniteAndPairsApart(run, "corner", /*convergedOnly=*/true);
+    // Held by the walls and the floor (1 mm skin each), within a millimetre, from the first step
+    // on: the tilted cloth starts with a corner 9.3 mm across the x = -0.2 wall (state 0), which
+    // the first step's contact pushes back out.
+    const Trajectory& t = run.trajectory;
+    ASSERT_LT(t.positions.front().col(0).minCoeff(), -0.2) << "the scene no longer starts across the wall";
+    double deepest = 0.0;  // how far any state went past a wall's plane, m
+    for (int n = 1; n <= t.stepCount(); ++n) {
+      const NodeMatrix& x = t.positions[n];
+      const double inside = -std::min({x.col(0).minCoeff() + 0.2, x.col(1).minCoeff(), x.col(2).minCoeff() + 0.2});
+      deepest = std::max(deepest, inside);
+      if (!convergedState(run, n)) continue;
+      EXPECT_LE(inside, 0.0) << "state " << n;
+    }
+    int worstStep = -1;
+    const double ratio = closestPairRatio(run, worstStep, false);
+    std::printf("corner run %d: %d of 80 steps converged; over all steps, deepest inside a wall %.2f mm, "
+                "closest pair %.2f of its distance\n",
+                run_, converged, 1e3 * deepest, ratio);
   }
 }
 
