@@ -12,11 +12,12 @@ SparseCholesky::SparseCholesky(Use use) : use_(use), common_(new cholmod_common)
   common_->print = 0;
   common_->error_handler = nullptr;
   if (use_ == Use::Preconditioner) {
-    // Supernodal, whatever the size: the packed panels below need CHOLMOD's supernodes. Of AMD
-    // and nested dissection, CHOLMOD keeps the ordering with the fewer entries in L; on cloth
-    // grids that is nested dissection (Slope K+ at 48^2: 0.94 against 1.02 million entries,
-    // 1.85 against 2.27 GFlop; at 96^2 5.3 against 6.3 million, 1.76 against 2.64 GFlop).
-    common_->supernodal = CHOLMOD_SUPERNODAL;
+    // Of AMD and nested dissection, CHOLMOD keeps the ordering with the fewer entries in L; on
+    // cloth grids that is nested dissection (Slope K+ at 48^2: 0.94 against 1.02 million
+    // entries, 1.85 against 2.27 GFlop; at 96^2 5.3 against 6.3 million, 1.76 against 2.64
+    // GFlop). CHOLMOD also chooses supernodal or simplicial by flops per entry of L (its default
+    // switch, 40): the sparse K+ of a cloth without bending factorises in small supernodes,
+    // where the BLAS calls cost more than they save, and then takes the simplicial path below.
     common_->nmethods = 2;
     common_->method[0].ordering = CHOLMOD_AMD;
     common_->method[1].ordering = CHOLMOD_NESDIS;

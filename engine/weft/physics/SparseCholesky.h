@@ -7,9 +7,10 @@
 //    double precision, the right-hand sides interleaved (for the small, many-times-solved
 //    systems of cloth about twice as fast as cholmod_solve2).
 //  - Use::Preconditioner (the clamped Hessian K+ = P - Delta P+ that preconditions GMRES in the
-//    Newton contact solve and the adjoint): CHOLMOD's supernodal factor, ordered by the better
-//    of AMD and nested dissection, kept as dense row-major panels; in single precision once L
-//    outgrows the cache (the arithmetic stays double). A preconditioner only needs to be close:
+//    Newton contact solve and the adjoint): ordered by the better of AMD and nested dissection;
+//    where CHOLMOD factorises it in supernodes (enough flops per entry of L), kept as their
+//    dense row-major panels, in single precision once L outgrows the cache (the arithmetic
+//    stays double); otherwise simplicial as above. A preconditioner only needs to be close:
 //    a float factor changes the solve by about 1e-7 relative, and it halves the memory the
 //    solve streams, which is what a large solve is bound by (Slope K+ at 96^2 quads: 8 ms per
 //    solve, 17 ms with double panels, 27 ms simplicial with AMD; at 48^2, where L fits in the
@@ -39,6 +40,13 @@ class SparseCholesky {
   // Returns false if the matrix is not positive definite.
   bool factorize(const Eigen::SparseMatrix<double>& matrix);
   bool factorized() const { return factorized_; }
+  // How the current factor is kept (for diagnostics and tests).
+  enum class Layout { None, Simplicial, PanelsDouble, PanelsSingle };
+  Layout layout() const {
+    if (!factorized_) return Layout::None;
+    if (!packed_) return Layout::Simplicial;
+    return panelsSingle_.empty() ? Layout::PanelsDouble : Layout::PanelsSingle;
+  }
   int size() const { return size_; }
   // From CHOLMOD's symbolic analysis of the current pattern (0 before the first factorize):
   // the floating-point operations of one numeric factorisation and the entries of L. They cost
