@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cstdio>
 
-
 namespace weft {
 namespace {
 
@@ -172,11 +171,11 @@ TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
   // converge. What the stalled steps did is printed (2026-12-02: 69, 63 and 56 of 80 steps
   // converged; stalled steps up to 21.7 mm past a wall's plane, pairs down to 0.70 of their
   // distance).
-  for (int run_ = 0; run_ < 3; ++run_) {
-    SCOPED_TRACE("run " + std::to_string(run_));
+  for (int variant = 0; variant < 3; ++variant) {
+    SCOPED_TRACE("run " + std::to_string(variant));
     nlohmann::json doc = test::clothScene(0.5, 12, Vec3(0.05, 0.25, 0.05), 0.01, 300.0, 1e-4, 0.2);
     doc["cloths"][0]["mesh"]["transform"]["rotate_deg"] = {20, 0, 30};
-    doc["cloths"][0]["initial_velocity"] = {-1.5 * (1.0 + 1e-7 * run_), -1.0, -1.5};
+    doc["cloths"][0]["initial_velocity"] = {-1.5 * (1.0 + 1e-7 * variant), -1.0, -1.5};
     doc["cloths"][0]["self_collision"] = {{"radius", kRadius}, {"friction", 0.3}};
     test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.4);
     test::addObstacle(doc, "plane", {{"point", {-0.2, 0, 0}}, {"normal", {1, 0, 0}}}, 0.4);
@@ -204,7 +203,7 @@ TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
     const double ratio = closestPairRatio(run, worstStep, false);
     std::printf("corner run %d: %d of 80 steps converged; over all steps, deepest inside a wall %.2f mm, "
                 "closest pair %.2f of its distance\n",
-                run_, converged, 1e3 * deepest, ratio);
+                variant, converged, 1e3 * deepest, ratio);
   }
 }
 
