@@ -141,14 +141,30 @@ void SparseCholesky::packSupernodal(std::vector<T>& panels) {
 }
 
 template <int W>
+double* SparseCholesky::permuteIn(const double* data) {
+  // work_ = P b with the W right-hand sides interleaved, so each entry of L updates W contiguous
+  // values.
+  const std::size_t stride = static_cast<std::size_t>(size_);
+  double* z = work_.data();
+  for (int k = 0; k < size_; ++k)
+    for (int c = 0; c < W; ++c) z[W * k + c] = data[c * stride + perm_[k]];
+  return z;
+}
+
+template <int W>
+void SparseCholesky::permuteOut(double* data) const {
+  const std::size_t stride = static_cast<std::size_t>(size_);
+  const double* z = work_.data();
+  for (int k = 0; k < size_; ++k)
+    for (int c = 0; c < W; ++c) data[c * stride + perm_[k]] = z[W * k + c];
+}
+
+template <int W>
 void SparseCholesky::solveSimplicial(double* data) {
   // x = P^T L^{-T} L^{-1} P b with the W right-hand sides interleaved, so each nonzero of L
   // updates W contiguous values.
   const int n = size_;
-  const std::size_t stride = static_cast<std::size_t>(n);
-  double* z = work_.data();
-  for (int k = 0; k < n; ++k)
-    for (int c = 0; c < W; ++c) z[W * k + c] = data[c * stride + perm_[k]];
+  double* z = permuteIn<W>(data);
   for (int j = 0; j < n; ++j) {  // L z' = z (column-oriented; the diagonal comes first)
     const int begin = colStart_[j], end = colStart_[j + 1];
     double zj[W];
@@ -170,19 +186,14 @@ void SparseCholesky::solveSimplicial(double* data) {
     }
     for (int c = 0; c < W; ++c) z[W * j + c] = acc[c] / values_[begin];
   }
-  for (int k = 0; k < n; ++k)
-    for (int c = 0; c < W; ++c) data[c * stride + perm_[k]] = z[W * k + c];
+  permuteOut<W>(data);
 }
 
 template <class T, int W>
 void SparseCholesky::solveSupernodal(const T* panels, double* data) {
   // The same two triangular solves over the packed panels (see packSupernodal).
-  const int n = size_;
   const int nsuper = static_cast<int>(superStart_.size()) - 1;
-  const std::size_t stride = static_cast<std::size_t>(n);
-  double* z = work_.data();
-  for (int k = 0; k < n; ++k)
-    for (int c = 0; c < W; ++c) z[W * k + c] = data[c * stride + perm_[k]];
+  double* z = permuteIn<W>(data);
   for (int s = 0; s < nsuper; ++s) {  // L z' = z
     const int first = superStart_[s], width = superStart_[s + 1] - first;
     const T* panel = panels + panelStart_[s];
@@ -221,8 +232,7 @@ void SparseCholesky::solveSupernodal(const T* panels, double* data) {
         for (int c = 0; c < W; ++c) zs[W * j + c] -= static_cast<double>(row[j]) * zs[W * i + c];
     }
   }
-  for (int k = 0; k < n; ++k)
-    for (int c = 0; c < W; ++c) data[c * stride + perm_[k]] = z[W * k + c];
+  permuteOut<W>(data);
 }
 
 void SparseCholesky::solveInPlace(double* data, int columns) {

@@ -70,6 +70,10 @@ class SparseCholesky {
 
  private:
   template <int W>
+  double* permuteIn(const double* data);  // the permuted, interleaved copy in work_
+  template <int W>
+  void permuteOut(double* data) const;
+  template <int W>
   void solveSimplicial(double* data);
   template <class T>
   void packSupernodal(std::vector<T>& panels);
