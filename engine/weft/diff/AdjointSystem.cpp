@@ -25,7 +25,8 @@ AdjointSystem::AdjointSystem(const Scene& scene) : model_(buildClothModel(scene)
     rows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
   if (!cholesky_.factorize(system_)) throw NumericalError(0, "backward", "system matrix P is not positive definite");
-  probe_ = std::make_unique<ColouredProbe>(system_);
+  assembly_ = std::make_unique<HessianAssembly>(system_);
+  hessianCholesky_.orderByNodes(system_);
 }
 
 AdjointSystem::~AdjointSystem() = default;
@@ -96,8 +97,7 @@ bool AdjointSystem::factorClampedHessian() {
 
 double AdjointSystem::hessianFactorCost() const {
   constexpr double kFactorSlowdown = 3.0;
-  return 3.0 * probe_->colourCount() +
-         kFactorSlowdown * cholesky_.blockFactorFlopRatio(static_cast<double>(system_.nonZeros()));
+  return 1.0 + kFactorSlowdown * cholesky_.blockFactorFlopRatio(static_cast<double>(system_.nonZeros()));
 }
 
 void AdjointSystem::solveClampedHessian(NodeMatrix& inOut) {
@@ -106,9 +106,9 @@ void AdjointSystem::solveClampedHessian(NodeMatrix& inOut) {
 }
 
 Eigen::SparseMatrix<double> AdjointSystem::assembleK() const {
-  // P (x) I_3 - Delta P, Delta P probed through its products (Eq. 19).
+  // P (x) I_3 - Delta P (Eq. 19) from the prepared derivatives' element blocks.
   Eigen::SparseMatrix<double> k;
-  probe_->assemble([this](const NodeMatrix& in, NodeMatrix& out) { multiplyDeltaP(in, out); }, -1.0, &system_, k);
+  assembly_->assemble(constraints_, -h_ * h_, k);
   return k;
 }
 

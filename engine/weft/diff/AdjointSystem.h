@@ -19,7 +19,7 @@
 #include <weft/core/Types.h>
 #include <weft/diff/ContactAdjoint.h>
 #include <weft/physics/ClothModel.h>
-#include <weft/physics/ColouredProbe.h>
+#include <weft/physics/HessianAssembly.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SparseCholesky.h>
 #include <weft/scene/Scene.h>
@@ -64,29 +64,28 @@ class AdjointSystem {
   // cloth in tension, which is why GMRES preconditioned by P needs 100-200 iterations per step on
   // Wind; H needs a handful. Its factor is not reused: K changes too fast from step to step
   // (a factor one step old already needs 2-3x the iterations, docs/benchmarks.md).
-  // factorClampedHessian assembles H at the prepared state (coloured probing, as assembleK) and
+  // factorClampedHessian assembles H at the prepared state (as assembleK) and
   // factorises it with CHOLMOD (3m x 3m, symbolic analysis kept); false if that fails.
   bool factorClampedHessian();
   void solveClampedHessian(NodeMatrix& inOut);  // inOut = H^{-1} inOut
-  // K assembled as a 3m x 3m sparse matrix (flat index = coordinate * m + node), Delta P found by
-  // coloured probing (Curtis-Powell-Reid): nodes of one colour share no constraint row, so one
-  // product per colour and coordinate recovers all their columns.
+  // K assembled as a 3m x 3m sparse matrix (flat index = coordinate * m + node) from the
+  // constraints' element blocks of Delta P (HessianAssembly).
   Eigen::SparseMatrix<double> assembleK() const;
   // The system for a direct solve: P - Delta P without contact; with contact the augmented
   // transposed system of ContactAdjoint::appendTransposedBlocks, (3m + 3c) square, whose first 3m
   // unknowns are z for a right-hand side [g; 0].
   Eigen::SparseMatrix<double> assembleSystem() const;
-  int probeColours() const { return probe_->colourCount(); }
   // What one factorClampedHessian costs, in GMRES iterations preconditioned by P, estimated from
-  // operation counts so that choices made from it repeat exactly: the 3 x colours products that
-  // probe H, plus its factorisation, whose flops are about 26 times P's (H has P's pattern in
-  // 3 x 3 blocks; measured 25.5-26.4 on the Wind napkin at 12^2-48^2 quads) and which runs about
-  // 3 times slower per flop than an iteration (CHOLMOD's supernodal factorisation with the
-  // reference BLAS, small supernodes, and the conversion for our solves, against a P solve of
-  // 12 flops and a K product of about 18 flops per stored entry). Measured against timed runs
-  // on wind_reference.json: 70, 85, 170 iterations at 12^2, 24^2, 48^2; estimated 63, 101, 192.
-  // With bending (wind.json: 16 colours, a denser P) it overestimates: 189 at 24^2 against about
-  // 110 measured (bigger supernodes run the factorisation faster per flop).
+  // operation counts so that choices made from it repeat exactly: about one product to assemble
+  // H (HessianAssembly), plus its factorisation, whose flops are about 26 times P's (H has P's
+  // pattern in 3 x 3 blocks; measured 25.5-26.4 on the Wind napkin at 12^2-48^2 quads) and
+  // which was measured to run about 3 times slower per flop than an iteration (CHOLMOD's
+  // supernodal factorisation with the reference BLAS, small supernodes, and the conversion for
+  // our solves, against a P solve of 12 flops and a K product of about 18 flops per stored
+  // entry; timed runs on wind_reference.json: 70, 85, 170 iterations at 12^2, 24^2, 48^2).
+  // That calibration predates assembling H from element blocks (it was probed with 3 x colours
+  // products), ordering it by the node graph and packing its factor: the estimate is now
+  // pessimistic about factorising.
   double hessianFactorCost() const;
 
  private:
@@ -102,7 +101,7 @@ class AdjointSystem {
   const ContactAdjoint* contact_ = nullptr;
   mutable NodeMatrix contactWbar_, contactSum_, work_;
   mutable Eigen::MatrixX3d contactY_;
-  mutable std::unique_ptr<ColouredProbe> probe_;  // assembleK's probing (buffers kept)
+  mutable std::unique_ptr<HessianAssembly> assembly_;  // assembleK's pattern and positions
 };
 
 }  // namespace weft

@@ -141,6 +141,21 @@ void BendingConstraint::applyDerivative(const NodeMatrix& dx, NodeMatrix& wp) co
   }
 }
 
+bool BendingConstraint::derivativeBlocks(DerivativeBlockSink& sink) const {
+  // applyDerivative is w scale (I - u u^T) (sum_k c_k dx_k): the hinge's block is
+  // w scale (c c^T) (x) (I - u u^T).
+  Eigen::Matrix<double, 12, 12> block;
+  for (std::size_t r = 0; r < hinges_.size(); ++r) {
+    if (scale_[r] == 0.0) continue;
+    const Hinge& h = hinges_[r];
+    const Mat3 across = h.weight * scale_[r] * (Mat3::Identity() - unit_[r] * unit_[r].transpose());
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 4; ++k) block.block<3, 3>(3 * j, 3 * k) = (h.cot[j] * h.cot[k]) * across;
+    sink.add(h.nodes, 4, block.data());
+  }
+  return true;
+}
+
 BendingConstraint makeBendingConstraint(const Scene& scene, const ClothModel& model) {
   std::vector<Hinge> all;
   for (std::size_t c = 0; c < scene.cloths.size(); ++c) {

@@ -31,6 +31,7 @@ class BendingConstraint final : public ProjectiveConstraint {
   bool hasDerivative() const override { return !allFlat_; }
   void prepareDerivative(const NodeMatrix& x, bool definite) override;
   void applyDerivative(const NodeMatrix& dx, NodeMatrix& weightedRows) const override;
+  bool derivativeBlocks(DerivativeBlockSink& sink) const override;
   const std::vector<Hinge>& hinges() const { return hinges_; }
 
  private:

@@ -16,6 +16,16 @@
 
 namespace weft {
 
+// Receives a constraint family's derivative element by element (ProjectiveConstraint::
+// derivativeBlocks): `block` is the (3 count) x (3 count) column-major matrix
+// sum_r w_r A_r^T D_r A_r over the element's rows, restricted to its `count` nodes, entry
+// (3 a + d, 3 b + e) coupling coordinate d of nodes[a] with coordinate e of nodes[b].
+class DerivativeBlockSink {
+ public:
+  virtual ~DerivativeBlockSink() = default;
+  virtual void add(const int* nodes, int count, const double* block) = 0;
+};
+
 class ProjectiveConstraint {
  public:
   virtual ~ProjectiveConstraint() = default;
@@ -43,6 +53,9 @@ class ProjectiveConstraint {
   virtual bool hasDerivative() const { return false; }
   virtual void prepareDerivative(const NodeMatrix& /*x*/, bool /*definite*/) {}
   virtual void applyDerivative(const NodeMatrix& /*dx*/, NodeMatrix& /*weightedRows*/) const {}
+  // The same prepared derivative as dense element blocks, for assembling Delta P directly
+  // (HessianAssembly) instead of through products; false when the family has none.
+  virtual bool derivativeBlocks(DerivativeBlockSink& /*sink*/) const { return false; }
   // Called once per time step, before the iterations, with the end-of-step time.
   virtual void beginStep(double /*time*/) {}
   // Local step: writes w_r * p_r(x) into row r of `weightedProjections` (rows x 3) and returns

@@ -549,13 +549,18 @@ double Simulator::contactResidual(const NodeMatrix& x, NodeMatrix& residual) {
 }
 
 bool Simulator::factorizeStiffness() {
-  // K+ = P - Delta P+ at iterate_ (the derivatives must have been prepared `definite`), probed
-  // through its products (ColouredProbe) and factorised by CHOLMOD (symbolic analysis kept).
-  if (!stiffnessProbe_) stiffnessProbe_ = std::make_unique<ColouredProbe>(system_);
-  stiffnessProbe_->assemble([this](const NodeMatrix& in, NodeMatrix& out) { multiplyNewtonMatrix(in, out); }, 1.0,
-                            nullptr, stiffness_);
+  // K+ = P - Delta P+ at iterate_ (the derivatives must have been prepared `definite`),
+  // assembled from the constraints' element blocks and factorised by CHOLMOD (symbolic analysis
+  // kept). (The active-set solve's friction Hessian is not part of it: that solve never gets here.)
   bool ok = false;
-  timed(solverModule_, [&] { ok = stiffnessCholesky_.factorize(stiffness_); });
+  timed(solverModule_, [&] {
+    if (!stiffnessAssembly_) {
+      stiffnessAssembly_ = std::make_unique<HessianAssembly>(system_);
+      stiffnessCholesky_.orderByNodes(system_);
+    }
+    stiffnessAssembly_->assemble(constraints_, -h_ * h_, stiffness_);
+    ok = stiffnessCholesky_.factorize(stiffness_);
+  });
   stiffnessFactored_ = ok;
   return ok;
 }
@@ -578,7 +583,7 @@ void Simulator::preconditionContact(const NodeMatrix& scaled, NodeMatrix& z) {
       contacts.removePinned(z);
       cholesky_.solveInPlace(z);
     } else {
-      // A NodeMatrix's storage is the flat vector K+ acts on (ColouredProbe's index).
+      // A NodeMatrix's storage is the flat vector K+ acts on (HessianAssembly's index).
       const Eigen::Index n = 3 * static_cast<Eigen::Index>(m);
       coupling_.resize(m, 3);
       Eigen::Map<Eigen::VectorXd>(coupling_.data(), n).noalias() =

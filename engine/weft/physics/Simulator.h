@@ -28,9 +28,9 @@
 #include <weft/core/Types.h>
 #include <weft/physics/AndersonAccelerator.h>
 #include <weft/physics/ClothModel.h>
-#include <weft/physics/ColouredProbe.h>
 #include <weft/physics/ExternalForce.h>
 #include <weft/physics/Gmres.h>
+#include <weft/physics/HessianAssembly.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SparseCholesky.h>
 #include <weft/physics/StepStats.h>
@@ -106,8 +106,8 @@ class Simulator {
   double contactResidual(const NodeMatrix& x, NodeMatrix& residual);
   void solveContactNewton();
   // The Newton contact solve's preconditioner: a CHOLMOD factor of the 3m x 3m clamped Hessian
-  // K+ = P - Delta P+ (the `definite` projection derivatives), assembled from matrix-vector
-  // products (ColouredProbe). False when the factorisation failed (the preconditioner then
+  // K+ = P - Delta P+ (the `definite` projection derivatives), assembled from the constraints'
+  // element blocks (HessianAssembly). False when the factorisation failed (the preconditioner then
   // falls back to P).
   bool factorizeStiffness();
   // z = B r for the GMRES of solveContactNewton (r, z mass-scaled as there; one "solve").
@@ -154,7 +154,7 @@ class Simulator {
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
   NodeMatrix freeMomentum_, plainIterate_, fullResidual_;  // contact scenes only
   NodeMatrix lawInput_, pinnedPart_;                       // solver.contact = "newton" only
-  std::unique_ptr<ColouredProbe> stiffnessProbe_;          // K+ (factorizeStiffness)
+  std::unique_ptr<HessianAssembly> stiffnessAssembly_;     // K+ (factorizeStiffness)
   Eigen::SparseMatrix<double> stiffness_;
   SparseCholesky stiffnessCholesky_{SparseCholesky::Use::Preconditioner};
   bool stiffnessFactored_ = false;

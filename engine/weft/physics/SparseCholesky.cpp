@@ -1,6 +1,7 @@
 #include <weft/physics/SparseCholesky.h>
 
 #include <cholmod.h>
+#include <omp.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -14,7 +15,7 @@ SparseCholesky::SparseCholesky(Use use) : use_(use), common_(new cholmod_common)
   if (use_ == Use::Preconditioner) {
     // Of AMD and nested dissection, CHOLMOD keeps the ordering with the fewer entries in L; on
     // cloth grids that is nested dissection (Slope K+ at 48^2: 0.94 against 1.02 million
-    // entries, 1.85 against 2.27 GFlop; at 96^2 5.3 against 6.3 million, 1.76 against 2.64
+    // entries, 0.185 against 0.227 GFlop; at 96^2 5.3 against 6.3 million, 1.76 against 2.64
     // GFlop). CHOLMOD also chooses supernodal or simplicial by flops per entry of L (its default
     // switch, 40): the sparse K+ of a cloth without bending factorises in small supernodes,
     // where the BLAS calls cost more than they save, and then takes the simplicial path below.
@@ -22,6 +23,54 @@ SparseCholesky::SparseCholesky(Use use) : use_(use), common_(new cholmod_common)
     common_->method[0].ordering = CHOLMOD_AMD;
     common_->method[1].ordering = CHOLMOD_NESDIS;
   }
+}
+
+namespace {
+
+// CHOLMOD 3 (SuiteSparse 5) runs the scatter and clearing loops of its supernodal factorisation
+// on CHOLMOD_OMP_NUM_THREADS (4) OpenMP threads whatever the caller's budget. Under a smaller
+// budget (a one-thread run, the 2-core CI machine) they run serially: the extra threads only
+// contend for the cores (Slope K+ at 48^2 quads, one thread asked for: 114 ms per factorisation
+// with CHOLMOD's four threads, 75 ms serial).
+class OpenMpBudget {
+ public:
+  OpenMpBudget() : levels_(omp_get_max_active_levels()), serial_(omp_get_max_threads() < CHOLMOD_OMP_NUM_THREADS) {
+    if (serial_) omp_set_max_active_levels(0);
+  }
+  ~OpenMpBudget() {
+    if (serial_) omp_set_max_active_levels(levels_);
+  }
+  OpenMpBudget(const OpenMpBudget&) = delete;
+  OpenMpBudget& operator=(const OpenMpBudget&) = delete;
+
+ private:
+  int levels_;
+  bool serial_;
+};
+
+}  // namespace
+
+void SparseCholesky::orderByNodes(const Eigen::SparseMatrix<double>& nodeGraph) {
+  Eigen::SparseMatrix<double> lower = nodeGraph.triangularView<Eigen::Lower>();
+  lower.makeCompressed();
+  cholmod_sparse view{};
+  view.nrow = view.ncol = static_cast<size_t>(lower.rows());
+  view.nzmax = static_cast<size_t>(lower.nonZeros());
+  view.p = lower.outerIndexPtr();
+  view.i = lower.innerIndexPtr();
+  view.x = lower.valuePtr();
+  view.stype = -1;
+  view.itype = CHOLMOD_INT;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+  cholmod_factor* analysis = cholmod_analyze(&view, common_);
+  if (!analysis) return;
+  const int* order = static_cast<const int*>(analysis->Perm);
+  nodeOrder_.assign(order, order + lower.rows());
+  cholmod_free_factor(&analysis, common_);
+  patternNonZeros_ = -1;  // analyse anew with it
 }
 
 SparseCholesky::~SparseCholesky() {
@@ -53,7 +102,22 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
   const bool samePattern = symbolic_ && size_ == lower_.rows() && patternNonZeros_ == lower_.nonZeros();
   if (!samePattern) {
     if (symbolic_) cholmod_free_factor(&symbolic_, common_);
-    symbolic_ = cholmod_analyze(&view, common_);
+    const int nodes = static_cast<int>(nodeOrder_.size());
+    if (nodes > 0 && lower_.rows() % nodes == 0) {
+      // Node k's unknowns d m + order[k], d < k, consecutive (orderByNodes).
+      const int blocks = static_cast<int>(lower_.rows()) / nodes;
+      std::vector<int> given(static_cast<std::size_t>(lower_.rows()));
+      for (int k = 0; k < nodes; ++k)
+        for (int d = 0; d < blocks; ++d) given[blocks * k + d] = d * nodes + nodeOrder_[k];
+      const int methods = common_->nmethods, ordering = common_->method[0].ordering;
+      common_->nmethods = 1;
+      common_->method[0].ordering = CHOLMOD_GIVEN;
+      symbolic_ = cholmod_analyze_p(&view, given.data(), nullptr, 0, common_);
+      common_->nmethods = methods;
+      common_->method[0].ordering = ordering;
+    } else {
+      symbolic_ = cholmod_analyze(&view, common_);
+    }
     factorFlops_ = common_->fl;
     factorEntries_ = common_->lnz;
     size_ = static_cast<int>(lower_.rows());
@@ -66,7 +130,10 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
   // CHOLMOD's supernodal (BLAS) path (10x slower for the adjoint's per-step 3m x 3m factor).
   factor_ = cholmod_copy_factor(symbolic_, common_);
   if (!factor_) return false;
-  cholmod_factorize(&view, factor_, common_);
+  {
+    const OpenMpBudget budget;
+    cholmod_factorize(&view, factor_, common_);
+  }
   if (common_->status == CHOLMOD_NOT_POSDEF || common_->status < CHOLMOD_OK) {
     cholmod_free_factor(&factor_, common_);
     return false;

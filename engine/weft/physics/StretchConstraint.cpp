@@ -199,6 +199,33 @@ void StretchConstraint::applyDerivative(const NodeMatrix& dx, NodeMatrix& wp) co
   }
 }
 
+bool StretchConstraint::derivativeBlocks(DerivativeBlockSink& sink) const {
+  // applyDerivative as a matrix on the stacked F columns (f0, f1) = (A_0 dx, A_1 dx):
+  // w D = w (rot/2 u u^T + blockdiag(n, n) B blockdiag(n, n)^T), u = (q1, -q0), symmetric;
+  // the triangle's block is C^T (w D) C with C = coeff (x) I_3.
+  Eigen::Matrix<double, 9, 9> block;
+  for (int t = 0; t < triangleCount(); ++t) {
+    const Coefficients& c = coeff_[t];
+    const Derivative& d = derivative_[t];
+    const double w = weights_[2 * t];
+    const Vec3 u[2] = {d.q.col(1), -d.q.col(0)};
+    const double b[2][2] = {{d.b00, d.b01}, {d.b01, d.b11}};
+    Mat3 rows[2][2];  // w D_rs
+    for (int r = 0; r < 2; ++r)
+      for (int s = 0; s < 2; ++s)
+        rows[r][s] = w * (0.5 * d.rot * u[r] * u[s].transpose() + b[r][s] * d.n * d.n.transpose());
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        Mat3 sum = Mat3::Zero();
+        for (int r = 0; r < 2; ++r)
+          for (int s = 0; s < 2; ++s) sum += (c(r, j) * c(s, k)) * rows[r][s];
+        block.block<3, 3>(3 * j, 3 * k) = sum;
+      }
+    sink.add(nodes_[t].data(), 3, block.data());
+  }
+  return true;
+}
+
 StretchConstraint makeStretchConstraint(const Scene& scene, const ClothModel& model) {
   std::vector<int> keep;
   std::vector<double> stiffness;

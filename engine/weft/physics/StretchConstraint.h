@@ -24,6 +24,7 @@ class StretchConstraint final : public ProjectiveConstraint {
   bool hasDerivative() const override { return true; }
   void prepareDerivative(const NodeMatrix& x, bool definite) override;
   void applyDerivative(const NodeMatrix& dx, NodeMatrix& weightedRows) const override;
+  bool derivativeBlocks(DerivativeBlockSink& sink) const override;
 
   // Deformation gradient coefficients: F column c = sum_j coeff[t](c, j) x_{node j}.
   using Coefficients = Eigen::Matrix<double, 2, 3>;
