@@ -48,23 +48,30 @@ class OpenMpBudget {
   bool serial_;
 };
 
-}  // namespace
-
-void SparseCholesky::orderByNodes(const Eigen::SparseMatrix<double>& nodeGraph) {
-  Eigen::SparseMatrix<double> lower = nodeGraph.triangularView<Eigen::Lower>();
-  lower.makeCompressed();
+// CHOLMOD's view of a compressed lower triangle (no copy): a symmetric matrix to analyse or
+// factorise.
+cholmod_sparse lowerTriangleView(Eigen::SparseMatrix<double>& lower) {
   cholmod_sparse view{};
   view.nrow = view.ncol = static_cast<size_t>(lower.rows());
   view.nzmax = static_cast<size_t>(lower.nonZeros());
   view.p = lower.outerIndexPtr();
   view.i = lower.innerIndexPtr();
   view.x = lower.valuePtr();
-  view.stype = -1;
+  view.stype = -1;  // symmetric, lower triangle stored
   view.itype = CHOLMOD_INT;
   view.xtype = CHOLMOD_REAL;
   view.dtype = CHOLMOD_DOUBLE;
   view.sorted = 1;
   view.packed = 1;
+  return view;
+}
+
+}  // namespace
+
+void SparseCholesky::orderByNodes(const Eigen::SparseMatrix<double>& nodeGraph) {
+  Eigen::SparseMatrix<double> lower = nodeGraph.triangularView<Eigen::Lower>();
+  lower.makeCompressed();
+  cholmod_sparse view = lowerTriangleView(lower);
   cholmod_factor* analysis = cholmod_analyze(&view, common_);
   if (!analysis) return;
   const int* order = static_cast<const int*>(analysis->Perm);
@@ -87,18 +94,7 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
   factorized_ = packed_ = false;
   lower_ = matrix.triangularView<Eigen::Lower>();
   lower_.makeCompressed();
-  cholmod_sparse view{};
-  view.nrow = view.ncol = static_cast<size_t>(lower_.rows());
-  view.nzmax = static_cast<size_t>(lower_.nonZeros());
-  view.p = lower_.outerIndexPtr();
-  view.i = lower_.innerIndexPtr();
-  view.x = lower_.valuePtr();
-  view.stype = -1;  // symmetric, lower triangle stored
-  view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
-  view.dtype = CHOLMOD_DOUBLE;
-  view.sorted = 1;
-  view.packed = 1;
+  cholmod_sparse view = lowerTriangleView(lower_);
   const bool samePattern = symbolic_ && size_ == lower_.rows() && patternNonZeros_ == lower_.nonZeros();
   if (!samePattern) {
     if (symbolic_) cholmod_free_factor(&symbolic_, common_);
