@@ -29,7 +29,7 @@ int benchCommand(const std::vector<std::string>& arguments) {
       args,
       {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks", "--seeds",
        "--budget", "--contact", "--paper-meshes", "--subdivisions", "--resolution"},
-      {"--quick", "--resume"});
+      {"--quick", "--resume", "--calibrate"});
   if (cl.positional().size() != 1)
     cl.fail("NAME",
             "bench takes one benchmark name: forward, backward, continuity, contact, applications "
@@ -39,6 +39,7 @@ int benchCommand(const std::vector<std::string>& arguments) {
   for (const char* option : {"--subdivisions", "--resolution"})
     if (cl.has(option) && name != "continuity")
       cl.fail(option, "applies to the continuity benchmark only");
+  if (cl.has("--calibrate") && name != "backward") cl.fail("--calibrate", "applies to the backward benchmark only");
   if (name == "applications") {
     if (cl.has("--resolutions"))
       cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");

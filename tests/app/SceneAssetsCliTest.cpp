@@ -4,10 +4,13 @@
 
 #include "CliSupport.h"
 
+#include <weft/diff/AdjointSystem.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -148,6 +151,32 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
     }
   EXPECT_EQ(gmres, 6);
   EXPECT_TRUE(fs::exists(out + "/backward.md"));
+}
+
+// `--calibrate` times the clamped Hessian's factorisation against an iteration with P and prints
+// the estimate the automatic preconditioner uses; the estimate column must be the formula it
+// states (kFactorCostScale x sqrt(flop_ratio)), and factorising costs more flops than an iteration.
+TEST(SceneAssets, BackwardBenchCalibrateWritesTheEstimateBesideTheTimings) {
+  TempDir dir;
+  const std::string out = dir.file("calibrate");
+  const auto r = runWeft({"bench", "backward", "--calibrate", "--scenes", "wind", "--resolutions", "8", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const auto rows = readCsv(out + "/calibrate.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  const std::vector<std::string> columns = {"scene", "quads", "vertices", "first_factor_ms", "factor_ms",
+                                            "iteration_ms", "measured_iterations", "flop_ratio",
+                                            "estimated_iterations", "estimate_over_measured"};
+  ASSERT_EQ(rows[0], columns);
+  const auto& row = rows[1];
+  EXPECT_EQ(row[1], "8");
+  for (std::size_t c = 3; c <= 6; ++c) EXPECT_GT(std::stod(row[c]), 0.0) << columns[c];
+  const double flopRatio = std::stod(row[7]);
+  EXPECT_GT(flopRatio, 1.0);
+  EXPECT_NEAR(std::stod(row[8]), AdjointSystem::kFactorCostScale * std::sqrt(flopRatio), 1e-2 * std::stod(row[8]));
+  EXPECT_TRUE(fs::exists(out + "/calibrate.md"));
+  const auto wrong = runWeft({"bench", "contact", "--calibrate", "--out", dir.file("wrong")});
+  EXPECT_EQ(wrong.exitCode, 2) << describe(wrong);
+  EXPECT_NE(wrong.err.find("--calibrate: applies to the backward benchmark only"), std::string::npos) << describe(wrong);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "../Commands.h"
 
 #include <weft/core/ProcessCpuTime.h>
+#include <weft/diff/AdjointSystem.h>
 #include <weft/diff/Backpropagation.h>
 #include <weft/diff/ForwardPass.h>
 #include <weft/diff/ParameterSet.h>
@@ -19,6 +20,8 @@
 #include <weft/io/Npy.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/scene/SceneLoader.h>
+
+#include <Eigen/Core>
 
 #include <omp.h>
 #include <sys/resource.h>
@@ -31,6 +34,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <random>
+#include <vector>
 
 namespace weft::cli {
 namespace {
@@ -88,6 +93,79 @@ double peakRssMegabytes() {
   return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
 }
 
+double medianOf(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// `--calibrate`: what AdjointSystem::hessianFactorCost estimates from operation counts (the
+// automatic preconditioner's exchange rate between a factorisation of the clamped Hessian H and
+// iterations with P) against timings. For each scene and resolution, at the state of the middle
+// step of a forward run: one factorClampedHessian with its symbolic analysis, the median of five
+// more on the kept analysis, and the median of 30 GMRES iterations' work with P (a product with K
+// and a solve with P). Contact (Delta R) is left out: it adds to both sides alike.
+int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vector<int>& resolutions, int threads,
+                        StagedDirectory& out, const std::string& outDir) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  BenchTable table({"scene", "quads", "vertices", "first_factor_ms", "factor_ms", "iteration_ms",
+                    "measured_iterations", "flop_ratio", "estimated_iterations", "estimate_over_measured"});
+  for (const BackwardCase& c : cases)
+    for (int n : resolutions) {
+      std::vector<SceneOverride> overrides = c.resolution(n);
+      overrides.push_back({"time.steps", std::to_string(c.steps / 2 + 1)});
+      const Scene scene = loadScene(c.file, overrides);
+      std::fprintf(stderr, "calibrate: %s %dx%d forward run...\n", c.name.c_str(), n, n);
+      const ForwardPass forward = runForwardPass(scene);
+      AdjointSystem system(scene);
+      system.prepare(forward.trajectory.positions.back());
+      if (!system.hasDeltaP()) continue;
+      auto start = Clock::now();
+      if (!system.factorClampedHessian()) {
+        std::fprintf(stderr, "calibrate: %s %dx%d: the clamped Hessian did not factorise\n", c.name.c_str(), n, n);
+        continue;
+      }
+      const double first = since(start);
+      std::vector<double> factor, iteration;
+      for (int k = 0; k < 5; ++k) {
+        start = Clock::now();
+        system.factorClampedHessian();
+        factor.push_back(since(start));
+      }
+      const int m = system.nodeCount();
+      std::mt19937 random(1);
+      std::normal_distribution<double> normal;
+      NodeMatrix in(m, 3), product(m, 3);
+      for (Eigen::Index i = 0; i < in.size(); ++i) in.data()[i] = normal(random);
+      for (int k = 0; k < 30; ++k) {
+        start = Clock::now();
+        system.multiplyK(in, product);
+        system.solveP(product);
+        iteration.push_back(since(start));
+      }
+      const double f = medianOf(factor), it = medianOf(iteration);
+      const double measured = f / it, ratio = system.hessianFlopRatio();
+      table.add({c.name, std::to_string(n), std::to_string(m), formatNumber(1e3 * first), formatNumber(1e3 * f),
+                 formatNumber(1e3 * it, 3), formatNumber(measured, 3), formatNumber(ratio, 3),
+                 formatNumber(system.hessianFactorCost(), 3), formatNumber(system.hessianFactorCost() / measured, 3)});
+    }
+  const std::string preamble =
+      "AdjointSystem::hessianFactorCost against timings, " + std::to_string(threads) +
+      " thread(s). Machine: " + machineDescription() +
+      ". At the middle step of each scene's forward run: first_factor = the first factorClampedHessian "
+      "(assembly, symbolic analysis, numeric factorisation), factor = the median of five more (analysis kept), "
+      "iteration = the median of 30 products with K plus solves with P (one GMRES iteration's work with P). "
+      "measured_iterations = factor / iteration; flop_ratio = the factorisation's flops over an "
+      "iteration's; estimated_iterations = hessianFactorCost() = kFactorCostScale (" +
+      formatNumber(AdjointSystem::kFactorCostScale, 3) + ") x sqrt(flop_ratio).";
+  table.writeCsv(out.file("calibrate.csv"));
+  table.writeMarkdown(out.file("calibrate.md"), "Factorisation cost of the clamped Hessian (weft bench backward --calibrate)",
+                      preamble);
+  out.commit();
+  std::printf("bench backward --calibrate: %zu rows -> %s/calibrate.{csv,md}\n", table.rows().size(), outDir.c_str());
+  return 0;
+}
+
 struct Method {
   std::string label, method;
   double tolerance;
@@ -103,6 +181,7 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
   const std::vector<int> resolutions = benchResolutions(cl, quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48});
+  if (cl.has("--calibrate")) return calibrateFactorCost(cases, resolutions, threads, out, outDir);
   const std::vector<Method> methods = {{"direct", "direct", 1e-4},
                                        {"fixed_point 1e-4", "fixed_point", 1e-4},
                                        {"fixed_point 1e-6", "fixed_point", 1e-6},

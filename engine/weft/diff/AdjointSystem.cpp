@@ -6,6 +6,7 @@
 #include <weft/physics/StretchConstraint.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace weft {
 
@@ -95,10 +96,11 @@ bool AdjointSystem::factorClampedHessian() {
   return hessianCholesky_.factorize(clamped);
 }
 
-double AdjointSystem::hessianFactorCost() const {
-  constexpr double kFactorSlowdown = 3.0;
-  return 1.0 + kFactorSlowdown * cholesky_.blockFactorFlopRatio(static_cast<double>(system_.nonZeros()));
+double AdjointSystem::hessianFlopRatio() const {
+  return cholesky_.blockFactorFlopRatio(static_cast<double>(system_.nonZeros()));
 }
+
+double AdjointSystem::hessianFactorCost() const { return kFactorCostScale * std::sqrt(hessianFlopRatio()); }
 
 void AdjointSystem::solveClampedHessian(NodeMatrix& inOut) {
   // NodeMatrix storage is column-major: its data is the flat 3m vector assembleK indexes.

@@ -76,17 +76,18 @@ class AdjointSystem {
   // unknowns are z for a right-hand side [g; 0].
   Eigen::SparseMatrix<double> assembleSystem() const;
   // What one factorClampedHessian costs, in GMRES iterations preconditioned by P, estimated from
-  // operation counts so that choices made from it repeat exactly: about one product to assemble
-  // H (HessianAssembly), plus its factorisation, whose flops are about 26 times P's (H has P's
-  // pattern in 3 x 3 blocks; measured 25.5-26.4 on the Wind napkin at 12^2-48^2 quads) and
-  // which was measured to run about 3 times slower per flop than an iteration (CHOLMOD's
-  // supernodal factorisation with the reference BLAS, small supernodes, and the conversion for
-  // our solves, against a P solve of 12 flops and a K product of about 18 flops per stored
-  // entry; timed runs on wind_reference.json: 70, 85, 170 iterations at 12^2, 24^2, 48^2).
-  // That calibration predates assembling H from element blocks (it was probed with 3 x colours
-  // products), ordering it by the node graph and packing its factor: the estimate is now
-  // pessimistic about factorising.
+  // operation counts so that choices made from it repeat exactly: kFactorCostScale times the
+  // square root of the flop ratio of H's factorisation over an iteration's (H has P's pattern in
+  // 3 x 3 blocks, so its flops are about 26 times P's factor's; an iteration is a P solve of 12
+  // flops and a K product of about 18 flops per stored entry). Not proportional to the flop
+  // ratio: the larger the matrix, the larger CHOLMOD's supernodes and the faster its BLAS runs
+  // per flop. Fitted to `weft bench backward --calibrate` (Wind with the reference and with
+  // Weft's parameters, Slope; 12^2-48^2 quads; two runs): measured 36-158 iterations for flop
+  // ratios 12-116, the estimate within 0.76-1.45 of each.
   double hessianFactorCost() const;
+  // H's factorisation flops over an iteration's (SparseCholesky::blockFactorFlopRatio).
+  double hessianFlopRatio() const;
+  static constexpr double kFactorCostScale = 15.0;
 
  private:
   ClothModel model_;

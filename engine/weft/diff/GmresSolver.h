@@ -18,7 +18,7 @@
 // one per step: P is right where contacts pin the cloth's soft out-of-plane modes or the cloth
 // is slack (Slope: 1-5 iterations per step), the Hessian where the cloth hangs free in tension
 // (Wind: 60-130 iterations with P, 2-5 with the Hessian), and the factorisation costs as much
-// as 60-400 iterations with P (AdjointSystem::hessianFactorCost, from operation counts). A step
+// as 36-158 iterations with P at 12^2-48^2 (AdjointSystem::hessianFactorCost). A step
 // first runs with P for as many iterations as a factorisation costs divided by the steps a
 // factor serves (counted in the pass, from a prior of kAutomaticPriorReuse; at least
 // kAutomaticPIterations); if P has not converged by then, the Hessian is factored and the solve

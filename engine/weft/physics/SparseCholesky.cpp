@@ -100,7 +100,7 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
     if (symbolic_) cholmod_free_factor(&symbolic_, common_);
     const int nodes = static_cast<int>(nodeOrder_.size());
     if (nodes > 0 && lower_.rows() % nodes == 0) {
-      // Node k's unknowns d m + order[k], d < k, consecutive (orderByNodes).
+      // Node order[k]'s unknowns d m + order[k], d < blocks, consecutive (orderByNodes).
       const int blocks = static_cast<int>(lower_.rows()) / nodes;
       std::vector<int> given(static_cast<std::size_t>(lower_.rows()));
       for (int k = 0; k < nodes; ++k)
