@@ -83,7 +83,7 @@ class AdjointSystem {
   // ratio: the larger the matrix, the larger CHOLMOD's supernodes and the faster its BLAS runs
   // per flop. Fitted to `weft bench backward --calibrate` (Wind with the reference and with
   // Weft's parameters, Slope; 12^2-48^2 quads; two runs): measured 36-158 iterations for flop
-  // ratios 12-116, the estimate within 0.76-1.45 of each.
+  // ratios 12-116, the estimate within 0.77-1.45 of each.
   double hessianFactorCost() const;
   // H's factorisation flops over an iteration's (SparseCholesky::blockFactorFlopRatio).
   double hessianFlopRatio() const;
