@@ -26,7 +26,9 @@ class HessianAssembly final : private DerivativeBlockSink {
   explicit HessianAssembly(const Eigen::SparseMatrix<double>& system);
 
   // out = P (x) I_3 + scale * (the families' prepared derivative blocks): scale = -h^2 gives K.
-  // Every family with a derivative must offer its blocks (std::logic_error otherwise).
+  // Every family with a derivative must offer its blocks (std::logic_error otherwise). `out` is
+  // either a matrix this assembly produced, whose values are then overwritten in place (its
+  // pattern is taken to be ours when its size and entry count are), or anything else, replaced.
   void assemble(const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints, double scale,
                 Eigen::SparseMatrix<double>& out);
 
