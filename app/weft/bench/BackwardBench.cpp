@@ -93,11 +93,6 @@ double peakRssMegabytes() {
   return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
 }
 
-double medianOf(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
 // `--calibrate`: what AdjointSystem::hessianFactorCost estimates from operation counts (the
 // automatic preconditioner's exchange rate between a factorisation of the clamped Hessian H and
 // iterations with P) against timings. For each scene and resolution, at the state of the middle
@@ -143,7 +138,7 @@ int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vecto
         system.solveP(product);
         iteration.push_back(since(start));
       }
-      const double f = medianOf(factor), it = medianOf(iteration);
+      const double f = median(factor), it = median(iteration);
       const double measured = f / it, ratio = system.hessianFlopRatio();
       table.add({c.name, std::to_string(n), std::to_string(m), formatNumber(1e3 * first), formatNumber(1e3 * f),
                  formatNumber(1e3 * it, 3), formatNumber(measured, 3), formatNumber(ratio, 3),

@@ -140,4 +140,11 @@ std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallba
   return out;
 }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 }  // namespace weft::cli

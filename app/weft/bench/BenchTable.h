@@ -25,6 +25,10 @@ class BenchTable {
   std::vector<std::vector<std::string>> rows_;
 };
 
+// The median of a measured sample (0 for an empty one): the middle element, the upper one of
+// the two middle elements for an even count.
+double median(std::vector<double> values);
+
 // One plotted series: x/y columns of a CSV data block, drawn in a gnuplot style ("steps" for a
 // running minimum).
 struct PlotSeries {

@@ -114,10 +114,7 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double n = std::max(1, r.steps);
   r.secondsPerStep = seconds / n;
-  if (!stepSeconds.empty()) {
-    std::nth_element(stepSeconds.begin(), stepSeconds.begin() + stepSeconds.size() / 2, stepSeconds.end());
-    r.medianStepSeconds = stepSeconds[stepSeconds.size() / 2];
-  }
+  r.medianStepSeconds = median(stepSeconds);
   for (std::size_t m = 0; m < names.size(); ++m) {
     const double t = sim.moduleSeconds()[m] / n;
     if (names[m] == "contact_detection")

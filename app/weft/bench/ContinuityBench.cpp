@@ -147,12 +147,6 @@ Sample simulate(const Scene& scene, const std::vector<Probe>& probes,
   return sample;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
