@@ -89,11 +89,12 @@ bool AdjointSystem::factorClampedHessian() {
   if (preparedX_.rows() != nodeCount()) return false;
   for (auto& c : constraints_)
     if (c->hasDerivative()) c->prepareDerivative(preparedX_, true);
-  const Eigen::SparseMatrix<double> clamped = assembleK();
+  // Into the kept matrix: its pattern never changes, so each factorisation overwrites the values.
+  assembly_->assemble(constraints_, -h_ * h_, clamped_);
   // Back to the exact derivative: K's products must stay those of Eq. 19.
   for (auto& c : constraints_)
     if (c->hasDerivative()) c->prepareDerivative(preparedX_, false);
-  return hessianCholesky_.factorize(clamped);
+  return hessianCholesky_.factorize(clamped_);
 }
 
 double AdjointSystem::hessianFlopRatio() const {

@@ -103,6 +103,7 @@ class AdjointSystem {
   mutable NodeMatrix contactWbar_, contactSum_, work_;
   mutable Eigen::MatrixX3d contactY_;
   mutable std::unique_ptr<HessianAssembly> assembly_;  // assembleK's pattern and positions
+  Eigen::SparseMatrix<double> clamped_;                // H, assembled in place by factorClampedHessian
 };
 
 }  // namespace weft
