@@ -28,7 +28,10 @@ struct ContactConstraint {
   // Obstacle contacts: where detection sampled the surface, sample = x_n + pathFraction * (the
   // predicted displacement). The frame (normal, nearest point, surface velocity) is a function of
   // this point, so the backward pass differentiates the frame through it (DiffCloth Sec. 4.3,
-  // J_n(x_n, v_n)).
+  // J_n(x_n, v_n)). A contact added after the solve (FrictionalContact::addMissedContacts)
+  // sampled the path actually taken instead; the backward pass still moves its sample with x_n
+  // and v_n, which is exact where the frame does not depend on the sample (planes) and an
+  // approximation on curved shapes.
   Vec3 sample = Vec3::Zero();
   double pathFraction = 0.0;
 };

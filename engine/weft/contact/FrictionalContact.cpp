@@ -1,5 +1,8 @@
 #include <weft/contact/FrictionalContact.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace weft {
 namespace {
 
@@ -11,6 +14,34 @@ double meanEdgeLength(const TriangleMesh& mesh) {
     ++count;
   }
   return count > 0 ? sum / count : 0.0;
+}
+
+using ContactKey = std::tuple<int, int, int>;  // node, partner, obstacle
+
+ContactKey keyOf(const ContactConstraint& c) { return {c.node, c.partner, c.obstacle}; }
+
+// Detection's order: by node, then partner (pairs) or obstacle (obstacle contacts).
+bool detectionOrder(const ContactConstraint& a, const ContactConstraint& b) { return keyOf(a) < keyOf(b); }
+
+// Appends the contacts of `found` that `set` lacks (the same node with the same obstacle or
+// partner) and whose constraint the displacement `actual` violates by more than `tolerance` (m):
+// it ends the step closer along the contact's normal than the constraint allows (ContactConstraint.h:
+// n . (x_{n+1} - c) >= skin, i.e. h n . (v - reference) >= 0). A contact the step does not
+// violate would be in take-off at its result and change nothing. Returns how many; `keys` is
+// scratch; `set` keeps its order, the new ones at its end.
+int appendViolated(const std::vector<ContactConstraint>& found, const NodeMatrix& actual, double h, double tolerance,
+                   std::vector<ContactConstraint>& set, std::vector<ContactKey>& keys) {
+  keys.clear();
+  for (const ContactConstraint& c : set) keys.push_back(keyOf(c));
+  std::sort(keys.begin(), keys.end());
+  const std::size_t old = set.size();
+  for (const ContactConstraint& c : found) {
+    Vec3 d = actual.row(c.node).transpose();
+    if (c.partner >= 0) d -= actual.row(c.partner).transpose();
+    if (c.normal.dot(d - h * c.reference) >= -tolerance) continue;
+    if (!std::binary_search(keys.begin(), keys.end(), keyOf(c))) set.push_back(c);
+  }
+  return static_cast<int>(set.size() - old);
 }
 
 }  // namespace
@@ -39,10 +70,41 @@ void FrictionalContact::detectObstacles(const NodeMatrix& x, const NodeMatrix& d
 
 void FrictionalContact::detectSelfCollisions(const NodeMatrix& x, const NodeMatrix& displacement) {
   selfCollision_->detect(x, displacement, h_, pairs_);
+  orderPairs();
+}
+
+void FrictionalContact::orderPairs() {
   obstacleNodes_.clear();
   for (const ContactConstraint& c : obstacleContacts_)
     if (obstacleNodes_.empty() || obstacleNodes_.back() != c.node) obstacleNodes_.push_back(c.node);
   layering_.order(pairs_, obstacleNodes_, layerStart_);
+}
+
+int FrictionalContact::addMissedContacts(const NodeMatrix& x, const NodeMatrix& predicted, const NodeMatrix& actual) {
+  // Paths are straight, so no point of a node's path strays further from its predicted path
+  // than the end does. A pair's distance then changes by at most twice that, an obstacle
+  // distance by at most that; detection took pairs within (1 + kMarginFraction) of their
+  // distance and obstacle contacts within the margin, so smaller strays cannot miss a contact.
+  const double stray = std::sqrt((actual - predicted).rowwise().squaredNorm().maxCoeff());
+  int added = 0;
+  if (hasObstacles() && stray >= detector_->margin()) {
+    found_.clear();
+    detector_->detect(x, actual, h_, found_);
+    const int obstacleAdded =
+        appendViolated(found_, actual, h_, kViolationTolerance * detector_->margin(), obstacleContacts_, keys_);
+    if (obstacleAdded > 0) std::sort(obstacleContacts_.begin(), obstacleContacts_.end(), detectionOrder);
+    added += obstacleAdded;
+  }
+  if (hasSelfCollision() && 2.0 * stray >= SelfCollisionDetector::kMarginFraction * selfCollision_->smallestDistance()) {
+    found_.clear();
+    selfCollision_->detect(x, actual, h_, found_);
+    const int pairsAdded = appendViolated(found_, actual, h_, kViolationTolerance * selfCollision_->smallestDistance(),
+                                          pairs_, keys_);
+    if (pairsAdded > 0) std::sort(pairs_.begin(), pairs_.end(), detectionOrder);  // (the layering starts from it)
+    added += pairsAdded;
+    if (added > 0) orderPairs();
+  }
+  return added;
 }
 
 void FrictionalContact::prepareSolve(const Eigen::VectorXd* lawMass) {

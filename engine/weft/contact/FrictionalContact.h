@@ -22,6 +22,7 @@
 #include <weft/physics/ClothModel.h>
 
 #include <memory>
+#include <tuple>
 #include <vector>
 
 namespace weft {
@@ -40,6 +41,15 @@ class FrictionalContact {
   // x: state at the start of the step; displacement: the predicted motion over the step.
   void detectObstacles(const NodeMatrix& x, const NodeMatrix& displacement);
   void detectSelfCollisions(const NodeMatrix& x, const NodeMatrix& displacement);
+  // After a step's solve, the contacts that the path actually taken (x -> x + actual) violates
+  // and detection from the predicted path (x -> x + predicted) missed, such as a node stopped by
+  // a wall while its neighbour flies on into it: added to the set, their frames from x as
+  // detection makes them; returns how many. The caller hands the set to the solver again and
+  // solves the step anew. Violated: the step ends closer along the contact's normal than its
+  // constraint allows, by more than kViolationTolerance of the detection margin (obstacles) or
+  // collision distance (pairs). A family is not searched when no node strayed from its predicted
+  // path by more than detection's margin covers (half the pairs' margin, the obstacles' margin).
+  int addMissedContacts(const NodeMatrix& x, const NodeMatrix& predicted, const NodeMatrix& actual);
   // Hands the detected contacts to the per-node solver of solver.contact = "pd" and "newton"
   // (impulses start at zero), optionally with the mass the law is solved with
   // (ContactSolver::setContacts; default: the lumped mass).
@@ -64,10 +74,13 @@ class FrictionalContact {
   int obstacleContactCount() const { return static_cast<int>(obstacleContacts_.size()); }
   int pairCount() const { return static_cast<int>(pairs_.size()); }
 
+  static constexpr double kViolationTolerance = 0.01;
   // Gauss-Seidel sweeps allowed per PD iteration when contacts are coupled.
   static constexpr int kMaxSweeps = 16;
 
  private:
+  void orderPairs();  // Gauss-Seidel layers of pairs_ (ContactLayering), obstacle nodes first
+
   const ClothModel& model_;
   double h_ = 0.0;
   std::vector<ContactObstacle> obstacles_;
@@ -76,7 +89,8 @@ class FrictionalContact {
   ContactLayering layering_;
   ContactSolver solver_;
   ActiveContactSet activeSet_;
-  std::vector<ContactConstraint> obstacleContacts_, pairs_;
+  std::vector<ContactConstraint> obstacleContacts_, pairs_, found_;
+  std::vector<std::tuple<int, int, int>> keys_;  // addMissedContacts' scratch: node, partner, obstacle
   std::vector<int> obstacleNodes_, layerStart_;
 };
 

@@ -24,6 +24,8 @@ SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothMode
       nodes_.push_back(i);
     }
   }
+  for (int i : nodes_)
+    smallestDistance_ = smallestDistance_ > 0.0 ? std::min(smallestDistance_, distance_[i]) : distance_[i];
   // One-ring neighbours (nodes sharing a triangle), as sorted CSR lists: the rest-edge graph.
   std::vector<std::pair<int, int>> links;
   links.reserve(6 * model.rest.triangleCount());

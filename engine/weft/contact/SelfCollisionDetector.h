@@ -35,6 +35,7 @@ class SelfCollisionDetector {
   // The scene's `radius` is the collision distance: node pairs are kept at least this far apart.
   double collisionDistance(int a, int b) const { return 0.5 * (distance_[a] + distance_[b]); }
   bool collides(int node) const { return distance_[node] > 0.0; }
+  double smallestDistance() const { return smallestDistance_; }  // over the colliding nodes
   // Shares a triangle, or is a mesh neighbour (same cloth, rest path <= kPathFactor times the
   // reach) that starts within the reach (1 + kMarginFraction) * collisionDistance(a, b).
   bool excluded(int a, int b) const;
@@ -58,6 +59,7 @@ class SelfCollisionDetector {
   std::vector<std::pair<int, int>> candidates_;
   ParallelContactCollector collector_;
   int lastCandidates_ = 0;
+  double smallestDistance_ = 0.0;
 };
 
 }  // namespace weft

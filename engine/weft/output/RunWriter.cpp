@@ -98,12 +98,13 @@ void writeRun(const std::string& folder, const Scene& scene, const ClothModel& m
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
     if (!f) throw InputError(path, "output", "cannot open for writing");
     std::fprintf(f.get(), "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged,"
-                          "contact_sweeps,contact_sweep_change");
+                          "contact_sweeps,contact_sweep_change,late_contacts");
     for (const std::string& name : run.moduleNames) std::fprintf(f.get(), ",seconds_%s", name.c_str());
     std::fprintf(f.get(), "\n");
     for (const StepStats& s : trajectory.steps) {
-      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e", s.step, s.time, s.takeoff, s.stick, s.slip,
-                   s.pdIterations, s.residual, s.converged ? 1 : 0, s.contactSweeps, s.contactSweepChange);
+      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d", s.step, s.time, s.takeoff, s.stick, s.slip,
+                   s.pdIterations, s.residual, s.converged ? 1 : 0, s.contactSweeps, s.contactSweepChange,
+                   s.lateContacts);
       for (double sec : s.moduleSeconds) std::fprintf(f.get(), ",%.6e", sec);
       std::fprintf(f.get(), "\n");
     }

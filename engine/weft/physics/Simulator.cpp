@@ -46,6 +46,8 @@ constexpr int kGmresRestart = 100;
 constexpr double kMinStep = 1e-3;
 constexpr double kRelaxedGrowth = 100.0;
 constexpr int kRelaxedSteps = 3;
+// Times a step is solved again with contacts its path met and detection missed (step()).
+constexpr int kMissedContactPasses = 2;
 
 // Diagnostics: WEFT_CONTACT_TRACE=a-b (or =a) prints each Newton contact iteration of steps a..b
 // to stderr (residual, GMRES iterations, step length, branch changes).
@@ -123,7 +125,7 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
     derivativeRows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
   if (contact_)
-    for (auto* buf : {&freeMomentum_, &plainIterate_, &fullResidual_, &lawInput_, &pinnedPart_}) buf->setZero(m, 3);
+    for (auto* buf : {&freeMomentum_, &plainIterate_, &fullResidual_, &lawInput_, &pinnedPart_, &predicted_}) buf->setZero(m, 3);
   totalMass_ = model_.mass.sum();
   if (scene.solver.acceleration == Acceleration::Anderson) anderson_.reset(3 * m, scene.solver.andersonWindow);
 
@@ -440,16 +442,17 @@ void Simulator::solveNewtonWithContact() {
 void Simulator::detectContacts(double t0, double t1) {
   // The contact set and frames are found once per step from x_n and the predicted motion (the
   // warm-started first iterate), and stay frozen during the iterations: the explicit J_n(x_n,
-  // v_n) of DiffCloth Eq. 9. plainIterate_ holds the predicted displacement meanwhile.
+  // v_n) of DiffCloth Eq. 9; after the solve, step() adds what the path taken met and the
+  // predicted one missed (FrictionalContact::addMissedContacts).
   const int first = contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_;
   timed(first, [&] {
     contact_->beginStep(t0, t1);
-    plainIterate_ = iterate_ - x_;
+    predicted_ = iterate_ - x_;
   });
   if (contact_->hasObstacles())
-    timed(contactDetectionModule_, [&] { contact_->detectObstacles(x_, plainIterate_); });
+    timed(contactDetectionModule_, [&] { contact_->detectObstacles(x_, predicted_); });
   if (contact_->hasSelfCollision())
-    timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, plainIterate_); });
+    timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, predicted_); });
   timed(contactSolveModule_, [&] {
     contactLawMass_ = scene_.solver.contact == ContactMethod::Newton ? &lawMass_ : nullptr;
     if (scene_.solver.contact == ContactMethod::ActiveSet) contact_->prepareActiveSet(x_, scene_.solver.pdTolerance * h_);
@@ -495,6 +498,17 @@ void Simulator::contactGlobalStep() {
   ++stats_.pdIterations;
 }
 
+void Simulator::solveWithPerNodeContact() {
+  // (The Newton contact solve also takes the steps without contacts: its preconditioner
+  // handles the compressed, buckling cloth the PD matrix preconditions poorly.)
+  if (scene_.solver.contact == ContactMethod::Newton) {
+    solveContactNewton();
+    return;
+  }
+  if (scene_.solver.acceleration == Acceleration::Anderson) anderson_.restart();
+  solveWithContact();
+}
+
 void Simulator::solveWithContact() {
   // PD iterations with the contact solve in each global step (Ly et al. 2020, DiffCloth Eq. 12).
   // Convergence test: the same mass-weighted RMS imbalance as without contact,
@@ -511,7 +525,7 @@ void Simulator::solveWithContact() {
   const bool anderson = solver.acceleration == Acceleration::Anderson;
   double previousResidual = std::numeric_limits<double>::infinity();
   bool accelerated = false;
-  while (stats_.pdIterations < solver.pdIterations) {
+  while (stats_.pdIterations < solveLimit_) {
     localStep(iterate_);
     contactGlobalStep();
     if (checkConvergence()) return;
@@ -670,7 +684,7 @@ void Simulator::solveContactNewton() {
   while (true) {
     stats_.residual = measure;
     stats_.converged = measure < solver.pdTolerance;
-    if (stats_.converged || !std::isfinite(measure) || stats_.pdIterations >= solver.pdIterations) break;
+    if (stats_.converged || !std::isfinite(measure) || stats_.pdIterations >= solveLimit_) break;
     if (factored && lastIterations > kRefactorIterations) {
       prepareDerivatives(true);
       factorizeStiffness();
@@ -687,17 +701,17 @@ void Simulator::solveContactNewton() {
     timed(solverModule_, [&] { rhs = -(massRoot_.cwiseInverse().asDiagonal() * residual); });
     // Each step starts with P as the preconditioner (enough where contacts pin the cloth's
     // normal motion, as on Slope); K+ is factorised once a solve with P is slow.
-    const int budget = std::max(1, solver.pdIterations - stats_.pdIterations);
+    const int budget = std::max(1, solveLimit_ - stats_.pdIterations);
     GmresResult linear = gmres_.solve(applyJacobian, precondition, rhs, step, forcing,
                                       factored ? budget : std::min(budget, kPIterations), kGmresRestart);
-    if (!factored && !linear.converged && stats_.pdIterations < solver.pdIterations) {
+    if (!factored && !linear.converged && stats_.pdIterations < solveLimit_) {
       factored = true;
       prepareDerivatives(true);
       factorizeStiffness();
       prepareDerivatives(false);
       const int spent = linear.iterations;
       linear = gmres_.solve(applyJacobian, precondition, rhs, step, forcing,
-                            std::max(1, solver.pdIterations - stats_.pdIterations), kGmresRestart, true);
+                            std::max(1, solveLimit_ - stats_.pdIterations), kGmresRestart, true);
       linear.iterations += spent;
     }
     lastIterations = linear.iterations;
@@ -755,6 +769,7 @@ const StepStats& Simulator::step() {
   stats_.step = step_ + 1;
   stats_.time = t1;
   stats_.moduleSeconds.assign(moduleNames_.size(), 0.0);
+  solveLimit_ = solver.pdIterations;
 
   // External forces at the end of the step (implicit Euler, Eqs. 1-2).
   force_.setZero();
@@ -778,10 +793,23 @@ const StepStats& Simulator::step() {
     const bool newton = solver.contact == ContactMethod::ActiveSet;
     if (newton && !contact_->activeSet().empty()) solveNewtonWithContact();
     else if (newton) solveNewton();
-    // (The Newton contact solve also takes the steps without contacts: its preconditioner
-    // handles the compressed, buckling cloth the PD matrix preconditions poorly.)
-    else if (solver.contact == ContactMethod::Newton) solveContactNewton();
-    else solveWithContact();
+    else solveWithPerNodeContact();
+    // Detection saw the predicted path only (DiffCloth Eq. 9's frames from x_n, v_n); where the
+    // path the solve took strays from it, contacts it meets that the set lacks are added and the
+    // step is solved again from its result, each pass with a fresh iteration budget.
+    for (int pass = 0; pass < kMissedContactPasses && !newton; ++pass) {
+      int added = 0;
+      timed(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_, [&] {
+        change_ = global_ - x_;
+        added = contact_->addMissedContacts(x_, predicted_, change_);
+      });
+      if (added == 0) break;
+      stats_.lateContacts += added;
+      timed(contactSolveModule_, [&] { contact_->prepareSolve(contactLawMass_); });
+      timed(solverModule_, [&] { iterate_ = global_; });
+      solveLimit_ = stats_.pdIterations + solver.pdIterations;
+      solveWithPerNodeContact();
+    }
     timed(contactSolveModule_, [&] {
       if (newton) contact_->activeSet().record(lastContacts_);
       else contact_->record(lastContacts_);

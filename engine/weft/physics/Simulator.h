@@ -100,6 +100,9 @@ class Simulator {
   // rhs_ = b(x) + h r(f(x)) with the contact solve at x, and P x into systemTimesX.
   void assembleContactRhs(const NodeMatrix& x, NodeMatrix& systemTimesX);
   void contactGlobalStep();
+  // The step's solve with the per-node contact law: solveContactNewton or solveWithContact, from
+  // iterate_, until stats_.pdIterations reaches solveLimit_.
+  void solveWithPerNodeContact();
   void solveWithContact();
   // G(x) = P x - b(x) - h r(f(x)) into `residual` (the contact impulses r from the per-node law
   // at x, rhs_ = b(x) + h r); returns its mass-weighted RMS (residualOf's measure).
@@ -147,12 +150,14 @@ class Simulator {
   double time_ = 0.0;
   int step_ = 0;
   StepStats stats_;
+  int solveLimit_ = 0;  // the current solve stops when stats_.pdIterations reaches it
 
   // Work buffers, allocated once.
   NodeMatrix warmStart_;  // x_n - y_{n-1}
   NodeMatrix force_, y_, massY_, iterate_, global_, accelerated_, change_, rhs_, residualVector_;
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
   NodeMatrix freeMomentum_, plainIterate_, fullResidual_;  // contact scenes only
+  NodeMatrix predicted_;  // the displacement detection predicted (contact scenes only)
   NodeMatrix lawInput_, pinnedPart_;                       // solver.contact = "newton" only
   std::unique_ptr<HessianAssembly> stiffnessAssembly_;     // K+ (factorizeStiffness)
   Eigen::SparseMatrix<double> stiffness_;

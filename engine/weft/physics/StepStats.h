@@ -17,6 +17,9 @@ struct StepStats {
   // iterations, and the largest impulse change of the last sweep as a velocity (m/s).
   int contactSweeps = 0;
   double contactSweepChange = 0.0;
+  // Contacts added after the solve because the path it took met them and the predicted path
+  // did not (FrictionalContact::addMissedContacts); the step was then solved again.
+  int lateContacts = 0;
   std::vector<double> moduleSeconds;     // aligned with Simulator::moduleNames()
 };
 
