@@ -74,6 +74,8 @@ class FrictionalContact {
   int obstacleContactCount() const { return static_cast<int>(obstacleContacts_.size()); }
   int pairCount() const { return static_cast<int>(pairs_.size()); }
 
+  // addMissedContacts adds a contact violated by more than this fraction of the obstacle margin
+  // or collision distance (smaller violations are left for the next step's detection).
   static constexpr double kViolationTolerance = 0.01;
   // Gauss-Seidel sweeps allowed per PD iteration when contacts are coupled.
   static constexpr int kMaxSweeps = 16;

@@ -46,7 +46,7 @@ constexpr int kGmresRestart = 100;
 constexpr double kMinStep = 1e-3;
 constexpr double kRelaxedGrowth = 100.0;
 constexpr int kRelaxedSteps = 3;
-// Times a step is solved again with contacts its path met and detection missed (step()).
+// Times a step is solved again with contacts its solved path violated and detection missed (step()).
 constexpr int kMissedContactPasses = 2;
 
 // Diagnostics: WEFT_CONTACT_TRACE=a-b (or =a) prints each Newton contact iteration of steps a..b
@@ -442,8 +442,8 @@ void Simulator::solveNewtonWithContact() {
 void Simulator::detectContacts(double t0, double t1) {
   // The contact set and frames are found once per step from x_n and the predicted motion (the
   // warm-started first iterate), and stay frozen during the iterations: the explicit J_n(x_n,
-  // v_n) of DiffCloth Eq. 9; after the solve, step() adds what the path taken met and the
-  // predicted one missed (FrictionalContact::addMissedContacts).
+  // v_n) of DiffCloth Eq. 9; after the solve, step() adds contacts the path taken violated and
+  // the predicted one missed (FrictionalContact::addMissedContacts).
   const int first = contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_;
   timed(first, [&] {
     contact_->beginStep(t0, t1);
