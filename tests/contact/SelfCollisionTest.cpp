@@ -218,7 +218,9 @@ TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
   // alone moves every run). So the scene is run three times, its initial velocity differing by
   // 1e-7 relative, and judged over the three: every state finite and every recorded pair on its
   // branch, the walls held and no pair closer than 0.75 of its distance on every converged step,
-  // and at least 150 of the 240 steps converged. (Before the solved path was checked for
+  // and at least 170 of the 240 steps converged (202 since a step whose line search fails
+  // switches the Newton matrix to the clamped K+; 184 before, and 168 before the solved path was
+  // checked for missed contacts). (Before the solved path was checked for
   // contacts detection missed, FrictionalContact::addMissedContacts, one converged state had a
   // pair at 0.72 of its distance: a pair the predicted paths never brought near.) The converged
   // share and what the stalled steps did are printed.
@@ -263,7 +265,7 @@ TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
                 "steps, deepest inside a wall %.2f mm, closest pair %.2f of its distance\n",
                 variant, runConverged, close.empty() ? " none" : close.c_str(), 1e3 * deepest, closest);
   }
-  EXPECT_GE(converged, 150) << "of 240 steps";
+  EXPECT_GE(converged, 170) << "of 240 steps";
   EXPECT_EQ(closeStates, 0);
 }
 

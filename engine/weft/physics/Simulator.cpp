@@ -680,6 +680,7 @@ void Simulator::solveContactNewton() {
   stiffnessFactored_ = factored;  // (preconditionContact uses P until K+ is factorised)
   double forcing = 0.1, previous = 0.0;
   int lastIterations = 0, relaxed = 0, iteration = 0;
+  bool clamped = false;  // the Jacobian's K: exact (P - Delta P) until a line search fails, then K+
   if (trace) std::fprintf(stderr, "step %d: newton contact solve, residual %.3e\n", step_ + 1, measure);
   while (true) {
     stats_.residual = measure;
@@ -689,7 +690,7 @@ void Simulator::solveContactNewton() {
       prepareDerivatives(true);
       factorizeStiffness();
     }
-    prepareDerivatives(false);
+    prepareDerivatives(clamped);
     int changed = 0;
     timed(contactSolveModule_, [&] { changed = contacts.linearize(); });
     // Inexact Newton: the linear tolerance follows the residual's decrease (Eisenstat-Walker 2).
@@ -708,7 +709,7 @@ void Simulator::solveContactNewton() {
       factored = true;
       prepareDerivatives(true);
       factorizeStiffness();
-      prepareDerivatives(false);
+      prepareDerivatives(clamped);
       const int spent = linear.iterations;
       linear = gmres_.solve(applyJacobian, precondition, rhs, step, forcing,
                             std::max(1, solveLimit_ - stats_.pdIterations), kGmresRestart, true);
@@ -738,6 +739,19 @@ void Simulator::solveContactNewton() {
                    iteration, changed, linear.iterations, linear.residual, accepted ? alpha : 0.0,
                    relaxed > 0 && accepted ? " (non-monotone)" : "", measure, trial, stats_.pdIterations);
     atIterate = accepted;
+    // A failed line search with the exact K: the direction was nearly singular, not wrong (on the
+    // crumpling corner the directional finite differences of G matched J d to O(alpha), while
+    // single nodes were sent 0.4 m and G was already 28-fold off its linearisation at alpha =
+    // 1e-3). K = P - Delta P is indefinite where the cloth is compressed and buckles; the rest of
+    // the step uses the clamped K+ (the preconditioner's matrix) in J, which keeps the elastic
+    // part of every direction a descent one, at linear convergence. Exact K is tried first
+    // because it converges quadratically where it is definite.
+    if (!accepted && !clamped) {
+      clamped = true;
+      measure = contactResidual(iterate_, residual);
+      atIterate = true;
+      continue;
+    }
     if (!accepted) break;  // stalled: the best iterate is the result
     iterate_.swap(accelerated_);
     residual.swap(trialResidual);
