@@ -122,7 +122,18 @@ TEST(SimulateCli, WritesStatsCsvWithOneRowPerStep) {
     EXPECT_GE(std::stod(f[column("residual")]), 0.0);
     for (const char* c : {"contacts_takeoff", "contacts_stick", "contacts_slip"})
       EXPECT_EQ(f[column(c)], "0");
+    // The cloth hangs from two corners and stretches under gravity: its area grows, by well
+    // under a percent at this stiffness.
+    const double area = std::stod(f[column("area_ratio")]);
+    EXPECT_GT(area, 1.0);
+    EXPECT_LT(area, 1.01);
   }
+  // summary.json: the area ratio's range over the states (state 0, the rest shape, included).
+  ASSERT_TRUE(summary.contains("area_ratio"));
+  EXPECT_EQ(summary["area_ratio"]["min"].get<double>(), 1.0);
+  EXPECT_GT(summary["area_ratio"]["max"].get<double>(), 1.0);
+  EXPECT_NEAR(summary["area_ratio"]["final"].get<double>(),
+              std::stod(test::splitCommas(lines.back())[column("area_ratio")]), 1e-8);
 }
 
 TEST(SimulateCli, WritesRestObjWithTopology) {

@@ -73,6 +73,21 @@ TEST(GridMesh, LumpedAreasSumToTheTotalAndEqualAQuadInside) {
   EXPECT_NEAR(areas[2 * (qx + 1) + 2], 1.0 / (qx * qz), 1e-15);
 }
 
+TEST(GridMesh, AreaAtOtherPositionsFollowsTheMap) {
+  const TriangleMesh grid = makeGrid(1.0, 1.0, 4, 4);  // XZ plane, area 1
+  EXPECT_NEAR(grid.areaAt(grid.vertices), grid.totalArea(), 1e-15);
+  // x doubled: area doubled; a rigid motion: unchanged; folded along x = 0 onto itself: unchanged.
+  NodeMatrix stretched = grid.vertices;
+  stretched.col(0) *= 2.0;
+  EXPECT_NEAR(grid.areaAt(stretched), 2.0, 1e-13);
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const NodeMatrix moved = (grid.vertices * rotation.transpose()).rowwise() + Vec3(0.3, -2.0, 5.0).transpose();
+  EXPECT_NEAR(grid.areaAt(moved), 1.0, 1e-13);
+  NodeMatrix folded = grid.vertices;
+  folded.col(0) = folded.col(0).cwiseAbs();
+  EXPECT_NEAR(grid.areaAt(folded), 1.0, 1e-13);
+}
+
 TEST(GridMesh, EdgesAreUniqueWithBoundaryAndInteriorCounts) {
   const int qx = 3, qz = 2;
   const TriangleMesh grid = makeGrid(1.0, 1.0, qx, qz);

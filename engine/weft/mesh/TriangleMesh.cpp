@@ -21,9 +21,16 @@ Eigen::VectorXd TriangleMesh::lumpedAreas() const {
   return areas;
 }
 
-double TriangleMesh::totalArea() const {
+double TriangleMesh::totalArea() const { return areaAt(vertices); }
+
+double TriangleMesh::areaAt(const NodeMatrix& positions) const {
   double sum = 0.0;
-  for (int t = 0; t < triangleCount(); ++t) sum += triangleArea(t);
+  for (int t = 0; t < triangleCount(); ++t) {
+    const Vec3 a = positions.row(triangles(t, 0));
+    const Vec3 b = positions.row(triangles(t, 1));
+    const Vec3 c = positions.row(triangles(t, 2));
+    sum += 0.5 * (b - a).cross(c - a).norm();
+  }
   return sum;
 }
 

@@ -18,6 +18,9 @@ struct TriangleMesh {
   // Lumped (one third of each incident triangle) area per vertex.
   Eigen::VectorXd lumpedAreas() const;
   double totalArea() const;
+  // The total area of these triangles with their vertices at `positions` (m x 3, same order):
+  // a deformed state's area (the Bowl's area ratio, DiffCloth Fig. 5, is it over totalArea()).
+  double areaAt(const NodeMatrix& positions) const;
   void append(const TriangleMesh& other);  // concatenates, offsetting the other's indices
 };
 

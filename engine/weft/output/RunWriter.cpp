@@ -93,18 +93,25 @@ void writeRun(const std::string& folder, const Scene& scene, const ClothModel& m
   writeNpy(folder + "/positions.npy",
            {trajectory.positions.size(), static_cast<std::size_t>(trajectory.nodeCount()), 3}, flat.data());
 
+  // Area of the cloths over their rest area per state (DiffCloth Fig. 5's area ratio: a contact
+  // model that moves nodes without regard to friction makes it jump).
+  const double restArea = model.rest.totalArea();
+  std::vector<double> areaRatio(trajectory.positions.size(), 1.0);
+  for (std::size_t n = 0; n < trajectory.positions.size(); ++n)
+    if (restArea > 0.0) areaRatio[n] = model.rest.areaAt(trajectory.positions[n]) / restArea;
+
   {
     const std::string path = folder + "/stats.csv";
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
     if (!f) throw InputError(path, "output", "cannot open for writing");
     std::fprintf(f.get(), "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged,"
-                          "contact_sweeps,contact_sweep_change,late_contacts");
+                          "contact_sweeps,contact_sweep_change,late_contacts,area_ratio");
     for (const std::string& name : run.moduleNames) std::fprintf(f.get(), ",seconds_%s", name.c_str());
     std::fprintf(f.get(), "\n");
     for (const StepStats& s : trajectory.steps) {
-      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d", s.step, s.time, s.takeoff, s.stick, s.slip,
+      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d,%.9f", s.step, s.time, s.takeoff, s.stick, s.slip,
                    s.pdIterations, s.residual, s.converged ? 1 : 0, s.contactSweeps, s.contactSweepChange,
-                   s.lateContacts);
+                   s.lateContacts, areaRatio.at(s.step));
       for (double sec : s.moduleSeconds) std::fprintf(f.get(), ",%.6e", sec);
       std::fprintf(f.get(), "\n");
     }
@@ -124,7 +131,11 @@ void writeRun(const std::string& folder, const Scene& scene, const ClothModel& m
   if (!sceneCopy) throw InputError(folder + "/scene.json", "output", "write failed");
 
   std::ofstream summary(folder + "/summary.json");
-  summary << summarize(scene, trajectory, run).dump(2) << "\n";
+  nlohmann::json summaryJson = summarize(scene, trajectory, run);
+  summaryJson["area_ratio"] = {{"min", *std::min_element(areaRatio.begin(), areaRatio.end())},
+                               {"max", *std::max_element(areaRatio.begin(), areaRatio.end())},
+                               {"final", areaRatio.back()}};
+  summary << summaryJson.dump(2) << "\n";
   if (!summary) throw InputError(folder + "/summary.json", "output", "write failed");
 }
 
