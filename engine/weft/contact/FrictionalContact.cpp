@@ -102,8 +102,9 @@ int FrictionalContact::addMissedContacts(const NodeMatrix& x, const NodeMatrix& 
                                           pairs_, keys_);
     if (pairsAdded > 0) std::sort(pairs_.begin(), pairs_.end(), detectionOrder);  // (the layering starts from it)
     added += pairsAdded;
-    if (added > 0) orderPairs();
   }
+  // New obstacle contacts change which nodes the layering starts from, new pairs the layers.
+  if (added > 0 && hasSelfCollision()) orderPairs();
   return added;
 }
 

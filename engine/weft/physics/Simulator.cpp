@@ -681,16 +681,19 @@ void Simulator::solveContactNewton() {
   double forcing = 0.1, previous = 0.0;
   int lastIterations = 0, relaxed = 0, iteration = 0;
   bool clamped = false;  // the Jacobian's K: exact (P - Delta P) until a line search fails, then K+
+  // K+ at the iterate, leaving the derivatives J's K uses prepared (the clamped ones already are).
+  auto refactorStiffness = [&] {
+    prepareDerivatives(true);
+    factorizeStiffness();
+    if (!clamped) prepareDerivatives(false);
+  };
   if (trace) std::fprintf(stderr, "step %d: newton contact solve, residual %.3e\n", step_ + 1, measure);
   while (true) {
     stats_.residual = measure;
     stats_.converged = measure < solver.pdTolerance;
     if (stats_.converged || !std::isfinite(measure) || stats_.pdIterations >= solveLimit_) break;
-    if (factored && lastIterations > kRefactorIterations) {
-      prepareDerivatives(true);
-      factorizeStiffness();
-    }
-    prepareDerivatives(clamped);
+    if (factored && lastIterations > kRefactorIterations) refactorStiffness();
+    else prepareDerivatives(clamped);
     int changed = 0;
     timed(contactSolveModule_, [&] { changed = contacts.linearize(); });
     // Inexact Newton: the linear tolerance follows the residual's decrease (Eisenstat-Walker 2).
@@ -707,9 +710,7 @@ void Simulator::solveContactNewton() {
                                       factored ? budget : std::min(budget, kPIterations), kGmresRestart);
     if (!factored && !linear.converged && stats_.pdIterations < solveLimit_) {
       factored = true;
-      prepareDerivatives(true);
-      factorizeStiffness();
-      prepareDerivatives(clamped);
+      refactorStiffness();
       const int spent = linear.iterations;
       linear = gmres_.solve(applyJacobian, precondition, rhs, step, forcing,
                             std::max(1, solveLimit_ - stats_.pdIterations), kGmresRestart, true);
