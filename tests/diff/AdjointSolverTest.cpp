@@ -231,6 +231,38 @@ TEST(AdjointSolvers, AutomaticPreconditionerRepeatsBitForBit) {
   EXPECT_LT(2 * a.solver.iterations, c.solver.iterations);
 }
 
+// Each step's GMRES starts from the best combination of the last solver.backward.history
+// solutions (SolutionHistory): the same gradient as the direct solve, in fewer iterations than
+// from the last step's solution alone.
+TEST(AdjointSolvers, PreviousSolutionsCutIterationsAndKeepTheGradient) {
+  TempDir dir;
+  const Scene scene = withTightForwardSolver(
+      test::withTrajectoryTask(dir, test::windClothScene(10, 40), {"cloths.0.material.stretch", "wind.strength"}),
+      1e-8);
+  ASSERT_EQ(scene.solver.backward.history, 8);
+  const ForwardPass pass = runForwardPass(scene);
+  const TaskLoss loss(scene);
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  BackwardSettings settings = scene.solver.backward;
+  settings.method = "direct";
+  const GradientResult direct = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  settings.method = "gmres";
+  settings.preconditioner = "p";
+  settings.tolerance = 1e-8;
+  settings.maxIterations = 1000;
+  const GradientResult withHistory = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  settings.history = 0;
+  const GradientResult lastOnly = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  std::printf("iterations over %d steps: last solution %lld, combination of the last 8 %lld\n",
+              withHistory.solver.solves, lastOnly.solver.iterations, withHistory.solver.iterations);
+  for (const GradientResult* r : {&withHistory, &lastOnly}) {
+    EXPECT_EQ(r->solver.fallbacks, 0);
+    for (int k = 0; k < parameters.size(); ++k)
+      EXPECT_LT(relativeError(r->gradient[k], direct.gradient[k]), 1e-6) << parameters[k].path;
+  }
+  EXPECT_LT(withHistory.solver.iterations, 0.8 * lastOnly.solver.iterations);
+}
+
 TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
   TempDir dir;
   const Scene scene = withTightForwardSolver(

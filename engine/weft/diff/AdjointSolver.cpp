@@ -21,12 +21,14 @@ std::unique_ptr<AdjointLinearSolver> makeAdjointLinearSolver(const BackwardSetti
   // 24^2: 43.5 % fallbacks with restarts at 50, 4 % without; docs/benchmarks.md). The basis
   // costs 2 x 200 x 3m doubles (23 MB at 48^2).
   // Each step starts from the previous step's z (Wind 12^2: 76 -> 63 iterations per step at 1e-4,
-  // 109 -> 98 at 1e-6, preconditioned by P).
+  // 109 -> 98 at 1e-6, preconditioned by P), or from the best combination of the last
+  // settings.history solutions (SolutionHistory).
   return std::make_unique<GmresSolver>(settings.tolerance, settings.maxIterations,
                                        std::min(settings.maxIterations, 200), /*warmStart=*/true,
                                        settings.preconditioner == "hessian" ? GmresSolver::Preconditioner::ClampedHessian
                                        : settings.preconditioner == "p"     ? GmresSolver::Preconditioner::P
-                                                                            : GmresSolver::Preconditioner::Automatic);
+                                                                            : GmresSolver::Preconditioner::Automatic,
+                                       settings.history);
 }
 
 AdjointSolver::AdjointSolver(const BackwardSettings& settings)

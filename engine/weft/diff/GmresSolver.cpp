@@ -17,6 +17,14 @@ const char* GmresSolver::name() const {
 }
 
 LinearSolveResult GmresSolver::solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) {
+  if (history_.capacity() == 0) return solveFrom(system, rhs, z);
+  history_.guess(rhs, z);
+  const LinearSolveResult r = solveFrom(system, rhs, z);
+  history_.add(z, rhs - gmres_.residual());  // K z, from the residual the solve ended with
+  return r;
+}
+
+LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) {
   auto multiplyK = [&](const NodeMatrix& in, NodeMatrix& out) { system.multiplyK(in, out); };
   bool hessian = false;
   auto precondition = [&](const NodeMatrix& in, NodeMatrix& out) {

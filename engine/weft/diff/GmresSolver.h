@@ -31,10 +31,12 @@
 // Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
 // The choice depends on iteration and operation counts only, so repeated runs stay
 // bit-identical.
-// Each step starts from the previous step's z when warmStart is set (the adjoint varies
+// With warmStart each step starts from the previous step's solution, or with history > 0 from
+// the best combination of the last `history` solutions (SolutionHistory; the adjoint varies
 // smoothly along the trajectory).
 
 #include <weft/diff/AdjointLinearSolver.h>
+#include <weft/diff/SolutionHistory.h>
 #include <weft/physics/Gmres.h>
 
 namespace weft {
@@ -53,16 +55,18 @@ class GmresSolver final : public AdjointLinearSolver {
   // factor served 3-5 steps; a prior of 1 kept P at 120-150 iterations per step there).
   static constexpr int kAutomaticPriorReuse = 2;
   GmresSolver(double tolerance, int maxIterations, int restart = 50, bool warmStart = false,
-              Preconditioner preconditioner = Preconditioner::P)
+              Preconditioner preconditioner = Preconditioner::P, int history = 0)
       : tolerance_(tolerance),
         maxIterations_(maxIterations),
         restart_(restart),
         warmStart_(warmStart),
-        preconditioner_(preconditioner) {}
+        preconditioner_(preconditioner),
+        history_(warmStart ? history : 0) {}
   const char* name() const override;
   LinearSolveResult solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) override;
 
  private:
+  LinearSolveResult solveFrom(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z);
   double tolerance_;
   int maxIterations_;
   int restart_;
@@ -77,6 +81,7 @@ class GmresSolver final : public AdjointLinearSolver {
   int factorizations_ = 0;    // Hessian factors made, and steps solved with one, in this pass
   int hessianSteps_ = 0;
   Gmres gmres_;
+  SolutionHistory history_;
 };
 
 }  // namespace weft

@@ -35,6 +35,7 @@ class Gmres {
     const bool fromGuess = warmStart && z.rows() == m && z.cols() == 3 && z.allFinite() && bNorm > 0.0;
     if (!fromGuess) z.setZero(m, 3);
     if (bNorm == 0.0) {
+      residual_ = b;
       result.converged = true;
       return result;
     }
@@ -119,6 +120,9 @@ class Gmres {
     }
     return result;
   }
+
+  // b - A z at the z the last solve returned (so A z = b - residual() costs no product).
+  const NodeMatrix& residual() const { return residual_; }
 
  private:
   std::vector<NodeMatrix> basis_, preconditioned_;  // V_j and B V_j

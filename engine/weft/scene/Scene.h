@@ -32,6 +32,9 @@ struct BackwardSettings {
   // derivative clamped to keep it definite: AdjointSystem::factorClampedHessian) or "auto"
   // (per step, P first and the Hessian where P is slow: GmresSolver).
   std::string preconditioner = "auto";
+  // GMRES starts each step from the best combination of the last `history` steps' solutions
+  // (diff/SolutionHistory.h); 0 starts from the last step's solution alone.
+  int history = 8;
 };
 
 enum class Acceleration { None, Anderson };

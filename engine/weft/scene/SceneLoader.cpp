@@ -298,12 +298,13 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
     s.acceleration = v->choice({"anderson", "none"}) == "none" ? Acceleration::None : Acceleration::Anderson;
   if (auto v = r.optional("anderson_window")) s.andersonWindow = v->integer(1, 50);
   if (auto b = r.optional("backward")) {
-    b->allowOnly({"method", "tolerance", "max_iterations", "fallback", "preconditioner"});
+    b->allowOnly({"method", "tolerance", "max_iterations", "fallback", "preconditioner", "history"});
     if (auto v = b->optional("method")) s.backward.method = v->choice({"gmres", "fixed_point", "direct"});
     if (auto v = b->optional("tolerance")) s.backward.tolerance = v->positive();
     if (auto v = b->optional("max_iterations")) s.backward.maxIterations = v->integer(1, 1000000);
     if (auto v = b->optional("fallback")) s.backward.fallback = v->choice({"direct", "none"});
     if (auto v = b->optional("preconditioner")) s.backward.preconditioner = v->choice({"auto", "p", "hessian"});
+    if (auto v = b->optional("history")) s.backward.history = v->integer(0, 64);
   }
 }
 
