@@ -158,6 +158,8 @@ int optimizeCommand(const std::vector<std::string>& args) {
       {"backward", {{"method", scene.solver.backward.method},
                     {"solves", b.solves},
                     {"iterations", b.iterations},
+                    {"hessian_iterations", b.hessianIterations},
+                    {"hessian_factorizations", b.hessianFactorizations},
                     {"not_converged", b.notConverged},
                     {"fallbacks", b.fallbacks},
                     {"adjoint_growth", b.adjointGrowth}}},

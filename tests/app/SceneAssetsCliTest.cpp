@@ -170,10 +170,25 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
                                             "fail_percent", "speedup_vs_direct", "gradient_rel_error",
                                             "forward_ms_per_step", "forward_unconverged", "peak_rss_mb",
                                             "delta_p_ms_per_step", "delta_r_ms_per_step", "fallback_ms_per_step",
-                                            "cpu_ms_per_step", "cpu_speedup_vs_direct", "adjoint_growth"};
+                                            "cpu_ms_per_step", "cpu_speedup_vs_direct", "adjoint_growth",
+                                            "hessian_iterations_per_step", "hessian_factorizations"};
   EXPECT_EQ(rows[0], columns);
-  // The adjoint's growth over each pass (diff/AdjointGrowth.h): at least 1 by definition.
-  for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_GE(std::stod(rows[i].back()), 1.0) << "row " << i;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    // The adjoint's growth over each pass (diff/AdjointGrowth.h): at least 1 by definition.
+    EXPECT_GE(std::stod(rows[i][25]), 1.0) << "row " << i;
+    // GMRES with the clamped Hessian factors it once per step, and only it iterates with it;
+    // P alone never does.
+    const int steps = std::stoi(rows[i][3]), factorizations = std::stoi(rows[i][27]);
+    if (rows[i][4] == "gmres+hessian") {
+      EXPECT_EQ(factorizations, steps) << "row " << i;
+    }
+    if (rows[i][4] == "gmres" || rows[i][4] == "direct") {
+      EXPECT_EQ(factorizations, 0) << "row " << i;
+    }
+    if (rows[i][4] == "gmres") {
+      EXPECT_EQ(std::stod(rows[i][26]), 0.0) << "row " << i;
+    }
+  }
   // GMRES at tolerance 1e-6 gives the direct solve's gradient to about 6e-7 on Wind here (1e-5 in
   // the full 200-step run, where errors of the per-step solves accumulate); at 1e-4 about 1e-5.
   // Slope goes through the contact adjoint (every node slipping).
@@ -187,9 +202,10 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
   EXPECT_TRUE(fs::exists(out + "/backward.md"));
 }
 
-// `--calibrate` times the clamped Hessian's factorisation against an iteration with P and prints
-// the estimate the automatic preconditioner uses; the estimate column must be the formula it
-// states (kFactorCostScale x sqrt(flop_ratio)), and factorising costs more flops than an iteration.
+// `--calibrate` times the clamped Hessian's factorisation and an iteration with it against an
+// iteration with P and prints the estimates the automatic preconditioner uses; the estimate
+// column must be the formula it states (kFactorCostScale x sqrt(flop_ratio)), and factorising
+// costs more flops than an iteration.
 TEST(SceneAssets, BackwardBenchCalibrateWritesTheEstimateBesideTheTimings) {
   TempDir dir;
   const std::string out = dir.file("calibrate");
@@ -199,7 +215,9 @@ TEST(SceneAssets, BackwardBenchCalibrateWritesTheEstimateBesideTheTimings) {
   ASSERT_EQ(rows.size(), 2u);
   const std::vector<std::string> columns = {"scene", "quads", "vertices", "first_factor_ms", "factor_ms",
                                             "iteration_ms", "measured_iterations", "flop_ratio",
-                                            "estimated_iterations", "estimate_over_measured"};
+                                            "estimated_iterations", "estimate_over_measured",
+                                            "hessian_iteration_ms", "measured_hessian_iteration_cost",
+                                            "estimated_hessian_iteration_cost"};
   ASSERT_EQ(rows[0], columns);
   const auto& row = rows[1];
   EXPECT_EQ(row[1], "8");
@@ -207,6 +225,10 @@ TEST(SceneAssets, BackwardBenchCalibrateWritesTheEstimateBesideTheTimings) {
   const double flopRatio = std::stod(row[7]);
   EXPECT_GT(flopRatio, 1.0);
   EXPECT_NEAR(std::stod(row[8]), AdjointSystem::kFactorCostScale * std::sqrt(flopRatio), 1e-2 * std::stod(row[8]));
+  // An iteration with H's factor (3m unknowns, one column) does more work than one with P's
+  // (m unknowns, three columns): H's L has about 9 times P's entries.
+  EXPECT_GT(std::stod(row[10]), 0.0);
+  EXPECT_GT(std::stod(row[12]), 1.0);
   EXPECT_TRUE(fs::exists(out + "/calibrate.md"));
   const auto wrong = runWeft({"bench", "contact", "--calibrate", "--out", dir.file("wrong")});
   EXPECT_EQ(wrong.exitCode, 2) << describe(wrong);

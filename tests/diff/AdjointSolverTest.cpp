@@ -263,6 +263,47 @@ TEST(AdjointSolvers, PreviousSolutionsCutIterationsAndKeepTheGradient) {
   EXPECT_LT(withHistory.solver.iterations, 0.8 * lastOnly.solver.iterations);
 }
 
+// The automatic preconditioner weighs P against the clamped Hessian by operation counts: a
+// factorisation costs hessianFactorCost() iterations with P, an iteration with H
+// hessianIterationCost(). Over a backward pass its cost in those units stays close to the
+// cheaper of P alone and the Hessian alone: on a stiff cloth in tension (P slow) and on a soft
+// one (P fast), at a tight and a loose tolerance.
+TEST(AdjointSolvers, AutomaticPreconditionerCostsAboutTheCheaperChoice) {
+  struct Case {
+    const char* name;
+    nlohmann::json document;
+    double tolerance;
+  };
+  const std::vector<Case> cases = {{"stiff, 1e-8", test::windClothScene(10, 40), 1e-8},
+                                   {"stiff, 1e-4", test::windClothScene(10, 40), 1e-4},
+                                   {"soft, 1e-8", test::softWindClothScene(10, 40), 1e-8},
+                                   {"soft, 1e-4", test::softWindClothScene(10, 40), 1e-4}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    TempDir dir;
+    const Scene scene = withTightForwardSolver(
+        test::withTrajectoryTask(dir, c.document, {"cloths.0.material.stretch", "wind.strength"}), 1e-8);
+    const ForwardPass pass = runForwardPass(scene);
+    const TaskLoss loss(scene);
+    const ParameterSet parameters = ParameterSet::fromTask(scene);
+    const AdjointSystem costs(scene);
+    BackwardSettings settings = scene.solver.backward;
+    settings.tolerance = c.tolerance;
+    settings.maxIterations = 1000;
+    auto cost = [&](const char* preconditioner) {
+      settings.preconditioner = preconditioner;
+      const GradientResult r = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+      EXPECT_EQ(r.solver.fallbacks, 0) << preconditioner;
+      const AdjointSolverStats& s = r.solver;
+      return double(s.iterations - s.hessianIterations) + costs.hessianIterationCost() * double(s.hessianIterations) +
+             costs.hessianFactorCost() * s.hessianFactorizations;
+    };
+    const double automatic = cost("auto"), byP = cost("p"), byHessian = cost("hessian");
+    std::printf("%s: cost in iterations with P: auto %.0f, P %.0f, Hessian %.0f\n", c.name, automatic, byP, byHessian);
+    EXPECT_LT(automatic, 1.25 * std::min(byP, byHessian));
+  }
+}
+
 TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
   TempDir dir;
   const Scene scene = withTightForwardSolver(

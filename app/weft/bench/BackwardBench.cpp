@@ -104,7 +104,8 @@ int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vecto
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   BenchTable table({"scene", "quads", "vertices", "first_factor_ms", "factor_ms", "iteration_ms",
-                    "measured_iterations", "flop_ratio", "estimated_iterations", "estimate_over_measured"});
+                    "measured_iterations", "flop_ratio", "estimated_iterations", "estimate_over_measured",
+                    "hessian_iteration_ms", "measured_hessian_iteration_cost", "estimated_hessian_iteration_cost"});
   for (const BackwardCase& c : cases)
     for (int n : resolutions) {
       std::vector<SceneOverride> overrides = c.resolution(n);
@@ -138,11 +139,19 @@ int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vecto
         system.solveP(product);
         iteration.push_back(since(start));
       }
-      const double f = median(factor), it = median(iteration);
+      std::vector<double> hessianIteration;
+      for (int k = 0; k < 30; ++k) {
+        start = Clock::now();
+        system.multiplyK(in, product);
+        system.solveClampedHessian(product);
+        hessianIteration.push_back(since(start));
+      }
+      const double f = median(factor), it = median(iteration), hit = median(hessianIteration);
       const double measured = f / it, ratio = system.hessianFlopRatio();
       table.add({c.name, std::to_string(n), std::to_string(m), formatNumber(1e3 * first), formatNumber(1e3 * f),
                  formatNumber(1e3 * it, 3), formatNumber(measured, 3), formatNumber(ratio, 3),
-                 formatNumber(system.hessianFactorCost(), 3), formatNumber(system.hessianFactorCost() / measured, 3)});
+                 formatNumber(system.hessianFactorCost(), 3), formatNumber(system.hessianFactorCost() / measured, 3),
+                 formatNumber(1e3 * hit, 3), formatNumber(hit / it, 3), formatNumber(system.hessianIterationCost(), 3)});
     }
   const std::string preamble =
       "AdjointSystem::hessianFactorCost against timings, " + std::to_string(threads) +
@@ -152,7 +161,11 @@ int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vecto
       "iteration = the median of 30 products with K plus solves with P (one GMRES iteration's work with P). "
       "measured_iterations = factor / iteration; flop_ratio = the factorisation's flops over an "
       "iteration's; estimated_iterations = hessianFactorCost() = kFactorCostScale (" +
-      formatNumber(AdjointSystem::kFactorCostScale, 3) + ") x sqrt(flop_ratio).";
+      formatNumber(AdjointSystem::kFactorCostScale, 3) +
+      ") x sqrt(flop_ratio). hessian_iteration = the median of 30 products with K plus solves with the "
+      "clamped Hessian's factor (one iteration's work with H); measured_hessian_iteration_cost = "
+      "hessian_iteration / iteration, estimated_hessian_iteration_cost = hessianIterationCost() (operation "
+      "counts), what the automatic preconditioner charges a run of Hessian steps per iteration.";
   table.writeCsv(out.file("calibrate.csv"));
   table.writeMarkdown(out.file("calibrate.md"), "Factorisation cost of the clamped Hessian (weft bench backward --calibrate)",
                       preamble);
@@ -191,7 +204,7 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
                     "not_converged", "fallbacks", "fail_percent", "speedup_vs_direct", "gradient_rel_error",
                     "forward_ms_per_step", "forward_unconverged", "peak_rss_mb", "delta_p_ms_per_step",
                     "delta_r_ms_per_step", "fallback_ms_per_step", "cpu_ms_per_step", "cpu_speedup_vs_direct",
-                    "adjoint_growth"});
+                    "adjoint_growth", "hessian_iterations_per_step", "hessian_factorizations"});
   std::vector<PlotSeries> plot;
 
   const std::filesystem::path scratch =
@@ -267,7 +280,9 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
                    formatNumber(peakRssMegabytes()), formatNumber(1e3 * g.deltaPSeconds / steps),
                    formatNumber(1e3 * g.deltaRSeconds / steps), formatNumber(1e3 * s.fallbackSeconds / steps),
                    formatNumber(1e3 * cpuSeconds / steps), formatNumber(directCpuSeconds / cpuSeconds, 3),
-                   formatNumber(s.adjointGrowth, 3)});
+                   formatNumber(s.adjointGrowth, 3),
+                   iterative ? formatNumber(double(s.hessianIterations) / std::max(1, s.solves)) : "-",
+                   std::to_string(s.hessianFactorizations)});
         plot[firstSeries + m].x.push_back(n);
         plot[firstSeries + m].y.push_back(perStep);
       }
@@ -302,7 +317,9 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
       "gradient_rel_error = |g - g_direct| / |g_direct|. peak_rss_mb = the process's peak resident set "
       "(getrusage maxrss) after that row: cumulative over all rows so far. adjoint_growth = max |z_n| over "
       "the first nonzero |z_n| of the pass (diff/AdjointGrowth.h): an iterative solve's gradient error "
-      "is of the order of tolerance x sqrt(adjoint_growth) / 100.";
+      "is of the order of tolerance x sqrt(adjoint_growth) / 100. hessian_iterations_per_step = of "
+      "iterations_per_step, those preconditioned by the clamped Hessian; hessian_factorizations = its "
+      "factorisations over the pass (gmres+hessian: one per step; gmres+auto: where it chose to).";
   table.writeCsv(out.file("backward.csv"));
   table.writeMarkdown(out.file("backward.md"), "Backward pass: adjoint solvers (weft bench backward)", preamble);
   std::string reason;

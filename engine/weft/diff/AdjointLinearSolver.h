@@ -13,8 +13,10 @@ class AdjointSystem;
 struct LinearSolveResult {
   bool converged = false;
   bool diverged = false;   // stopped early because the iteration was growing (fixed point)
-  int iterations = 0;      // solves with P's factor (iterative solvers); 0 for the direct one
+  int iterations = 0;      // preconditioner applications (iterative solvers); 0 for the direct one
   double residual = 0.0;   // |g - K z|_2 / |g|_2 at the returned z
+  int hessianIterations = 0;  // of `iterations`, with the clamped Hessian's factor (GmresSolver)
+  int factorizations = 0;     // clamped-Hessian factorisations made for this solve (GmresSolver)
 };
 
 class AdjointLinearSolver {

@@ -41,6 +41,8 @@ void AdjointSolver::solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatr
   LinearSolveResult r = primary_->solve(system, rhs, z);
   ++stats_.solves;
   stats_.iterations += r.iterations;
+  stats_.hessianIterations += r.hessianIterations;
+  stats_.hessianFactorizations += r.factorizations;
   stats_.maxIterations = std::max(stats_.maxIterations, r.iterations);
   const bool iterative = settings_.method != "direct";
   if (!r.converged && iterative) {

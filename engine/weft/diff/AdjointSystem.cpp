@@ -101,6 +101,13 @@ double AdjointSystem::hessianFlopRatio() const {
   return cholesky_.blockFactorFlopRatio(static_cast<double>(system_.nonZeros()));
 }
 
+double AdjointSystem::hessianIterationCost() const {
+  const double product = 18.0 * static_cast<double>(system_.nonZeros());
+  const double entriesP = cholesky_.factorEntries();
+  const double entriesH = hessianCholesky_.factorEntries() > 0.0 ? hessianCholesky_.factorEntries() : 9.0 * entriesP;
+  return (4.0 * entriesH + product) / (12.0 * entriesP + product);
+}
+
 double AdjointSystem::hessianFactorCost() const { return kFactorCostScale * std::sqrt(hessianFlopRatio()); }
 
 void AdjointSystem::solveClampedHessian(NodeMatrix& inOut) {

@@ -87,6 +87,13 @@ class AdjointSystem {
   double hessianFactorCost() const;
   // H's factorisation flops over an iteration's (SparseCholesky::blockFactorFlopRatio).
   double hessianFlopRatio() const;
+  // What one GMRES iteration preconditioned by H costs, in iterations preconditioned by P, from
+  // operation counts: a one-column solve with H's factor (4 flops per entry of its L; before H's
+  // first analysis 9 times P's entries, H having P's pattern in 3 x 3 blocks) and a product with
+  // K (18 flops per stored entry of P), over a three-column solve with P's factor (12 flops per
+  // entry) and the same product. 2.2-2.5 on Wind and the soft napkin at 12^2-48^2; `weft bench
+  // backward --calibrate` prints it beside the timed ratio.
+  double hessianIterationCost() const;
   static constexpr double kFactorCostScale = 15.0;
 
  private:

@@ -25,8 +25,10 @@
 // continues from where P left it (the ski-rental rule). If the Hessian then converged within
 // kAutomaticPIterations more, the following steps start with it (a backward pass walks one
 // trajectory, whose stiffness changes slowly), its factor kept until a solve needs more than
-// kAutomaticRefactor iterations, probing P again (for kAutomaticPIterations iterations) every
-// kAutomaticReprobe steps and dropping back to P as soon as a fresh factor needs more than
+// kAutomaticRefactor iterations, probing P again every kAutomaticReprobe steps (for as many
+// iterations as the run's steps have cost on average, at least kAutomaticPIterations: a
+// factorisation by hessianFactorCost, an iteration with H by hessianIterationCost) and
+// staying with P if it converged within them, and dropping back to P as soon as a fresh factor needs more than
 // kAutomaticPIterations (the hard iterations come from the contact part Delta R, which the
 // Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
 // The choice depends on iteration and operation counts only, so repeated runs stay
@@ -80,6 +82,11 @@ class GmresSolver final : public AdjointLinearSolver {
   int lastIterations_ = 0;    // of the last solve with that factor
   int factorizations_ = 0;    // Hessian factors made, and steps solved with one, in this pass
   int hessianSteps_ = 0;
+  // The current run of Hessian steps: its cost in iterations with P (factorisations by
+  // hessianFactorCost, iterations by hessianIterationCost) and its steps.
+  double runCost_ = 0.0;
+  int runSteps_ = 0;
+  int stepHessianIterations_ = 0;  // of the current solve's iterations, with the Hessian
   Gmres gmres_;
   SolutionHistory history_;
 };

@@ -33,6 +33,8 @@ double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& 
   backward_.notConverged += r.solver.notConverged;
   backward_.diverged += r.solver.diverged;
   backward_.fallbacks += r.solver.fallbacks;
+  backward_.hessianIterations += r.solver.hessianIterations;
+  backward_.hessianFactorizations += r.solver.hessianFactorizations;
   backward_.maxResidual = std::max(backward_.maxResidual, r.solver.maxResidual);
   backward_.seconds += r.solver.seconds;
   backward_.adjointGrowth = std::max(backward_.adjointGrowth, r.solver.adjointGrowth);
