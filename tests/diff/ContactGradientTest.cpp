@@ -126,6 +126,35 @@ TEST(ContactGradient, EveryBackwardSolverGivesTheSameContactGradientAndTheFixedP
     EXPECT_LT((gradients[k] - gradients[0]).norm(), 1e-7 * gradients[0].norm()) << gradients[k].transpose();
 }
 
+// On the sliding ribbon P needs a few iterations per step at the default tolerance, and a guess
+// combined from previous solutions (solver.backward.history) can meet it at once: the gradient
+// at the default tolerance must stay at least as close to the direct one as when each step
+// starts from the last solution (here 1.2e-5 against 1.1e-3).
+TEST(ContactGradient, PreviousSolutionsKeepTheGradientAtTheDefaultTolerance) {
+  TempDir dir;
+  const Scene scene = withTightForwardSolver(
+      withTask(dir, test::inclineScene(), {{"obstacles.0.friction", 0.25}},
+               {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.material.stretch"}),
+      1e-8);
+  const ForwardPass pass = runForwardPass(scene);
+  const TaskLoss loss(scene);
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  BackwardSettings settings = scene.solver.backward;
+  settings.method = "direct";
+  const GradientResult direct = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  settings.method = "gmres";
+  settings.tolerance = 1e-4;
+  settings.history = 0;
+  const GradientResult lastOnly = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  settings.history = 8;
+  const GradientResult combined = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  const double errorLastOnly = (lastOnly.gradient - direct.gradient).norm() / direct.gradient.norm();
+  const double errorCombined = (combined.gradient - direct.gradient).norm() / direct.gradient.norm();
+  std::printf("at 1e-4: gradient error %.3g from the last solution (%lld iterations), %.3g from the combination (%lld)\n",
+              errorLastOnly, lastOnly.solver.iterations, errorCombined, combined.solver.iterations);
+  EXPECT_LT(errorCombined, 2.0 * errorLastOnly + 1e-7);
+}
+
 TEST(ContactGradient, ClothRestingOnASphereStickBranchWithCurvedFrames) {
   TempDir dir;
   const Scene scene =

@@ -41,7 +41,8 @@ LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix
     // Without Delta P the clamped Hessian is P itself.
     hessian = preconditioner_ == Preconditioner::ClampedHessian && system.hasDeltaP() && system.factorClampedHessian();
     factorizations_ += hessian;
-    const GmresResult r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_);
+    const GmresResult r =
+        gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_, minIterations());
     if (hessian) stepHessianIterations_ = r.iterations;
     return {r.converged, false, r.iterations, r.residual};
   }
@@ -59,7 +60,8 @@ LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix
       hessian = true;
       ++hessianRun_;
       ++hessianSteps_;
-      r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_);
+      r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_,
+                       minIterations());
       lastIterations_ = r.iterations;
       runCost_ += system.hessianIterationCost() * r.iterations;
       ++runSteps_;
@@ -81,7 +83,7 @@ LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix
   const int pBudget = std::max(kAutomaticPIterations, static_cast<int>(std::lround(std::min(budget, 1e6))));
   hessianRun_ = 0;
   r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, std::min(maxIterations_, pBudget), restart_,
-                   warmStart_);
+                   warmStart_, minIterations());
   switched_ = false;
   if (!r.converged && r.iterations < maxIterations_ && (factorValid_ = system.factorClampedHessian())) {
     // P is slow here: continue from the z it reached, preconditioned by the Hessian. A new run of
@@ -91,7 +93,7 @@ LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix
     hessian = true;
     const int spent = r.iterations;
     r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_ - spent, restart_,
-                     /*warmStart=*/true);
+                     /*warmStart=*/true, std::max(0, minIterations() - spent));
     switched_ = r.converged && r.iterations <= kAutomaticPIterations;
     lastIterations_ = r.iterations;
     runCost_ = system.hessianFactorCost() + system.hessianIterationCost() * r.iterations;

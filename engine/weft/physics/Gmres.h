@@ -24,11 +24,12 @@ struct GmresResult {
 class Gmres {
  public:
   // z is overwritten. The iteration starts from zero, or with `warmStart` from the z passed in
-  // (when it has b's shape and is finite). Stops when |b - A z| < tolerance |b|, after
-  // maxIterations products, or on stagnation.
+  // (when it has b's shape and is finite). Stops when |b - A z| < tolerance |b| after at least
+  // minIterations products, after maxIterations products, or on stagnation.
   template <class Apply, class Precondition>
   GmresResult solve(Apply&& apply, Precondition&& precondition, const NodeMatrix& b, NodeMatrix& z,
-                    double tolerance, int maxIterations, int restart = 50, bool warmStart = false) {
+                    double tolerance, int maxIterations, int restart = 50, bool warmStart = false,
+                    int minIterations = 0) {
     GmresResult result;
     const int m = static_cast<int>(b.rows());
     const double bNorm = b.norm();
@@ -55,7 +56,7 @@ class Gmres {
     }
     double residualNorm = residual_.norm();
     result.residual = residualNorm / bNorm;
-    if (fromGuess && result.residual < tolerance) {
+    if (fromGuess && result.residual < tolerance && minIterations <= 0) {
       result.converged = true;
       return result;
     }
@@ -94,7 +95,7 @@ class Gmres {
         h(j + 1, j) = 0.0;
         s[j + 1] = -sn[j] * s[j];
         s[j] = cs[j] * s[j];
-        if (std::abs(s[j + 1]) < tolerance * bNorm || breakdown) {
+        if ((std::abs(s[j + 1]) < tolerance * bNorm && result.iterations >= minIterations) || breakdown) {
           ++j;
           done = true;
           break;
@@ -112,7 +113,7 @@ class Gmres {
       residualNorm = residual_.norm();
       result.residual = residualNorm / bNorm;
       if (!std::isfinite(result.residual)) return result;
-      if (result.residual < tolerance) {
+      if (result.residual < tolerance && result.iterations >= minIterations) {
         result.converged = true;
         return result;
       }
