@@ -136,18 +136,10 @@ TEST(ContactGradient, PreviousSolutionsKeepTheGradientAtTheDefaultTolerance) {
       withTask(dir, test::inclineScene(), {{"obstacles.0.friction", 0.25}},
                {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.material.stretch"}),
       1e-8);
-  const ForwardPass pass = runForwardPass(scene);
-  const TaskLoss loss(scene);
-  const ParameterSet parameters = ParameterSet::fromTask(scene);
   BackwardSettings settings = scene.solver.backward;
-  settings.method = "direct";
-  const GradientResult direct = backpropagate(scene, pass.trajectory, loss, parameters, settings);
-  settings.method = "gmres";
   settings.tolerance = 1e-4;
-  settings.history = 0;
-  const GradientResult lastOnly = backpropagate(scene, pass.trajectory, loss, parameters, settings);
-  settings.history = 8;
-  const GradientResult combined = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  const test::HistoryGradients g = test::gradientsWithAndWithoutHistory(scene, settings);
+  const GradientResult &direct = g.direct, &combined = g.combined, &lastOnly = g.lastOnly;
   const double errorLastOnly = (lastOnly.gradient - direct.gradient).norm() / direct.gradient.norm();
   const double errorCombined = (combined.gradient - direct.gradient).norm() / direct.gradient.norm();
   std::printf("at 1e-4: gradient error %.3g from the last solution (%lld iterations), %.3g from the combination (%lld)\n",

@@ -3,6 +3,7 @@
 #include <support/SceneBuilder.h>
 #include <weft/diff/ForwardPass.h>
 #include <weft/diff/GradientCheck.h>
+#include <weft/diff/TaskLoss.h>
 #include <weft/io/Npy.h>
 
 #include <gtest/gtest.h>
@@ -56,6 +57,21 @@ Scene withTrajectoryTask(const TempDir& dir, const nlohmann::json& document,
 
 Scene windTaskScene(const TempDir& dir, const std::vector<std::string>& parameters, int steps) {
   return withTrajectoryTask(dir, windClothScene(6, steps), parameters);
+}
+
+HistoryGradients gradientsWithAndWithoutHistory(const Scene& scene, BackwardSettings gmres) {
+  const ForwardPass pass = runForwardPass(scene);
+  const TaskLoss loss(scene);
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  HistoryGradients g;
+  BackwardSettings direct = gmres;
+  direct.method = "direct";
+  g.direct = backpropagate(scene, pass.trajectory, loss, parameters, direct);
+  gmres.history = 8;
+  g.combined = backpropagate(scene, pass.trajectory, loss, parameters, gmres);
+  gmres.history = 0;
+  g.lastOnly = backpropagate(scene, pass.trajectory, loss, parameters, gmres);
+  return g;
 }
 
 void expectAdjointMatchesFiniteDifferences(const Scene& scene) {

@@ -4,6 +4,7 @@
 // simulated from the same scene with other parameter values.
 
 #include <support/TempDir.h>
+#include <weft/diff/Backpropagation.h>
 #include <weft/diff/GradientCheck.h>
 #include <weft/scene/Scene.h>
 
@@ -47,6 +48,13 @@ nlohmann::json inclineScene();
 // differences for the task's parameters: every component nonzero and within 1e-4 relative, the
 // loss positive, every forward step converged.
 void expectAdjointMatchesFiniteDifferences(const Scene& scene);
+
+// Gradients of one forward pass of `scene` (its task): by the direct solve, and by the `gmres`
+// settings from the combination of the last 8 solutions and from the last solution alone.
+struct HistoryGradients {
+  GradientResult direct, combined, lastOnly;
+};
+HistoryGradients gradientsWithAndWithoutHistory(const Scene& scene, BackwardSettings gmres);
 
 // A checked gradient: every component within `relative` of its finite difference plus `floor`
 // times the largest component (components negligible against it carry the forward tolerance's
