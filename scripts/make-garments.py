@@ -99,6 +99,16 @@ SOCK_EDGE = 0.0102
 LEG = ((0.0, 0.12, 0.0), (0.0, 0.45, 0.0), 0.04)
 FOOT = ((0.0, 0.05, 0.0), (0.0, 0.05, 0.17), 0.035)
 SOCK_CUFF_Z = 0.24
+SOCK_SPLINE_END = 2.0
+SOCK_MIN_CLEARANCE = 0.005
+# The starting guess: per handle (+X, +Y, -X, -Y side of the cuff) the Bezier control points
+# P1, P2 and the end point P3 of its path, absolute, m (docstring, "Sock").
+SOCK_PATHS = [
+    ((0.048, -0.02, 0.08), (0.048, 0.0, 0.06), (0.048, 0.22, 0.0)),
+    ((0.0, 0.12, 0.08), (0.0, 0.02, 0.04), (0.0, 0.22, 0.048)),
+    ((-0.048, -0.02, 0.08), (-0.048, 0.0, 0.06), (-0.048, 0.22, 0.0)),
+    ((0.0, -0.06, -0.02), (0.0, -0.06, -0.06), (0.0, 0.22, -0.048)),
+]
 
 
 def ring_count(radius, edge, multiple=1):
@@ -314,12 +324,60 @@ def capsule_point(capsule, t, angle, frame):
             for k in range(3)]
 
 
+def hermite_offset(s, t_end, p_end, t1, t2):
+    """Offset of a handle at s = t / t_end on a cubic Hermite spline from 0 to p_end."""
+    h10, h01, h11 = s ** 3 - 2 * s * s + s, 3 * s * s - 2 * s ** 3, s ** 3 - s * s
+    return [h10 * t_end * t1[k] + h01 * p_end[k] + h11 * t_end * t2[k] for k in range(3)]
+
+
+def capsule_clearance(point, capsule):
+    (a, b, radius) = capsule
+    ab = [b[k] - a[k] for k in range(3)]
+    t = sum(ab[k] * (point[k] - a[k]) for k in range(3)) / sum(c * c for c in ab)
+    t = min(1.0, max(0.0, t))
+    return math.dist(point, [a[k] + t * ab[k] for k in range(3)]) - radius
+
+
+def sock_guess(angle, control):
+    """A handle's spline from Bezier control points: the cuff vertex at `angle` starts at P0,
+    passes near P1 and P2 (absolute, m) and ends at P3; Hermite tangents t1 = 3 (P1 - P0) / T,
+    t2 = 3 (P3 - P2) / T. Returns (p_end, t1, t2) rounded as written."""
+    p0 = [FOOT[0][0] + SOCK_RADIUS * math.cos(angle), FOOT[0][1] + SOCK_RADIUS * math.sin(angle),
+          SOCK_CUFF_Z]
+    p1, p2, p3 = control
+    t1 = [round(3.0 * (p1[k] - p0[k]) / SOCK_SPLINE_END, 4) + 0.0 for k in range(3)]
+    t2 = [round(3.0 * (p3[k] - p2[k]) / SOCK_SPLINE_END, 4) + 0.0 for k in range(3)]
+    return [round(p3[k] - p0[k], 4) + 0.0 for k in range(3)], t1, t2
+
+
+def check_sock_paths(cuff, n, sides, guesses):
+    """Every held vertex's target stays outside both capsules along the whole spline (the
+    starting guess must be feasible: a target inside an obstacle pulls its vertex into the skin,
+    where the forward contact solve cannot converge). Returns the smallest clearance, m."""
+    worst = 1.0
+    for angle, (p_end, t1, t2) in zip(sides, guesses):
+        for v in nearest_on_ring(cuff, angle, 3):
+            a = 2.0 * math.pi * cuff.index(v) / n
+            rest = [FOOT[0][0] + SOCK_RADIUS * math.cos(a), FOOT[0][1] + SOCK_RADIUS * math.sin(a),
+                    SOCK_CUFF_Z]
+            for k in range(401):
+                d = hermite_offset(k / 400.0, SOCK_SPLINE_END, p_end, t1, t2)
+                x = [rest[c] + d[c] for c in range(3)]
+                worst = min(worst, capsule_clearance(x, LEG), capsule_clearance(x, FOOT))
+    if worst < SOCK_MIN_CLEARANCE:
+        raise SystemExit(f"sock: a handle's path comes within {worst * 1e3:.1f} mm of the foot")
+    return worst
+
+
 def sock_scene(rings, vertex_count):
     cuff = rings[0]
     n = len(cuff)
     sides = [0.0, 0.5 * math.pi, math.pi, 1.5 * math.pi]  # +X, +Y, -X, -Y of the cuff
-    handles = [spline_handle(nearest_on_ring(cuff, a, 3), 2.0, [0.0, 0.12, -0.3],
-                             [0.0, 0.0, -0.15], [0.0, 0.15, 0.0]) for a in sides]
+    guesses = [sock_guess(a, SOCK_PATHS[k]) for k, a in enumerate(sides)]
+    clearance = check_sock_paths(cuff, n, sides, guesses)
+    print(f"sock: the handles' paths clear the foot by at least {clearance * 1e3:.1f} mm")
+    handles = [spline_handle(nearest_on_ring(cuff, a, 3), SOCK_SPLINE_END, *g)
+               for a, g in zip(sides, guesses)]
     diagonals = [math.pi * (0.25 + 0.5 * k) for k in range(4)]
     keyed = [cuff[int(round(a / (2.0 * math.pi) * n)) % n] for a in diagonals]
     toe = rings[-1][0]
