@@ -3,6 +3,8 @@
 #include <weft/contact/ContactLawJacobian.h>
 #include <weft/contact/SignoriniCoulomb.h>
 
+#include <Eigen/QR>
+
 #include <algorithm>
 
 namespace weft {
@@ -122,6 +124,34 @@ int ContactSolver::linearize() {
     if (c.branch == ContactBranch::Stick || !pinned.isZero(0.0)) pinned.setIdentity();
     else pinned = c.normal * c.normal.transpose();
   }
+  // A node on several obstacles: its contacts' linearised impulses solved together. In
+  // addLawJacobian's sweeps contact k of the node takes r_k = (m~_k / m) L_k (q + p + sum_{j != k} r_j)
+  // (p: the pairs' impulses on the node); contact by contact, that Gauss-Seidel iteration
+  // diverges where a slip contact's Jacobian has a large gain, which happens when the branch was
+  // decided at another free velocity than the one it is linearised at (an iterate whose sweeps
+  // had not settled: at the Sock's ankle, a node on the leg and the foot capsules had a slip
+  // Jacobian of norm 16, and the linearised impulses overflowed after 128 sweeps, so the Newton
+  // step became NaN). The block is solved directly instead, R = (I - B)^+ A (q + p), with the
+  // minimum-norm solution where the split between the contacts is undetermined (two sticks),
+  // as the backward pass picks it (ContactAdjoint).
+  const int groups = static_cast<int>(groupStart_.size()) - 1;
+  groupResponse_.resize(groups);
+  for (int g = 0; g < groups; ++g) {
+    const int begin = groupStart_[g], count = groupStart_[g + 1] - begin;
+    if (count == 1) {
+      groupResponse_[g].resize(0, 0);
+      continue;
+    }
+    Eigen::MatrixXd system = Eigen::MatrixXd::Identity(3 * count, 3 * count), source(3 * count, 3);
+    for (int k = 0; k < count; ++k) {
+      const Contact& c = contacts_[begin + k];
+      const Mat3 a = (c.effectiveMass / slots_[c.a].mass) * c.law;
+      source.middleRows<3>(3 * k) = a;
+      for (int j = 0; j < count; ++j)
+        if (j != k) system.block<3, 3>(3 * k, 3 * j) = -a;
+    }
+    groupResponse_[g] = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(system).solve(source);
+  }
   return changed;
 }
 
@@ -165,11 +195,28 @@ void ContactSolver::addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const {
     if (c.b >= 0) linearTotal_[c.b] -= delta;
     return delta.norm() / c.effectiveMass;
   };
+  // A node's obstacle contacts together (linearize()): R = groupResponse_ (q + p).
+  auto updateGroup = [&](int g) {
+    const int begin = groupStart_[g], count = groupStart_[g + 1] - begin;
+    const int slot = contacts_[begin].a;
+    Vec3 base = q.row(slots_[slot].node).transpose() + linearTotal_[slot];
+    for (int k = begin; k < begin + count; ++k) base -= linearImpulse_[k];
+    double change = 0.0;
+    for (int k = 0; k < count; ++k) {
+      const Contact& c = contacts_[begin + k];
+      const Vec3 impulse = groupResponse_[g].middleRows<3>(3 * k) * base;
+      const Vec3 delta = impulse - linearImpulse_[begin + k];
+      linearImpulse_[begin + k] = impulse;
+      linearTotal_[slot] += delta;
+      change = std::max(change, delta.norm() / c.effectiveMass);
+    }
+    return change;
+  };
   for (int sweep = 0; sweep < kLinearSweeps; ++sweep) {
     double change = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : change) if (groups > kParallelMinimum)
     for (int g = 0; g < groups; ++g)
-      for (int k = groupStart_[g]; k < groupStart_[g + 1]; ++k) change = std::max(change, update(k));
+      change = std::max(change, groupStart_[g + 1] - groupStart_[g] == 1 ? update(groupStart_[g]) : updateGroup(g));
     for (std::size_t l = 0; l + 1 < layerStart_.size(); ++l) {
       const int begin = pairBegin_ + layerStart_[l], end = pairBegin_ + layerStart_[l + 1];
 #pragma omp parallel for schedule(static) reduction(max : change) if (end - begin > kParallelMinimum)

@@ -104,6 +104,9 @@ class ContactSolver {
   bool coupled_ = false;  // some node has more than one contact
   double lastChange_ = 0.0;
   mutable std::vector<Vec3> linearImpulse_, linearTotal_;  // addLawJacobian's sweeps (per contact, slot)
+  // Per group of obstacle contacts on one node (empty for a single contact): the 3k x 3 map from
+  // the node's momentum to its k linearised impulses (linearize()).
+  std::vector<Eigen::MatrixXd> groupResponse_;
 };
 
 }  // namespace weft
