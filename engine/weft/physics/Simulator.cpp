@@ -512,10 +512,39 @@ void Simulator::solveWithPerNodeContact() {
   }
   if (scene_.solver.contact == ContactMethod::Newton) {
     solveContactNewton();
+    if (!stats_.converged && std::isfinite(stats_.residual) && stats_.pdIterations < solveLimit_)
+      finishWithPerNodeIterations();
     return;
   }
   if (scene_.solver.acceleration == Acceleration::Anderson) anderson_.restart();
   solveWithContact();
+}
+
+void Simulator::finishWithPerNodeIterations() {
+  // The semismooth Newton solve stalled (its line search on the residual norm found no
+  // decrease): the PD contact iteration continues from its result with the rest of the budget.
+  // Where Newton stalls the residual can sit on a few nodes away from any contact (the Sock at
+  // step 45: four nodes of one hinge below the toe held 99.9 % of it), where a stretch or
+  // bending projection's derivative is discontinuous (a collapsed or flipped element) and the
+  // residual norm is not smooth; the PD iteration needs no derivative there. It runs with the
+  // lumped mass in the law (the PD iteration is not a contraction with Newton's m~, see
+  // solveContactNewton's end), which does not change the solution. The better of the two results
+  // is the step's.
+  newtonResult_ = iterate_;
+  const double newtonResidual = stats_.residual;
+  timed(contactSolveModule_, [&] { contact_->prepareSolve(nullptr); });
+  if (scene_.solver.acceleration == Acceleration::Anderson) anderson_.restart();
+  solveWithContact();
+  const bool better = stats_.converged || stats_.residual < newtonResidual;
+  timed(contactSolveModule_, [&] { contact_->prepareSolve(contactLawMass_); });
+  if (!better) {
+    // Back to Newton's iterate, with the contact impulses (to be recorded) evaluated there.
+    iterate_ = newtonResult_;
+    stats_.residual = contactResidual(iterate_, fullResidual_);
+    stats_.converged = stats_.residual < scene_.solver.pdTolerance;
+    timed(solverModule_, [&] { global_ = iterate_; });
+  }
+  // (Otherwise the PD iteration's last global solution is the step's result, as on its own.)
 }
 
 void Simulator::solveWithContact() {
@@ -726,9 +755,12 @@ void Simulator::solveContactNewton() {
       linear.iterations += spent;
     }
     lastIterations = linear.iterations;
+    // A non-finite direction (a singular block in J) is a failed one; trying it would leave
+    // non-finite impulses in the contact solver, which warm-starts from them.
+    const bool finite = step.allFinite();
     bool accepted = false;
     double trial = measure, alpha = 1.0;
-    for (; alpha > kMinStep && !accepted; alpha *= 0.5) {
+    for (; finite && alpha > kMinStep && !accepted; alpha *= 0.5) {
       timed(solverModule_, [&] { accelerated_ = iterate_ + alpha * step; });
       trial = contactResidual(accelerated_, trialResidual);
       accepted = trial <= (1.0 - 1e-4 * alpha) * measure;
@@ -736,7 +768,7 @@ void Simulator::solveContactNewton() {
     if (accepted) {
       alpha *= 2.0;  // (the loop halved it once more)
       relaxed = 0;
-    } else if (relaxed < kRelaxedSteps) {
+    } else if (finite && relaxed < kRelaxedSteps) {
       alpha = 1.0;
       timed(solverModule_, [&] { accelerated_ = iterate_ + step; });
       trial = contactResidual(accelerated_, trialResidual);
@@ -840,6 +872,11 @@ const StepStats& Simulator::step() {
       countBranches(lastContacts_, stats_);
       lastContacts_.sweeps = stats_.contactSweeps;
     });
+    // The recorded impulses feed the output (contact_forces.npy) and the backward pass.
+    for (const ContactPoint& p : lastContacts_.points)
+      if (!p.impulse.allFinite() || !p.velocity.allFinite())
+        throw NumericalError(step_ + 1, "contact_solve",
+                             "non-finite contact impulse or velocity at node " + std::to_string(p.node));
   } else if (solver.method == SolverMethod::Newton) {
     solveNewton();
   } else {

@@ -108,6 +108,7 @@ class Simulator {
   // at x, rhs_ = b(x) + h r); returns its mass-weighted RMS (residualOf's measure).
   double contactResidual(const NodeMatrix& x, NodeMatrix& residual);
   void solveContactNewton();
+  void finishWithPerNodeIterations();
   // The Newton contact solve's preconditioner: a CHOLMOD factor of the 3m x 3m clamped Hessian
   // K+ = P - Delta P+ (the `definite` projection derivatives), assembled from the constraints'
   // element blocks (HessianAssembly). False when the factorisation failed (the preconditioner then
@@ -158,7 +159,7 @@ class Simulator {
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
   NodeMatrix freeMomentum_, plainIterate_, fullResidual_;  // contact scenes only
   NodeMatrix predicted_;  // the displacement detection predicted (contact scenes only)
-  NodeMatrix lawInput_, pinnedPart_;                       // solver.contact = "newton" only
+  NodeMatrix lawInput_, pinnedPart_, newtonResult_;        // solver.contact = "newton" only
   std::unique_ptr<HessianAssembly> stiffnessAssembly_;     // K+ (factorizeStiffness)
   Eigen::SparseMatrix<double> stiffness_;
   SparseCholesky stiffnessCholesky_{SparseCholesky::Use::Preconditioner};
