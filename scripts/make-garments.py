@@ -347,12 +347,17 @@ def capsule_clearance(point, capsule):
     return math.dist(point, [a[k] + t * ab[k] for k in range(3)]) - radius
 
 
+def cuff_point(angle):
+    """Where the cuff vertex at `angle` (radians, from +X towards +Y) starts, m."""
+    return [FOOT[0][0] + SOCK_RADIUS * math.cos(angle), FOOT[0][1] + SOCK_RADIUS * math.sin(angle),
+            SOCK_CUFF_Z]
+
+
 def sock_guess(angle, control):
     """A handle's spline from Bezier control points: the cuff vertex at `angle` starts at P0,
     passes near P1 and P2 (absolute, m) and ends at P3; Hermite tangents t1 = 3 (P1 - P0) / T,
     t2 = 3 (P3 - P2) / T. Returns (p_end, t1, t2) rounded as written."""
-    p0 = [FOOT[0][0] + SOCK_RADIUS * math.cos(angle), FOOT[0][1] + SOCK_RADIUS * math.sin(angle),
-          SOCK_CUFF_Z]
+    p0 = cuff_point(angle)
     p1, p2, p3 = control
     t1 = [round(3.0 * (p1[k] - p0[k]) / SOCK_SPLINE_END, 4) + 0.0 for k in range(3)]
     t2 = [round(3.0 * (p3[k] - p2[k]) / SOCK_SPLINE_END, 4) + 0.0 for k in range(3)]
@@ -366,9 +371,7 @@ def check_sock_paths(cuff, n, sides, guesses):
     worst = 1.0
     for angle, (p_end, t1, t2) in zip(sides, guesses):
         for v in nearest_on_ring(cuff, angle, 3):
-            a = 2.0 * math.pi * cuff.index(v) / n
-            rest = [FOOT[0][0] + SOCK_RADIUS * math.cos(a), FOOT[0][1] + SOCK_RADIUS * math.sin(a),
-                    SOCK_CUFF_Z]
+            rest = cuff_point(2.0 * math.pi * cuff.index(v) / n)
             for k in range(401):
                 d = hermite_offset(k / 400.0, SOCK_SPLINE_END, p_end, t1, t2)
                 x = [rest[c] + d[c] for c in range(3)]
