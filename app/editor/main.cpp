@@ -13,6 +13,7 @@
 #include "EditorBenchmark.h"
 #include "EditorSession.h"
 #include "ScriptRunner.h"
+#include "../process/PassiveOpenMpWait.h"
 
 #include <weft/core/Error.h>
 #include <weft/render/GlfwContext.h>
@@ -177,6 +178,7 @@ int runWindow(const Options& o, EditorSession& session, std::optional<ScriptRunn
 }  // namespace
 
 int main(int argc, char** argv) {
+  weft::process::preferPassiveOpenMpWait(argv);
   try {
     Options o = parse(argc, argv);
     if (o.bench) {

@@ -2,6 +2,7 @@
 // 3 numerical failure (the contract of the product spec).
 
 #include "Commands.h"
+#include "../process/PassiveOpenMpWait.h"
 
 #include <weft/core/Error.h>
 
@@ -30,6 +31,7 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
+  weft::process::preferPassiveOpenMpWait(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
