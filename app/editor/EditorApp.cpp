@@ -12,6 +12,7 @@
 #include <weft/render/Renderer.h>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // GetTopMostPopupModal: which dialog is open, for scripts
 #include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
@@ -194,6 +195,18 @@ void EditorApp::requestClose() {
     closePrompt_ = true;
   else
     closeConfirmed_ = true;
+}
+
+std::string EditorApp::modalDialog(float* rect) const {
+  const ImGuiWindow* modal = ImGui::GetTopMostPopupModal();
+  if (!modal) return "";
+  if (rect) {
+    rect[0] = modal->Pos.x, rect[1] = modal->Pos.y;
+    rect[2] = modal->Size.x, rect[3] = modal->Size.y;
+  }
+  // A window's name is its title up to "##" (the rest only makes the id unique).
+  const char* end = std::strstr(modal->Name, "##");
+  return end ? std::string(modal->Name, std::size_t(end - modal->Name)) : std::string(modal->Name);
 }
 
 void EditorApp::drawMenuBar() {

@@ -62,6 +62,12 @@ class EditorApp {
   // Closing: a dirty document asks first (Save / Discard / Cancel).
   void requestClose();
   bool closeConfirmed() const { return closeConfirmed_; }
+  bool closePromptOpen() const { return closePrompt_; }
+
+  // The title of the modal dialog Dear ImGui has open (the close prompt, a file dialog, the
+  // import dialog), "" for none; `rect` (when given) gets its x, y, width, height in window
+  // pixels as last drawn.
+  std::string modalDialog(float* rect = nullptr) const;
 
   // The last user-facing message (an error from an action, or what an action did).
   const std::string& message() const { return message_; }
