@@ -136,7 +136,7 @@ void EditorApp::handleShortcuts() {
       keyChord(true, false, ImGui::GetKeyIndex(ImGuiKey_Y)))
     doRedo();
   const int available = session_.timelineFrames();
-  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Space))) session_.playback().toggle();
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Space))) togglePlayback();
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_RightArrow))) session_.playback().step(1, available);
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) session_.playback().step(-1, available);
   if (keyChord(false, false, kKeyF))
@@ -146,6 +146,16 @@ void EditorApp::handleShortcuts() {
     report(error.empty() ? "key set" : error, !error.empty());
   }
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)) && !draggingGizmo_) session_.setActiveObject("");
+}
+
+void EditorApp::togglePlayback() {
+  // Play at the last state starts again from the first: playing on from the end would stop at
+  // once. A growing cache is left alone (its end is not the end).
+  Playback& playback = session_.playback();
+  const int available = session_.cache().frameCount();
+  if (!playback.playing() && playback.frame() >= available - 1 && !session_.cache().running())
+    playback.scrub(0, available);
+  playback.toggle();
 }
 
 void EditorApp::doOpen(const std::string& file) {
@@ -913,10 +923,7 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
   if (ImGui::Button("|<")) playback.step(-1, frames);
   ImGui::SameLine();
   ImGui::BeginDisabled(available == 0);
-  if (ImGui::Button(playback.playing() ? "Pause" : "Play")) {
-    if (!playback.playing() && playback.frame() >= available - 1 && !cache.running()) playback.scrub(0, available);
-    playback.toggle();
-  }
+  if (ImGui::Button(playback.playing() ? "Pause" : "Play")) togglePlayback();
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button(">|")) playback.step(1, frames);

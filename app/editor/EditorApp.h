@@ -99,6 +99,7 @@ class EditorApp {
   void doSaveAs(const std::string& file);
   void doUndo();
   void doRedo();
+  void togglePlayback();  // the Play/Pause button and Space
 
   // Widgets bound to a JSON path of the document. `fallback` is shown when the key is absent.
   bool numberField(const char* label, const std::string& path, double fallback, const char* format = "%.6g");

@@ -298,6 +298,23 @@ TEST(EditorInput, PlaybackShortcutsStepAndPlay) {
   EXPECT_GE(paused["frame"].get<int>(), 11);
 }
 
+// At the last state Space plays from the first again, as the Play button does (it used to set
+// playing, and playback stopped at once at the end).
+TEST(EditorInput, SpaceAtTheLastStatePlaysFromTheStart) {
+  TempDir dir;
+  // 400 states of 10 ms: four seconds of playback, far longer than the frames below take.
+  const ProcessResult r =
+      runEditor(dir, {{{"open", hangingScene(dir, 400)}},
+                      {{"simulate", true}},
+                      {{"scrub", 400}},
+                      {{"key", "space"}},
+                      {{"write_state", dir.file("replay.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const nlohmann::json replay = readJson(dir.file("replay.json"));
+  EXPECT_TRUE(replay["playing"]);
+  EXPECT_LT(replay["frame"].get<int>(), 400) << "started again from state 0";
+}
+
 TEST(EditorInput, ViewAndGizmoShortcuts) {
   TempDir dir;
   const ProcessResult r = runEditor(
