@@ -12,7 +12,7 @@
 #include <weft/render/Renderer.h>
 
 #include <imgui.h>
-#include <imgui_internal.h>  // GetTopMostPopupModal: which dialog is open, for scripts
+#include <imgui_internal.h>  // GetTopMostPopupModal: whether a dialog is open, and which
 #include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
@@ -121,6 +121,10 @@ void EditorApp::frame() {
 
 void EditorApp::handleShortcuts() {
   ImGuiIO& io = ImGui::GetIO();
+  // A modal dialog (the close prompt, a file or import dialog) blocks the menus; it blocks their
+  // shortcuts too, or they would act on the document behind it (Ctrl+N replacing the document
+  // the close prompt asks about, Ctrl+Z undoing it).
+  if (ImGui::GetTopMostPopupModal()) return;
   if (keyChord(true, false, kKeyN)) {
     session_.newDocument();
     report("new document", false);

@@ -397,6 +397,31 @@ TEST(EditorInput, ClosingWithUnsavedChangesAsksFirst) {
   EXPECT_EQ(readJson(scene)["time"]["steps"], 7);
 }
 
+// A modal dialog blocks the menus, and so their shortcuts: with the close prompt open, Ctrl+Z,
+// Ctrl+N and the arrow keys leave the document and the timeline alone (they used to undo the
+// edit being asked about, or replace the document behind the prompt).
+TEST(EditorInput, ShortcutsWaitWhileADialogIsOpen) {
+  TempDir dir;
+  const ProcessResult r = runEditor(
+      dir, {{{"open", hangingScene(dir)}},
+            {{"simulate", true}},
+            {{"scrub", 2}},
+            {{"set", "cloths.0.material.stretch"}, {"value", 800.0}},
+            {{"close", true}},
+            {{"frames", 1}},
+            {{"key", "ctrl+z"}},
+            {{"key", "ctrl+n"}},
+            {{"key", "right"}},
+            {{"write_state", dir.file("state.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const nlohmann::json state = readJson(dir.file("state.json"));
+  EXPECT_EQ(state["dialog"]["title"], "Unsaved changes");
+  EXPECT_EQ(state["document"]["cloths"][0]["material"]["stretch"], 800.0) << "not undone";
+  EXPECT_TRUE(state["dirty"]);
+  EXPECT_NE(state["file"], "") << "not replaced by a new document";
+  EXPECT_EQ(state["frame"], 2);
+}
+
 TEST(EditorInput, QuitWithNothingUnsavedClosesAtOnce) {
   TempDir dir;
   const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir)}},
