@@ -703,6 +703,8 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
       // Alt + drag moves the selected vertices' targets in the view plane (one undo step).
       draggingTargets_ = true;
       ++dragCount_;
+      targetDragLast_[0] = mouse.x;
+      targetDragLast_[1] = mouse.y;
     } else {
       boxStart_[0] = mouse.x;
       boxStart_[1] = mouse.y;
@@ -710,10 +712,14 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
     }
   }
   if (draggingTargets_) {
-    if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) {
-      const std::string error =
-          session_.dragTargets(session_.selection().nodes(), io.MouseDelta.x, io.MouseDelta.y, viewportWidth_,
-                               viewportHeight_, "target drag " + std::to_string(dragCount_));
+    // Measured from where the button went down, not by the frame's mouse delta: the press frame's
+    // delta is the way the mouse came, which is no part of the drag.
+    const float dx = mouse.x - targetDragLast_[0], dy = mouse.y - targetDragLast_[1];
+    if (dx != 0.0f || dy != 0.0f) {
+      targetDragLast_[0] = mouse.x;
+      targetDragLast_[1] = mouse.y;
+      const std::string error = session_.dragTargets(session_.selection().nodes(), dx, dy, viewportWidth_,
+                                                     viewportHeight_, "target drag " + std::to_string(dragCount_));
       if (!error.empty()) report(error, true), draggingTargets_ = false;
     }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) draggingTargets_ = false;

@@ -135,6 +135,7 @@ class EditorApp {
   bool draggingGizmo_ = false;
   int dragCount_ = 0;  // numbers target drags, so each drag is one undo step
   float boxStart_[2] = {0, 0};
+  float targetDragLast_[2] = {0, 0};  // the mouse when a target drag last moved the targets
   // What the viewport texture shows now; it is drawn again only when this changes.
   struct ViewportState {
     long frameVersion = -1;
