@@ -687,9 +687,13 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   const GizmoHandle hoveredHandle =
       hovered && !draggingGizmo_ ? session_.pickGizmo(mouse.x, mouse.y, viewportWidth_, viewportHeight_) : GizmoHandle::None;
   if (hovered && io.MouseWheel != 0.0f) camera.zoom(std::pow(0.9f, io.MouseWheel));
-  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Right))
+  // Orbit and pan follow every pixel of the drag: IsMouseDragging would hold them back until
+  // ImGui's 6 px drag threshold and drop the motion before it (these buttons have no click to
+  // tell apart from a drag). The press frame's delta is the way the mouse came, not the drag.
+  const bool dragging = ImGui::IsItemActive() && !ImGui::IsItemActivated();
+  if (dragging && ImGui::IsMouseDown(ImGuiMouseButton_Right))
     camera.orbit(-io.MouseDelta.x * 0.4f, io.MouseDelta.y * 0.4f);
-  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
+  if (dragging && ImGui::IsMouseDown(ImGuiMouseButton_Middle)) {
     const float scale = camera.distance * 2.0f * std::tan(camera.fovYDeg * 3.14159265f / 360.0f) / float(viewportHeight_);
     camera.pan(-io.MouseDelta.x * scale, io.MouseDelta.y * scale);
   }

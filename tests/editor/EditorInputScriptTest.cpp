@@ -111,6 +111,35 @@ TEST(EditorInput, RightDragOrbitsMiddleDragPansWheelZooms) {
   EXPECT_EQ(readJson(dir.file("panel.json"))["camera"]["distance"], zoomOut);
 }
 
+// A slow drag (a pixel a frame) turns and pans as far as a fast one: the camera follows from the
+// first pixel. It used to wait for ImGui's 6 px drag threshold and drop the motion before it.
+TEST(EditorInput, SlowDragsOrbitAndPanFromTheFirstPixel) {
+  TempDir dir;
+  const ProcessResult r = runEditor(
+      dir, {{{"open", hangingScene(dir)}},
+            {{"camera", kFront}},
+            {{"frames", 1}},
+            {{"mouse_drag", "right"}, {"from", inView(200, 200)}, {"to", inView(220, 200)}, {"steps", 20}},
+            {{"write_state", dir.file("orbit.json")}},
+            {{"camera", kFront}},
+            {{"frames", 1}},
+            {{"mouse_drag", "middle"}, {"from", inView(200, 200)}, {"to", inView(200, 210)}, {"steps", 10}},
+            {{"write_state", dir.file("pan.json")}},
+            // A move and a press in one frame, then the release: no drag, so no turn.
+            {{"camera", kFront}},
+            {{"mouse_move", inView(60, 300)}},
+            {{"mouse_press", "right"}, {"at", inView(200, 200)}},
+            {{"mouse_release", "right"}},
+            {{"write_state", dir.file("press.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_NEAR(readJson(dir.file("orbit.json"))["camera"]["yaw"].get<double>(), -20 * 0.4, 1e-4);
+  const nlohmann::json pan = readJson(dir.file("pan.json"));
+  const float metresPerPixel = 3.0f * 2.0f * std::tan(render::Camera().fovYDeg * 3.14159265f / 360.0f) /
+                               pan["viewport"][1].get<float>();
+  EXPECT_NEAR(pan["camera"]["target"][1].get<double>(), 1.0 + 10 * metresPerPixel, 1e-5);
+  EXPECT_EQ(readJson(dir.file("press.json"))["camera"]["yaw"], 0.0);
+}
+
 TEST(EditorInput, ClickAndBoxDragSelectWhatTheActionsSelect) {
   TempDir dir;
   const ProcessResult r =
