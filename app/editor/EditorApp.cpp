@@ -1029,6 +1029,8 @@ void EditorApp::drawFileDialog() {
   if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::TextUnformatted("Scene file path (absolute, or relative to the working directory):");
     ImGui::SetNextItemWidth(520.0f);
+    // The path is what the dialog is for: typing goes into it at once, without a click first.
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
     const bool enter = ImGui::InputText("##path", pathBuffer_, sizeof pathBuffer_, ImGuiInputTextFlags_EnterReturnsTrue);
     const bool ok = ImGui::Button(fileDialog_ == FileDialog::Open ? "Open" : "Save") || enter;
     ImGui::SameLine();

@@ -388,6 +388,35 @@ TEST(EditorInput, ViewAndGizmoShortcuts) {
   EXPECT_EQ(framed, automatic);
 }
 
+// The file dialogs from their shortcuts, typed into: Save As writes the file named, Open reads
+// it back; Ctrl+I opens the import dialog. The path field takes the typing as the dialog opens
+// (it used to need a click first: typing and Enter went nowhere).
+TEST(EditorInput, FileDialogsTakeATypedPath) {
+  TempDir dir;
+  const std::string copy = dir.file("copy.json");
+  const ProcessResult r = runEditor(
+      dir, {{{"open", hangingScene(dir)}},
+            {{"set", "time.steps"}, {"value", 9}},
+            {{"key", "ctrl+shift+s"}},
+            {{"write_state", dir.file("save-as.json")}},
+            {{"key", "ctrl+a"}},  // the current file's path is filled in: replace it
+            {{"type", copy}},
+            {{"key", "enter"}},
+            {{"expect", {{"file", copy}, {"dirty", false}, {"dialog", nullptr}}}},
+            {{"new", true}},
+            {{"key", "ctrl+o"}},
+            {{"key", "ctrl+a"}},
+            {{"type", copy}},
+            {{"key", "enter"}},
+            {{"expect", {{"file", copy}, {"dialog", nullptr}, {"value", {{"path", "time.steps"}, {"equals", 9}}}}}},
+            {{"key", "ctrl+i"}},
+            {{"write_state", dir.file("import.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_EQ(readJson(dir.file("save-as.json"))["dialog"]["title"], "Save scene as");
+  EXPECT_EQ(readJson(copy)["time"]["steps"], 9);
+  EXPECT_TRUE(readJson(dir.file("import.json"))["dialog"].is_object());
+}
+
 // Centres of the close prompt's buttons (Save, Discard, Cancel) from its rectangle: one row at
 // the bottom, laid out with Dear ImGui's default style and font (7 px per character, 4 px frame
 // padding, 8 px between items and around the window).
