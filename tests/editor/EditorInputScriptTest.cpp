@@ -235,6 +235,33 @@ TEST(EditorInput, GizmoPressAndDragMovesTheObjectAsGizmoDragDoes) {
   EXPECT_FALSE(undone["can_undo"]);
 }
 
+// Ctrl+click picks the object under the mouse for the gizmo, as click_object does; Ctrl+click on
+// empty space takes the gizmo off.
+TEST(EditorInput, CtrlClickPicksTheObjectForTheGizmo) {
+  TempDir dir;
+  const nlohmann::json view = {{"yaw", 0}, {"pitch", 0}, {"distance", 2.5}, {"target", {0.2, 0.3, 0.4}}};
+  const ProcessResult r = runEditor(
+      dir, {{{"open", clothAndSphere(dir)}},
+            {{"camera", view}},
+            {{"frames", 1}},
+            {{"write_state", dir.file("size.json")}},
+            {{"mouse_click", inView(210, 215)}, {"modifiers", "ctrl"}},
+            {{"write_state", dir.file("sphere.json")}},
+            {{"mouse_click", inView(10, 420)}, {"modifiers", "ctrl"}},
+            {{"write_state", dir.file("nothing.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  // The sphere's centre is the viewport's centre; the click lands within a few pixels of it.
+  const nlohmann::json viewport = readJson(dir.file("size.json"))["viewport"];
+  ASSERT_LT(std::abs(viewport[0].get<int>() / 2 - 210), 20);
+  ASSERT_LT(std::abs(viewport[1].get<int>() / 2 - 215), 20);
+  const nlohmann::json sphere = readJson(dir.file("sphere.json"));
+  EXPECT_EQ(sphere["active_object"], "obstacles.0");
+  EXPECT_TRUE(sphere["selected"].empty()) << "Ctrl+click picks an object, not a vertex";
+  const nlohmann::json nothing = readJson(dir.file("nothing.json"));
+  EXPECT_EQ(nothing["active_object"], "");
+  EXPECT_EQ(nothing["message"], "nothing there: gizmo off");
+}
+
 // Targets at two vertices, dragged in the view plane with Alt + left drag: as far as the
 // drag_targets action moves them for the same pixels, and one undo step.
 TEST(EditorInput, AltDragMovesTargetsAsDragTargetsDoes) {
