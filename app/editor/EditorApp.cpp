@@ -12,6 +12,7 @@
 #include <weft/render/Renderer.h>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // GetTopMostPopupModal: whether a dialog is open, and which
 #include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
@@ -120,6 +121,10 @@ void EditorApp::frame() {
 
 void EditorApp::handleShortcuts() {
   ImGuiIO& io = ImGui::GetIO();
+  // A modal dialog (the close prompt, a file or import dialog) blocks the menus; it blocks their
+  // shortcuts too, or they would act on the document behind it (Ctrl+N replacing the document
+  // the close prompt asks about, Ctrl+Z undoing it).
+  if (ImGui::GetTopMostPopupModal()) return;
   if (keyChord(true, false, kKeyN)) {
     session_.newDocument();
     report("new document", false);
@@ -135,7 +140,7 @@ void EditorApp::handleShortcuts() {
       keyChord(true, false, ImGui::GetKeyIndex(ImGuiKey_Y)))
     doRedo();
   const int available = session_.timelineFrames();
-  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Space))) session_.playback().toggle();
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Space))) togglePlayback();
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_RightArrow))) session_.playback().step(1, available);
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) session_.playback().step(-1, available);
   if (keyChord(false, false, kKeyF))
@@ -145,6 +150,16 @@ void EditorApp::handleShortcuts() {
     report(error.empty() ? "key set" : error, !error.empty());
   }
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)) && !draggingGizmo_) session_.setActiveObject("");
+}
+
+void EditorApp::togglePlayback() {
+  // Play at the last state starts again from the first: playing on from the end would stop at
+  // once. A growing cache is left alone (its end is not the end).
+  Playback& playback = session_.playback();
+  const int available = session_.cache().frameCount();
+  if (!playback.playing() && playback.frame() >= available - 1 && !session_.cache().running())
+    playback.scrub(0, available);
+  playback.toggle();
 }
 
 void EditorApp::doOpen(const std::string& file) {
@@ -194,6 +209,18 @@ void EditorApp::requestClose() {
     closePrompt_ = true;
   else
     closeConfirmed_ = true;
+}
+
+std::string EditorApp::modalDialog(float* rect) const {
+  const ImGuiWindow* modal = ImGui::GetTopMostPopupModal();
+  if (!modal) return "";
+  if (rect) {
+    rect[0] = modal->Pos.x, rect[1] = modal->Pos.y;
+    rect[2] = modal->Size.x, rect[3] = modal->Size.y;
+  }
+  // A window's name is its title up to "##" (the rest only makes the id unique).
+  const char* end = std::strstr(modal->Name, "##");
+  return end ? std::string(modal->Name, std::size_t(end - modal->Name)) : std::string(modal->Name);
 }
 
 void EditorApp::drawMenuBar() {
@@ -660,9 +687,13 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   const GizmoHandle hoveredHandle =
       hovered && !draggingGizmo_ ? session_.pickGizmo(mouse.x, mouse.y, viewportWidth_, viewportHeight_) : GizmoHandle::None;
   if (hovered && io.MouseWheel != 0.0f) camera.zoom(std::pow(0.9f, io.MouseWheel));
-  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Right))
+  // Orbit and pan follow every pixel of the drag: IsMouseDragging would hold them back until
+  // ImGui's 6 px drag threshold and drop the motion before it (these buttons have no click to
+  // tell apart from a drag). The press frame's delta is the way the mouse came, not the drag.
+  const bool dragging = ImGui::IsItemActive() && !ImGui::IsItemActivated();
+  if (dragging && ImGui::IsMouseDown(ImGuiMouseButton_Right))
     camera.orbit(-io.MouseDelta.x * 0.4f, io.MouseDelta.y * 0.4f);
-  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
+  if (dragging && ImGui::IsMouseDown(ImGuiMouseButton_Middle)) {
     const float scale = camera.distance * 2.0f * std::tan(camera.fovYDeg * 3.14159265f / 360.0f) / float(viewportHeight_);
     camera.pan(-io.MouseDelta.x * scale, io.MouseDelta.y * scale);
   }
@@ -676,6 +707,8 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
       // Alt + drag moves the selected vertices' targets in the view plane (one undo step).
       draggingTargets_ = true;
       ++dragCount_;
+      targetDragLast_[0] = mouse.x;
+      targetDragLast_[1] = mouse.y;
     } else {
       boxStart_[0] = mouse.x;
       boxStart_[1] = mouse.y;
@@ -683,10 +716,14 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
     }
   }
   if (draggingTargets_) {
-    if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) {
-      const std::string error =
-          session_.dragTargets(session_.selection().nodes(), io.MouseDelta.x, io.MouseDelta.y, viewportWidth_,
-                               viewportHeight_, "target drag " + std::to_string(dragCount_));
+    // Measured from where the button went down, not by the frame's mouse delta: the press frame's
+    // delta is the way the mouse came, which is no part of the drag.
+    const float dx = mouse.x - targetDragLast_[0], dy = mouse.y - targetDragLast_[1];
+    if (dx != 0.0f || dy != 0.0f) {
+      targetDragLast_[0] = mouse.x;
+      targetDragLast_[1] = mouse.y;
+      const std::string error = session_.dragTargets(session_.selection().nodes(), dx, dy, viewportWidth_,
+                                                     viewportHeight_, "target drag " + std::to_string(dragCount_));
       if (!error.empty()) report(error, true), draggingTargets_ = false;
     }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) draggingTargets_ = false;
@@ -900,10 +937,7 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
   if (ImGui::Button("|<")) playback.step(-1, frames);
   ImGui::SameLine();
   ImGui::BeginDisabled(available == 0);
-  if (ImGui::Button(playback.playing() ? "Pause" : "Play")) {
-    if (!playback.playing() && playback.frame() >= available - 1 && !cache.running()) playback.scrub(0, available);
-    playback.toggle();
-  }
+  if (ImGui::Button(playback.playing() ? "Pause" : "Play")) togglePlayback();
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button(">|")) playback.step(1, frames);
@@ -995,6 +1029,8 @@ void EditorApp::drawFileDialog() {
   if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::TextUnformatted("Scene file path (absolute, or relative to the working directory):");
     ImGui::SetNextItemWidth(520.0f);
+    // The path is what the dialog is for: typing goes into it at once, without a click first.
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
     const bool enter = ImGui::InputText("##path", pathBuffer_, sizeof pathBuffer_, ImGuiInputTextFlags_EnterReturnsTrue);
     const bool ok = ImGui::Button(fileDialog_ == FileDialog::Open ? "Open" : "Save") || enter;
     ImGui::SameLine();

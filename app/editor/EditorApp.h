@@ -62,6 +62,12 @@ class EditorApp {
   // Closing: a dirty document asks first (Save / Discard / Cancel).
   void requestClose();
   bool closeConfirmed() const { return closeConfirmed_; }
+  bool closePromptOpen() const { return closePrompt_; }
+
+  // The title of the modal dialog Dear ImGui has open (the close prompt, a file dialog, the
+  // import dialog), "" for none; `rect` (when given) gets its x, y, width, height in window
+  // pixels as last drawn.
+  std::string modalDialog(float* rect = nullptr) const;
 
   // The last user-facing message (an error from an action, or what an action did).
   const std::string& message() const { return message_; }
@@ -93,6 +99,7 @@ class EditorApp {
   void doSaveAs(const std::string& file);
   void doUndo();
   void doRedo();
+  void togglePlayback();  // the Play/Pause button and Space
 
   // Widgets bound to a JSON path of the document. `fallback` is shown when the key is absent.
   bool numberField(const char* label, const std::string& path, double fallback, const char* format = "%.6g");
@@ -128,6 +135,7 @@ class EditorApp {
   bool draggingGizmo_ = false;
   int dragCount_ = 0;  // numbers target drags, so each drag is one undo step
   float boxStart_[2] = {0, 0};
+  float targetDragLast_[2] = {0, 0};  // the mouse when a target drag last moved the targets
   // What the viewport texture shows now; it is drawn again only when this changes.
   struct ViewportState {
     long frameVersion = -1;

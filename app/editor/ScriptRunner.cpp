@@ -28,7 +28,8 @@ std::string kindOf(const nlohmann::json& action) {
                         "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
                         "optimize_cancel", "optimize_apply", "optimize_revert", "gizmo", "gizmo_drag",
                         "make_handle", "handle_offset", "set_key", "delete_key", "jump_key",
-                        "click_object"})
+                        "click_object", "mouse_move", "mouse_press", "mouse_release", "mouse_click",
+                        "mouse_drag", "scroll", "key", "key_down", "key_up", "type", "close"})
     if (action.contains(k)) return k;
   return action.begin().key();
 }
@@ -97,6 +98,11 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
   nlohmann::json keys = nlohmann::json::array();
   for (const HandleKey& k : session.keys()) keys.push_back({{"time", k.time}, {"offset", vec(k.offset)}});
   const auto offset = session.handleOffset();
+  const render::Camera& camera = session.camera();
+  nlohmann::json dialog = nullptr;
+  float rect[4] = {0, 0, 0, 0};
+  if (const std::string title = app.modalDialog(rect); !title.empty())
+    dialog = {{"title", title}, {"rect", {rect[0], rect[1], rect[2], rect[3]}}};
   return {{"file", doc.file()},
           {"dirty", doc.dirty()},
           {"valid", doc.valid()},
@@ -127,6 +133,15 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"keys", keys},
           {"handle_offset", offset ? vec(*offset) : nlohmann::json(nullptr)},
           {"key_pending", session.handleOffsetPending()},
+          {"camera",
+           {{"yaw", camera.yawDeg},
+            {"pitch", camera.pitchDeg},
+            {"distance", camera.distance},
+            {"target", vec(camera.target.cast<double>())}}},
+          {"playing", session.playback().playing()},
+          {"dialog", dialog},
+          {"close_prompt", app.closePromptOpen()},
+          {"close_confirmed", app.closeConfirmed()},
           {"document", doc.document()}};
 }
 
@@ -149,6 +164,43 @@ MeshImportOptions importOptions(const nlohmann::json& a, const std::string& kind
   o.repair = a.value("repair", false);
   o.smoothNormals = a.value("smooth_normals", true);
   return o;
+}
+
+bool isRawInput(const std::string& kind) {
+  for (const char* k : {"mouse_move", "mouse_press", "mouse_release", "mouse_click", "mouse_drag", "scroll", "key",
+                        "key_down", "key_up", "type"})
+    if (kind == k) return true;
+  return false;
+}
+
+// A point of a raw-input action in window pixels (x right, y down from the window's top-left,
+// what ImGui's io.MousePos takes): [x, y], or {"viewport": [x, y]} in the viewport pixels of
+// click and box_select, placed where the last frame laid the viewport out.
+Eigen::Vector2f pointOf(const nlohmann::json& j, const char* what, const EditorApp& app) {
+  const bool inViewport = j.is_object() && j.contains("viewport");
+  const nlohmann::json& p = inViewport ? j["viewport"] : j;
+  if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+    throw std::invalid_argument(std::string(what) + " takes [x, y] in window pixels or {\"viewport\": [x, y]}");
+  Eigen::Vector2f at(p[0].get<float>(), p[1].get<float>());
+  if (inViewport) at += Eigen::Vector2f(float(app.viewportX()), float(app.viewportY()));
+  return at;
+}
+
+int buttonOf(const nlohmann::json& j) {
+  int button = 0;
+  if (!j.is_string() || !parseMouseButton(j.get<std::string>(), button))
+    throw std::invalid_argument("a mouse button is \"left\", \"right\" or \"middle\"");
+  return button;
+}
+
+KeyChord chordOf(const nlohmann::json& j, bool modifiersOnly) {
+  KeyChord chord;
+  if (!j.is_string() || !parseKeyChord(j.get<std::string>(), chord))
+    throw std::invalid_argument("unknown key " + j.dump() +
+                                " (keys are named like \"ctrl+shift+z\", \"space\", \"f\")");
+  if (modifiersOnly && chord.key >= 0)
+    throw std::invalid_argument("modifiers are ctrl, shift, alt, super joined by +, got " + j.dump());
+  return chord;
 }
 
 }  // namespace
@@ -247,6 +299,85 @@ std::string ScriptRunner::startGizmoDrag(const nlohmann::json& a, EditorSession&
   return session.beginGizmoDrag(handle, gizmoFrom_.x(), gizmoFrom_.y(), w, h);
 }
 
+void ScriptRunner::queueInput(const nlohmann::json& a, const std::string& kind, EditorApp& app) {
+  using Step = std::function<void(ScriptedInput&)>;
+  auto& steps = inputSteps_;
+  const KeyChord held = a.contains("modifiers") ? chordOf(a["modifiers"], true) : KeyChord();
+  auto move = [](Eigen::Vector2f p) { return [p](ScriptedInput& in) { in.moveTo(p.x(), p.y()); }; };
+  if (kind == "mouse_move") {
+    steps.push_back(move(pointOf(a.at(kind), "mouse_move", app)));
+  } else if (kind == "mouse_press" || kind == "mouse_release") {
+    // With "at", the move and the button change fall in one frame (a quick move and click).
+    const int button = buttonOf(a.at(kind));
+    const bool down = kind == "mouse_press";
+    const std::optional<Eigen::Vector2f> at =
+        a.contains("at") ? std::optional(pointOf(a["at"], "at", app)) : std::nullopt;
+    steps.push_back([=](ScriptedInput& in) {
+      if (at) in.moveTo(at->x(), at->y());
+      in.setButton(button, down);
+    });
+  } else if (kind == "mouse_click" || kind == "mouse_drag") {
+    // Modifiers go down with the move to the start and up a frame after the release, since the
+    // editor reads them on the release frame (Shift adds to a box, Ctrl picks an object).
+    const int button =
+        buttonOf(kind == "mouse_click" ? a.value("button", nlohmann::json("left")) : a.at(kind));
+    const Eigen::Vector2f from = pointOf(kind == "mouse_click" ? a.at(kind) : a.at("from"), "from", app);
+    steps.push_back([=](ScriptedInput& in) {
+      in.setModifiers(held, true);
+      in.moveTo(from.x(), from.y());
+    });
+    steps.push_back([=](ScriptedInput& in) { in.setButton(button, true); });
+    if (kind == "mouse_drag") {
+      const Eigen::Vector2f to = pointOf(a.at("to"), "to", app);
+      const int n = a.value("steps", 8);
+      if (n < 1) throw std::invalid_argument("steps must be at least 1");
+      for (int i = 1; i <= n; ++i) steps.push_back(move(from + (to - from) * (float(i) / float(n))));
+    }
+    steps.push_back([=](ScriptedInput& in) { in.setButton(button, false); });
+    steps.push_back([=](ScriptedInput& in) { in.setModifiers(held, false); });
+  } else if (kind == "scroll") {
+    const float notches = a.at(kind).get<float>();
+    const std::optional<Eigen::Vector2f> at =
+        a.contains("at") ? std::optional(pointOf(a["at"], "at", app)) : std::nullopt;
+    steps.push_back([=](ScriptedInput& in) {
+      if (at) in.moveTo(at->x(), at->y());
+      in.scroll(notches);
+    });
+  } else if (kind == "key" || kind == "key_down" || kind == "key_up") {
+    // A key press is down for one frame and up the next (ImGui sees a press on the first frame
+    // a key is down); key_down and key_up hold and let go across actions.
+    const KeyChord chord = chordOf(a.at(kind), false);
+    const Step down = [=](ScriptedInput& in) {
+      in.setModifiers(chord, true);
+      in.setKey(chord.key, true);
+    };
+    const Step up = [=](ScriptedInput& in) {
+      in.setKey(chord.key, false);
+      in.setModifiers(chord, false);
+    };
+    if (kind != "key_up") steps.push_back(down);
+    if (kind != "key_down") steps.push_back(up);
+  } else if (kind == "type") {
+    const std::string text = a.at(kind).get<std::string>();
+    steps.push_back([=](ScriptedInput& in) { in.type(text); });
+  }
+}
+
+bool ScriptRunner::playInput(const nlohmann::json& a, const std::string& kind, EditorApp& app) {
+  if (!inputQueued_) {
+    inputSteps_.clear();
+    queueInput(a, kind, app);
+    inputQueued_ = true;
+  }
+  if (!inputSteps_.empty()) {
+    inputSteps_.front()(input_);
+    inputSteps_.pop_front();
+    return false;  // the next frame reads it
+  }
+  inputQueued_ = false;
+  return true;
+}
+
 bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorApp& app) {
   if (!a.is_object()) {
     fail("an action must be an object such as {\"open\": \"scene.json\"}");
@@ -256,7 +387,13 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
   EditorDocument& doc = session.document();
   const float aspect = float(app.viewportWidth()) / float(std::max(app.viewportHeight(), 1));
 
-  if (kind == "open") {
+  if (isRawInput(kind)) {
+    return playInput(a, kind, app);
+  } else if (kind == "close") {
+    // What the window's close button does (main.cpp: glfwWindowShouldClose): a dirty document
+    // asks first; a confirmed close ends the run.
+    app.requestClose();
+  } else if (kind == "open") {
     session.open(a.at("open").get<std::string>());
     session.frameCamera(aspect);
   } else if (kind == "new") {

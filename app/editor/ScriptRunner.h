@@ -10,9 +10,13 @@
 // A failing action stops the script with an error naming the script, the action's index and
 // kind, and what went wrong.
 
+#include "ScriptedInput.h"
+
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <deque>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -33,6 +37,11 @@ class ScriptRunner {
 
   const std::string& error() const { return error_; }  // "<script>: actions.N (kind): what"
   int exitCode() const { return exitCode_; }  // 0, 2 (failing action), 3 (simulation failed)
+  std::size_t nextAction() const { return next_; }  // index of the action running or next
+
+  // The mouse and keyboard the raw-input actions (mouse_move, mouse_drag, key...) set: the
+  // platform writes it into ImGui's IO before each frame.
+  ScriptedInput& input() { return input_; }
 
  private:
   bool run(const nlohmann::json& action, EditorSession& session, EditorApp& app);  // false: wait
@@ -41,6 +50,10 @@ class ScriptRunner {
   std::string startGizmoDrag(const nlohmann::json& action, EditorSession& session, EditorApp& app);
   // What an action's `error` means given its optional expect_error: a value to return from the
   // step (pass or fail), or nullopt to go on.
+  // A raw-input action: queued as one change of the input per frame, then played a step per
+  // update (each step read by the following frame). True when all steps have been read.
+  bool playInput(const nlohmann::json& action, const std::string& kind, EditorApp& app);
+  void queueInput(const nlohmann::json& action, const std::string& kind, EditorApp& app);
   std::optional<bool> checkOutcome(const nlohmann::json& action, const std::string& error,
                                    const std::string& succeeded);
 
@@ -53,6 +66,9 @@ class ScriptRunner {
   int optimizerTarget_ = 0;  // evaluations an optimize_step waits for
   int gizmoStep_ = 0;        // mouse moves of a gizmo_drag done so far (0: not started)
   Eigen::Vector2f gizmoFrom_ = Eigen::Vector2f::Zero(), gizmoBy_ = Eigen::Vector2f::Zero();
+  ScriptedInput input_;
+  std::deque<std::function<void(ScriptedInput&)>> inputSteps_;
+  bool inputQueued_ = false;
   double waitStarted_ = 0.0;
   double timeout_ = 300.0;
   std::string error_;

@@ -111,7 +111,11 @@ int loop(EditorSession& session, EditorApp& app, std::optional<ScriptRunner>& sc
          const std::function<bool()>& beginFrame, const std::function<void()>& endFrame) {
   auto last = std::chrono::steady_clock::now();
   while (true) {
-    if (!beginFrame()) return 0;
+    if (!beginFrame()) {
+      // The UI confirmed a close (Quit, the window's close button, a script's close action).
+      if (script) std::cout << "weft-editor: closed at actions." << script->nextAction() << "\n";
+      return 0;
+    }
     const auto t = std::chrono::steady_clock::now();
     ImGui::GetIO().DeltaTime = std::max(1e-4f, std::chrono::duration<float>(t - last).count());
     last = t;
@@ -144,7 +148,16 @@ int runHeadless(const Options& o, EditorSession& session, std::optional<ScriptRu
     ImGuiIO& io = ImGui::GetIO();
     io.DisplaySize = ImVec2(float(o.width), float(o.height));
     io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
-    code = loop(session, app, script, [] { return true; }, [] {});
+    // The headless platform: the script's mouse and keys, with GLFW's key codes as in a window.
+    ScriptedInput::installKeyMap(io);
+    code = loop(
+        session, app, script,
+        [&] {
+          if (app.closeConfirmed()) return false;
+          if (script) script->input().apply(io);
+          return true;
+        },
+        [] {});
   }
   context.reset();  // before Mesa's exit handlers
   return code;
@@ -167,6 +180,8 @@ int runWindow(const Options& o, EditorSession& session, std::optional<ScriptRunn
           if (app.closeConfirmed()) return false;
           glfwPollEvents();
           ImGui_ImplGlfw_NewFrame();
+          // Once a script plays raw input, it overrides the window's mouse and the keys it holds.
+          if (script && script->input().used()) script->input().apply(ImGui::GetIO());
           return true;
         },
         [&] { context.present(); });
