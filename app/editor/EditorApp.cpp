@@ -38,9 +38,10 @@ double numberAt(const EditorDocument& doc, const std::string& path, double fallb
   return v && v->is_number() ? v->get<double>() : fallback;
 }
 
+// Alt must be up: Alt+Z is not Ctrl+Z, Alt+F not F (Alt is the target-drag modifier).
 bool keyChord(bool ctrl, bool shift, int key) {
   const ImGuiIO& io = ImGui::GetIO();
-  return io.KeyCtrl == ctrl && io.KeyShift == shift && ImGui::IsKeyPressed(key, false);
+  return io.KeyCtrl == ctrl && io.KeyShift == shift && !io.KeyAlt && ImGui::IsKeyPressed(key, false);
 }
 
 // GLFW's key codes for letters are their upper-case ASCII codes; ImGui 1.86 indexes
@@ -107,7 +108,7 @@ void EditorApp::frame() {
   drawTimeline(kPanelWidth, height - kTimelineHeight, width - kPanelWidth, kTimelineHeight);
   drawFileDialog();
   importDialog_->draw(session_, *this);
-  drawClosePrompt();
+  drawUnsavedPrompt();
 
   ImGui::Render();
   const WeftEditorGl& gl = weftEditorGl;
@@ -125,10 +126,7 @@ void EditorApp::handleShortcuts() {
   // shortcuts too, or they would act on the document behind it (Ctrl+N replacing the document
   // the close prompt asks about, Ctrl+Z undoing it).
   if (ImGui::GetTopMostPopupModal()) return;
-  if (keyChord(true, false, kKeyN)) {
-    session_.newDocument();
-    report("new document", false);
-  }
+  if (keyChord(true, false, kKeyN)) requestNew();
   if (keyChord(true, false, kKeyO)) fileDialog_ = FileDialog::Open;
   if (keyChord(true, false, kKeyS)) doSave();
   if (keyChord(true, true, kKeyS)) fileDialog_ = FileDialog::SaveAs;
@@ -204,11 +202,39 @@ void EditorApp::doRedo() {
   if (session_.document().redo()) report("redid: " + label, false);
 }
 
-void EditorApp::requestClose() {
-  if (session_.document().dirty())
-    closePrompt_ = true;
-  else
-    closeConfirmed_ = true;
+void EditorApp::requestClose() { whenSaved(PendingAction::Close, ""); }
+void EditorApp::requestNew() { whenSaved(PendingAction::New, ""); }
+void EditorApp::requestOpen(const std::string& file) { whenSaved(PendingAction::Open, file); }
+
+void EditorApp::whenSaved(PendingAction action, const std::string& file) {
+  if (session_.document().dirty()) {
+    pending_ = action;
+    pendingFile_ = file;
+  } else {
+    run(action, file);
+  }
+}
+
+void EditorApp::run(PendingAction action, const std::string& file) {
+  switch (action) {
+    case PendingAction::Close: closeConfirmed_ = true; break;
+    case PendingAction::New:
+      session_.newDocument();
+      report("new document", false);
+      break;
+    case PendingAction::Open: doOpen(file); break;
+    case PendingAction::None: break;
+  }
+}
+
+std::string EditorApp::unsavedPrompt() const {
+  switch (pending_) {
+    case PendingAction::Close: return "close";
+    case PendingAction::New: return "new";
+    case PendingAction::Open: return "open";
+    case PendingAction::None: break;
+  }
+  return "";
 }
 
 std::string EditorApp::modalDialog(float* rect) const {
@@ -227,14 +253,11 @@ void EditorApp::drawMenuBar() {
   if (!ImGui::BeginMainMenuBar()) return;
   EditorDocument& doc = session_.document();
   if (ImGui::BeginMenu("File")) {
-    if (ImGui::MenuItem("New", "Ctrl+N")) {
-      session_.newDocument();
-      report("new document", false);
-    }
+    if (ImGui::MenuItem("New", "Ctrl+N")) requestNew();
     if (ImGui::MenuItem("Open...", "Ctrl+O")) fileDialog_ = FileDialog::Open;
     if (ImGui::BeginMenu("Open Recent", !session_.recent().files().empty())) {
       for (const std::string& f : session_.recent().files())
-        if (ImGui::MenuItem(f.c_str())) doOpen(f);
+        if (ImGui::MenuItem(f.c_str())) requestOpen(f);
       ImGui::EndMenu();
     }
     ImGui::Separator();
@@ -1036,12 +1059,16 @@ void EditorApp::drawFileDialog() {
     ImGui::SameLine();
     const bool cancel = ImGui::Button("Cancel");
     if (ok && pathBuffer_[0]) {
-      if (fileDialog_ == FileDialog::Open)
-        doOpen(pathBuffer_);
-      else
+      if (fileDialog_ == FileDialog::Open) {
+        requestOpen(pathBuffer_);
+      } else {
         doSaveAs(pathBuffer_);
+        // Saved for the unsaved-changes prompt: go on with what it asked about.
+        if (!session_.document().dirty()) run(afterSaveAs_, pendingFile_);
+      }
     }
     if ((ok && pathBuffer_[0]) || cancel) {
+      afterSaveAs_ = PendingAction::None;
       fileDialog_ = FileDialog::None;
       ImGui::CloseCurrentPopup();
     }
@@ -1049,27 +1076,39 @@ void EditorApp::drawFileDialog() {
   }
 }
 
-void EditorApp::drawClosePrompt() {
-  if (!closePrompt_) return;
+void EditorApp::drawUnsavedPrompt() {
+  if (pending_ == PendingAction::None) return;
   if (!ImGui::IsPopupOpen("Unsaved changes")) ImGui::OpenPopup("Unsaved changes");
   if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::Text("%s has unsaved changes.", session_.document().displayName().c_str());
-    if (ImGui::Button("Save")) {
+    const std::string before = pending_ == PendingAction::Close ? "closing"
+                               : pending_ == PendingAction::New ? "starting a new scene"
+                                                                : "opening " + pendingFile_;
+    ImGui::Text("Save them before %s?", before.c_str());
+    // Enter is the default (Save), Esc cancels, as in other desktop applications. Not in the
+    // frame the prompt appears: the Enter that confirmed the Open dialog would save at once.
+    const bool keys = !ImGui::IsWindowAppearing();
+    const bool save = ImGui::Button("Save") ||
+                      (keys && (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Enter)) ||
+                                keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_KeyPadEnter))));
+    ImGui::SameLine();
+    const bool discard = ImGui::Button("Discard");
+    ImGui::SameLine();
+    const bool cancel =
+        ImGui::Button("Cancel") || (keys && keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)));
+    const PendingAction action = pending_;
+    if (save || discard || cancel) {
+      pending_ = PendingAction::None;
+      ImGui::CloseCurrentPopup();
+    }
+    if (save) {
       doSave();
-      if (!session_.document().dirty()) closeConfirmed_ = true;
-      closePrompt_ = false;
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Discard")) {
-      closeConfirmed_ = true;
-      closePrompt_ = false;
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Cancel")) {
-      closePrompt_ = false;
-      ImGui::CloseCurrentPopup();
+      if (!session_.document().dirty())
+        run(action, pendingFile_);
+      else if (fileDialog_ == FileDialog::SaveAs)
+        afterSaveAs_ = action;  // a new document has no file yet: Save As first
+    } else if (discard) {
+      run(action, pendingFile_);
     }
     ImGui::EndPopup();
   }

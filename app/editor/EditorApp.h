@@ -59,10 +59,15 @@ class EditorApp {
   int viewportY() const { return viewportY_; }
   render::RenderStyle& style() { return style_; }
 
-  // Closing: a dirty document asks first (Save / Discard / Cancel).
+  // Closing, New and Open drop the document: a dirty one asks first (Save / Discard / Cancel;
+  // Enter saves, Esc cancels), then the action goes on unless cancelled.
   void requestClose();
+  void requestNew();
+  void requestOpen(const std::string& file);
   bool closeConfirmed() const { return closeConfirmed_; }
-  bool closePromptOpen() const { return closePrompt_; }
+  bool closePromptOpen() const { return pending_ == PendingAction::Close; }
+  // What the unsaved-changes prompt asks about: "close", "new", "open", "" when it is not open.
+  std::string unsavedPrompt() const;
 
   // The title of the modal dialog Dear ImGui has open (the close prompt, a file dialog, the
   // import dialog), "" for none; `rect` (when given) gets its x, y, width, height in window
@@ -85,7 +90,7 @@ class EditorApp {
   void drawViewport(float left, float top, float width, float height);
   void drawTimeline(float left, float top, float width, float height);
   void drawFileDialog();
-  void drawClosePrompt();
+  void drawUnsavedPrompt();
   void handleShortcuts();
   void renderViewport();
   void drawGizmo(ImDrawList* draw, float originX, float originY, GizmoHandle hovered);
@@ -149,7 +154,14 @@ class EditorApp {
   enum class FileDialog { None, Open, SaveAs };
   FileDialog fileDialog_ = FileDialog::None;
   char pathBuffer_[1024] = {};
-  bool closePrompt_ = false, closeConfirmed_ = false;
+  bool closeConfirmed_ = false;
+  // The action waiting on the unsaved-changes prompt, and the file it opens. `afterSaveAs_` is
+  // the action to go on with once the Save As dialog the prompt's Save opened has saved.
+  enum class PendingAction { None, Close, New, Open };
+  PendingAction pending_ = PendingAction::None, afterSaveAs_ = PendingAction::None;
+  std::string pendingFile_;
+  void whenSaved(PendingAction action, const std::string& file);
+  void run(PendingAction action, const std::string& file);
   std::string message_;
   bool messageIsError_ = false;
 };

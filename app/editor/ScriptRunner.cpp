@@ -141,6 +141,7 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"playing", session.playback().playing()},
           {"dialog", dialog},
           {"close_prompt", app.closePromptOpen()},
+          {"unsaved_prompt", app.unsavedPrompt().empty() ? nlohmann::json(nullptr) : nlohmann::json(app.unsavedPrompt())},
           {"close_confirmed", app.closeConfirmed()},
           {"document", doc.document()}};
 }

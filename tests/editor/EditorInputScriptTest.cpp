@@ -530,6 +530,74 @@ TEST(EditorInput, ShortcutsWaitWhileADialogIsOpen) {
   EXPECT_EQ(state["frame"], 2);
 }
 
+// New and Open drop the document as closing does, so a dirty one asks first too. Enter is Save,
+// Esc is Cancel; Save on a document without a file goes through Save As, then on with the action.
+TEST(EditorInput, NewAndOpenWithUnsavedChangesAskFirst) {
+  TempDir dir;
+  const std::string scene = hangingScene(dir);
+  const std::string copy = dir.file("untitled-saved.json");
+  const ProcessResult r = runEditor(
+      dir, {{{"open", scene}},
+            {{"set", "time.steps"}, {"value", 7}},
+            {{"key", "ctrl+n"}},
+            {{"frames", 1}},
+            {{"expect", {{"unsaved_prompt", "new"}, {"close_prompt", false}, {"file", scene}}}},
+            {{"write_state", dir.file("new-prompt.json")}},
+            {{"key", "escape"}},  // Cancel: nothing happens
+            {{"expect", {{"unsaved_prompt", nullptr}, {"dialog", nullptr}, {"file", scene}, {"dirty", true}}}},
+            {{"key", "ctrl+n"}},
+            {{"frames", 1}},
+            {{"key", "enter"}},  // Save, then the new document
+            {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}, {"dirty", false}}}},
+            // An untitled document with changes, then Open: Save goes through Save As first.
+            {{"set", "time.steps"}, {"value", 11}},
+            {{"key", "ctrl+o"}},
+            {{"key", "ctrl+a"}},
+            {{"type", scene}},
+            {{"key", "enter"}},
+            {{"frames", 1}},
+            {{"expect", {{"unsaved_prompt", "open"}, {"file", ""}}}},
+            {{"key", "enter"}},
+            {{"frames", 1}},
+            {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}}}},
+            {{"write_state", dir.file("save-as.json")}},
+            {{"type", copy}},
+            {{"key", "enter"}},
+            {{"frames", 1}},
+            {{"expect", {{"dialog", nullptr}, {"file", scene}, {"dirty", false}}}},
+            {{"expect", {{"value", {{"path", "time.steps"}, {"equals", 7}}}}}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_EQ(readJson(dir.file("new-prompt.json"))["dialog"]["title"], "Unsaved changes");
+  EXPECT_EQ(readJson(dir.file("save-as.json"))["dialog"]["title"], "Save scene as");
+  EXPECT_EQ(readJson(scene)["time"]["steps"], 7) << "saved by the first prompt's Enter";
+  EXPECT_EQ(readJson(copy)["time"]["steps"], 11) << "the untitled document, saved through Save As";
+
+  // Discard (clicked) drops the changes and goes on: New replaces the document, unsaved.
+  const nlohmann::json rect = readJson(dir.file("new-prompt.json"))["dialog"]["rect"];
+  const ProcessResult discard = runEditor(
+      dir, {{{"open", scene}},
+            {{"set", "time.steps"}, {"value", 9}},
+            {{"key", "ctrl+n"}},
+            {{"frames", 1}},
+            {{"mouse_click", promptButton(rect, 1)}},
+            {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}, {"dirty", false}}}}});
+  ASSERT_EQ(discard.exitCode, 0) << discard.err << discard.out;
+  EXPECT_EQ(readJson(scene)["time"]["steps"], 7) << "discarded, not saved";
+}
+
+// Alt is the target-drag modifier; a chord with Alt held is not the chord without it.
+TEST(EditorInput, AltChordsAreNotTheShortcutsWithoutAlt) {
+  TempDir dir;
+  const ProcessResult r = runEditor(
+      dir, {{{"open", hangingScene(dir)}},
+            {{"set", "time.steps"}, {"value", 8}},
+            {{"key", "ctrl+alt+z"}},
+            {{"expect", {{"value", {{"path", "time.steps"}, {"equals", 8}}}, {"can_undo", true}}}},
+            {{"key", "ctrl+z"}},
+            {{"expect", {{"value", {{"path", "time.steps"}, {"equals", 5}}}}}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+}
+
 TEST(EditorInput, QuitWithNothingUnsavedClosesAtOnce) {
   TempDir dir;
   const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir)}},
