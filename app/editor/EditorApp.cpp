@@ -472,6 +472,14 @@ void EditorApp::clothPanel() {
     const bool open = ImGui::TreeNodeEx("cloth", ImGuiTreeNodeFlags_DefaultOpen, "Cloth %zu", c);
     ImGui::SameLine();
     placeButton(base);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("remove")) {
+      // The cloths after it are numbered down, and `cloths` changes: stop drawing this frame.
+      applyEdit(session_.document().removeValue(base));
+      if (open) ImGui::TreePop();
+      ImGui::PopID();
+      return;
+    }
     if (open) {
       static const double zero[3] = {0, 0, 0};
       if (const nlohmann::json* file = session_.document().find(base + ".mesh.file")) {

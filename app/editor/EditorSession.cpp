@@ -6,6 +6,7 @@
 #include "ObstacleTemplates.h"
 
 #include <weft/core/Error.h>
+#include <weft/diff/SceneParameter.h>
 #include <weft/diff/TaskLoss.h>
 #include <weft/render/Bounds.h>
 #include <weft/scene/JsonPath.h>
@@ -789,6 +790,46 @@ std::string EditorSession::applyOptimizerResult() {
 
 std::string EditorSession::revertToOptimizerStart() {
   return setParameterValues("Revert to the optimiser's start values", optimizer_.initialValues());
+}
+
+std::string EditorSession::addTaskParameter(const std::string& path) {
+  const Scene* scene = document_.scene();
+  if (!scene) return "the scene does not validate: " + document_.validationError();
+  if (!scene->task) return "the task has no loss yet: set targets or load a target motion first (Targets tab)";
+  const std::vector<std::string>& chosen = scene->task->parameters;
+  if (std::find(chosen.begin(), chosen.end(), path) != chosen.end()) return path + " is already a parameter";
+  const std::vector<std::string> offered = differentiableParameterPaths(*scene);
+  if (std::find(offered.begin(), offered.end(), path) == offered.end()) {
+    try {  // the engine's own reason (no such value, not differentiable)
+      resolveSceneParameter(*scene, path, "task.parameters");
+    } catch (const InputError& e) {
+      return e.reason();
+    }
+    return path + " is not a parameter of this scene";
+  }
+  return document_.edit("Add parameter " + path, [&](nlohmann::json& doc) {
+    nlohmann::json& list = doc["task"]["parameters"];
+    if (!list.is_array()) list = nlohmann::json::array();
+    list.push_back(path);
+  });
+}
+
+std::string EditorSession::removeTaskParameter(const std::string& path) {
+  const nlohmann::json* list = document_.find("task.parameters");
+  if (!list || !list->is_array() || std::find(list->begin(), list->end(), path) == list->end())
+    return path + " is not a parameter of the task";
+  return document_.edit("Remove parameter " + path, [&](nlohmann::json& doc) {
+    nlohmann::json& task = doc["task"];
+    nlohmann::json kept = nlohmann::json::array();
+    for (const nlohmann::json& p : task["parameters"])
+      if (p != path) kept.push_back(p);
+    if (kept.empty()) task.erase("parameters");
+    else task["parameters"] = kept;
+    if (task.contains("bounds") && task["bounds"].is_object()) {
+      task["bounds"].erase(path);
+      if (task["bounds"].empty()) task.erase("bounds");
+    }
+  });
 }
 
 }  // namespace weft::editor

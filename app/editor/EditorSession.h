@@ -154,6 +154,13 @@ class EditorSession {
   // The task loss of the cached run (LiveLoss.h).
   const LossValue& liveLoss();
 
+  // The task's parameters (task.parameters): what the optimiser may change. `path` must be one
+  // of differentiableParameterPaths (diff/SceneParameter.h) and the task must have a loss (a
+  // task without one does not validate); removing drops the path's bounds too. One undo step
+  // each; "" on success, else why not.
+  std::string addTaskParameter(const std::string& path);
+  std::string removeTaskParameter(const std::string& path);
+
   // The optimiser (OptimizerRun.h) on a copy of the current document. Targets the editor holds
   // but has not saved yet are written to a private temporary file for the run.
   OptimizerRun& optimizer() { return optimizer_; }

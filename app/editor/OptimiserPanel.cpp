@@ -54,14 +54,21 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
   std::vector<std::string> chosen;
   if (!scene) {
     ImGui::TextDisabled("The scene does not validate.");
-  } else if (!scene->task || scene->task->parameters.empty()) {
-    ImGui::TextWrapped("The scene's task names no parameters. Add their JSON paths to task.parameters in the "
-                       "scene file (e.g. cloths.0.material.stretch), and a loss (Targets tab).");
+  } else if (!scene->task) {
+    ImGui::TextWrapped("The scene has no task yet: give it a loss first (Targets tab: targets or a target "
+                       "motion), then choose the parameters here.");
   } else {
-    ImGui::TextUnformatted("Parameters (task.parameters) and bounds:");
+    if (scene->task->parameters.empty())
+      ImGui::TextWrapped("The task names no parameters yet: add the ones the optimiser may change.");
+    else
+      ImGui::TextUnformatted("Parameters (task.parameters) and bounds:");
     ImGui::BeginDisabled(active);
+    std::string removed;
     for (const std::string& path : scene->task->parameters) {
       ImGui::PushID(path.c_str());
+      if (ImGui::SmallButton("x")) removed = path;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove %s from the task", path.c_str());
+      ImGui::SameLine();
       bool on = !excluded_[path];
       if (ImGui::Checkbox(path.c_str(), &on)) excluded_[path] = !on;
       if (on) chosen.push_back(path);
@@ -89,7 +96,22 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
       }
       ImGui::PopID();
     }
+    // The scene's other differentiable numbers, by JSON path (the same list `weft gradcheck
+    // --param` and task.parameters accept).
+    std::string added;
+    if (ImGui::BeginCombo("add parameter", "choose...")) {
+      const std::vector<std::string>& list = scene->task->parameters;
+      for (const std::string& path : differentiableParameterPaths(*scene))
+        if (std::find(list.begin(), list.end(), path) == list.end() && ImGui::Selectable(path.c_str())) added = path;
+      ImGui::EndCombo();
+    }
     ImGui::EndDisabled();
+    // Edited after drawing: an edit validates the document again and replaces `scene`.
+    if (!added.empty() || !removed.empty()) {
+      const std::string error = added.empty() ? session.removeTaskParameter(removed) : session.addTaskParameter(added);
+      app.report(error.empty() ? (added.empty() ? "removed " + removed : "added " + added) : error, !error.empty());
+      scene = doc.scene();
+    }
   }
 
   // Method and settings.

@@ -8,6 +8,7 @@
 #include <weft/scene/JsonPath.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 
 namespace weft::editor {
@@ -25,7 +26,7 @@ std::string kindOf(const nlohmann::json& action) {
                         "expect", "write_state", "import_garment", "add_obstacle", "add_mesh_obstacle",
                         "panel", "contact_colours", "force_arrows", "set_targets", "target", "move_targets",
                         "drag_targets", "remove_targets", "load_target_motion", "remove_target_motion",
-                        "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
+                        "add_parameter", "remove_parameter", "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
                         "optimize_cancel", "optimize_apply", "optimize_revert", "gizmo", "gizmo_drag",
                         "make_handle", "handle_offset", "set_key", "delete_key", "jump_key",
                         "click_object", "mouse_move", "mouse_press", "mouse_release", "mouse_click",
@@ -165,6 +166,16 @@ MeshImportOptions importOptions(const nlohmann::json& a, const std::string& kind
   o.repair = a.value("repair", false);
   o.smoothNormals = a.value("smooth_normals", true);
   return o;
+}
+
+// A file a script writes (a screenshot, a state): its folder is made first, as `weft render
+// --out` makes its own, so a script can write into a fresh out/.
+std::string outputFile(const nlohmann::json& j) {
+  const std::string file = j.get<std::string>();
+  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  return file;
 }
 
 bool isRawInput(const std::string& kind) {
@@ -530,7 +541,7 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
         const int wx = std::min(app.viewportX() + x, window.width - 1), wy = std::min(app.viewportY() + y, window.height - 1);
         std::copy(window.at(wx, wy), window.at(wx, wy) + 3, image.at(x, y));
       }
-    render::writePng(a.at("screenshot").get<std::string>(), image);
+    render::writePng(outputFile(a.at("screenshot")), image);
   } else if (kind == "screenshot") {
     int w = app.viewportWidth(), h = app.viewportHeight();
     if (a.contains("size")) {
@@ -538,9 +549,9 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
       if (s.size() != 2 || s[0] <= 0 || s[1] <= 0) throw std::invalid_argument("size must be [width, height]");
       w = s[0], h = s[1];
     }
-    render::writePng(a.at("screenshot").get<std::string>(), app.viewportImage(w, h));
+    render::writePng(outputFile(a.at("screenshot")), app.viewportImage(w, h));
   } else if (kind == "window_screenshot") {
-    render::writePng(a.at("window_screenshot").get<std::string>(), app.windowImage());
+    render::writePng(outputFile(a.at("window_screenshot")), app.windowImage());
   } else if (kind == "frames") {
     if (waitFrames_ == 0) waitFrames_ = std::max(1, a.at("frames").get<int>());
     return --waitFrames_ == 0;
@@ -563,7 +574,7 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
       }
     }
   } else if (kind == "write_state") {
-    std::ofstream out(a.at("write_state").get<std::string>());
+    std::ofstream out(outputFile(a.at("write_state")));
     out << stateOf(session, app).dump(2) << "\n";
     if (!out) throw std::runtime_error("cannot write " + a["write_state"].get<std::string>());
   } else if (kind == "import_garment" || kind == "add_mesh_obstacle" || kind == "add_obstacle" ||
@@ -643,6 +654,12 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     session.contactColours = a.at(kind).get<bool>();
   } else if (kind == "force_arrows") {
     session.forceArrows = a.at(kind).get<bool>();
+  } else if (kind == "add_parameter" || kind == "remove_parameter") {
+    const std::string path = a.at(kind).get<std::string>();
+    const std::string error =
+        kind == "add_parameter" ? session.addTaskParameter(path) : session.removeTaskParameter(path);
+    app.report(error.empty() ? (kind == "add_parameter" ? "added " : "removed ") + path : error, !error.empty());
+    if (const std::optional<bool> next = checkOutcome(a, error, "the parameter changed")) return *next;
   } else if (kind == "optimize") {
     const nlohmann::json& o = a.at(kind);
     OptimizerRun::Setup setup;

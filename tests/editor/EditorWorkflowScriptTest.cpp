@@ -254,6 +254,87 @@ TEST(EditorWorkflow, TargetsGiveALiveLossAndAreSavedNextToTheScene) {
   EXPECT_FALSE(removed["document"].contains("task")) << "no term left: no task";
 }
 
+// The Optimise tab's parameter list is edited in the editor: only the scene's differentiable
+// numbers, only once the task has a loss, each add and remove one undo step.
+TEST(EditorWorkflow, ParametersAreAddedAndRemovedInTheEditor) {
+  TempDir dir;
+  const ProcessResult r = runEditor(
+      dir, {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
+            {{"add_parameter", "cloths.0.material.stretch"}, {"expect_error", "no loss yet"}},
+            {{"simulate", true}},
+            {{"scrub", 4}},
+            {{"select", {20, 24}}},
+            {{"set_targets", true}},
+            {{"add_parameter", "time.dt"}, {"expect_error", "not differentiable"}},
+            {{"add_parameter", "cloths.0.material.sheen"}, {"expect_error", "names no value"}},
+            {{"add_parameter", "cloths.0.material.density"}},
+            {{"add_parameter", "cloths.0.material.stretch"}},
+            {{"add_parameter", "cloths.0.material.stretch"}, {"expect_error", "already a parameter"}},
+            {{"expect", {{"value", {{"path", "task.parameters"},
+                                    {"equals", {"cloths.0.material.density", "cloths.0.material.stretch"}}}}}}},
+            {{"remove_parameter", "cloths.0.material.density"}},
+            {{"remove_parameter", "cloths.0.material.density"}, {"expect_error", "not a parameter of the task"}},
+            {{"write_state", dir.file("removed.json")}},
+            {{"undo", true}},
+            {{"write_state", dir.file("undone.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_EQ(readJson(dir.file("removed.json"))["document"]["task"]["parameters"],
+            nlohmann::json::array({"cloths.0.material.stretch"}));
+  EXPECT_EQ(readJson(dir.file("undone.json"))["document"]["task"]["parameters"],
+            nlohmann::json::array({"cloths.0.material.density", "cloths.0.material.stretch"}));
+}
+
+// README's first session (assets/editor/first-session.json), run as committed: import the
+// skirt, pin its waist, drape it on a sphere, set targets at the hem where it hangs with stretch
+// 100 N/m, start again from 400 N/m, add the parameter and step L-BFGS-B eight times. Only the
+// file paths are rewritten (the garment from the source tree, the outputs into a temporary
+// folder), and states are written along the way.
+TEST(EditorWorkflow, FirstSessionFromReadmeConverges) {
+  TempDir dir;
+  const nlohmann::json committed = readJson(std::string(WEFT_ASSET_DIR) + "/editor/first-session.json");
+  nlohmann::json actions = nlohmann::json::array();
+  for (nlohmann::json a : committed["actions"]) {
+    if (a.contains("import_garment")) a["import_garment"] = std::string(WEFT_ASSET_DIR) + "/meshes/dress.obj";
+    if (a.contains("window_screenshot")) a["window_screenshot"] = dir.file("out/first-session.png");
+    const bool optimised = a.contains("optimize_step");
+    const bool targeted = a.contains("add_parameter");
+    actions.push_back(a);
+    if (targeted) actions.push_back({{"write_state", dir.file("targeted.json")}});
+    if (optimised) actions.push_back({{"write_state", dir.file("optimised.json")}});
+  }
+  actions.push_back({{"write_state", dir.file("final.json")}});
+  const ProcessResult r = runEditor(dir, actions);
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  // Imported, pinned, draped: the skirt is the only cloth, its 32 waist vertices fixed, on a sphere.
+  const nlohmann::json targeted = readJson(dir.file("targeted.json"));
+  const nlohmann::json& cloth = targeted["document"]["cloths"][0];
+  EXPECT_EQ(targeted["document"]["cloths"].size(), 1u);
+  EXPECT_EQ(loadScene(writeScene(dir.file("check.json"), targeted["document"])).vertexCount(), 288);
+  EXPECT_EQ(cloth["attachments"][0]["vertices"].size(), 32u);
+  EXPECT_TRUE(targeted["document"]["obstacles"][0].contains("sphere"));
+  EXPECT_EQ(targeted["targets"].size(), 8u);
+  EXPECT_EQ(targeted["document"]["task"]["parameters"], nlohmann::json::array({"cloths.0.material.stretch"}));
+  ASSERT_TRUE(targeted["loss"].is_number()) << targeted["loss_note"];
+  const double start = targeted["loss"];
+  EXPECT_GT(start, 1e-4) << "the hem hangs elsewhere at 400 N/m";
+
+  // Eight evaluations bring the loss down by orders of magnitude and the stretch back to 100.
+  const nlohmann::json opt = readJson(dir.file("optimised.json"))["optimizer"];
+  ASSERT_EQ(opt["evaluations"], 8);
+  EXPECT_NEAR(opt["losses"][0].get<double>(), start, 1e-3 * start) << "the first evaluation is the cached run";
+  EXPECT_LT(opt["best_loss"].get<double>(), 1e-4 * start);
+  EXPECT_NEAR(opt["best_values"][0].get<double>(), 100.0, 1.0);
+
+  // Applied and simulated again: the shown run meets the targets.
+  const nlohmann::json final = readJson(dir.file("final.json"));
+  EXPECT_EQ(final["document"]["cloths"][0]["material"]["stretch"], opt["best_values"][0]);
+  EXPECT_EQ(final["cache_frames"], 61);
+  ASSERT_TRUE(final["loss"].is_number()) << final["loss_note"];
+  EXPECT_LT(final["loss"].get<double>(), 1e-4 * start);
+  EXPECT_TRUE(fs::exists(dir.file("out/first-session.png"))) << "the script makes its out/ folder";
+}
+
 // The golden viewport of the editing features: the rest state of a small hanging cloth with a
 // sphere and a box added from the menu and two final-frame targets (the purple markers) raised
 // above their vertices, from a fixed camera at 320x240. No simulation: the picture does not

@@ -124,4 +124,34 @@ double parameterValue(const Scene& scene, const SceneParameter& parameter) {
   return v->get<double>();
 }
 
+namespace {
+
+void collectParameterPaths(const Scene& scene, const nlohmann::json& node, const std::string& path,
+                           std::vector<std::string>& out) {
+  if (node.is_number()) {
+    // Resolving is the one definition of what is differentiable; a refusal just means "not one".
+    try {
+      resolveSceneParameter(scene, path, "");
+      out.push_back(path);
+    } catch (const InputError&) {
+    }
+    return;
+  }
+  const std::string prefix = path.empty() ? "" : path + ".";
+  if (node.is_object()) {
+    for (const auto& [key, child] : node.items())
+      if (!(path.empty() && key == "task") && key != "mesh") collectParameterPaths(scene, child, prefix + key, out);
+  } else if (node.is_array() && (node.size() <= 3 || !node[0].is_number())) {
+    for (std::size_t i = 0; i < node.size(); ++i) collectParameterPaths(scene, node[i], prefix + std::to_string(i), out);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> differentiableParameterPaths(const Scene& scene) {
+  std::vector<std::string> paths;
+  collectParameterPaths(scene, scene.document, "", paths);
+  return paths;
+}
+
 }  // namespace weft

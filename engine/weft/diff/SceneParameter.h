@@ -9,6 +9,7 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace weft {
 
@@ -56,5 +57,11 @@ SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path
 
 // The parameter's current value, read from the scene document.
 double parameterValue(const Scene& scene, const SceneParameter& parameter);
+
+// Every path of the scene document that resolveSceneParameter accepts, in the document's key
+// order: the parameters a user may choose to optimise (the editor's Optimise tab offers them).
+// Lists of more than three numbers (vertex lists), meshes and the task itself hold no parameter
+// and are not visited.
+std::vector<std::string> differentiableParameterPaths(const Scene& scene);
 
 }  // namespace weft
