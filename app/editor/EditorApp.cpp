@@ -674,6 +674,32 @@ void EditorApp::selectionPanel() {
   ImGui::SameLine();
   if (ImGui::Button("Clear")) session_.selection().clear();
   ImGui::EndDisabled();
+  // By region: the border loop through the inspected vertex, or a band along an axis.
+  ImGui::BeginDisabled(session_.selection().focus() < 0);
+  if (ImGui::Button("Select its border loop")) {
+    const std::string error = session_.selectBoundaryLoop(ImGui::GetIO().KeyShift);
+    report(error.empty() ? "selected the border loop: " + std::to_string(nodes.size()) + " vertices" : error,
+           !error.empty());
+  }
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("The border (waist, hem, cuff) through the vertex last clicked; Shift adds.");
+  static const char* axes[] = {"x", "y", "z"};
+  ImGui::SetNextItemWidth(50.0f);
+  ImGui::Combo("##band axis", &bandAxis_, axes, 3);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(150.0f);
+  ImGui::InputScalarN("##band", ImGuiDataType_Double, band_, 2, nullptr, nullptr, "%.3f");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!session_.document().valid());
+  if (ImGui::Button("Select band")) {
+    const std::string error = session_.selectBand(bandAxis_, band_[0], band_[1], ImGui::GetIO().KeyShift);
+    report(error.empty() ? "selected " + std::to_string(nodes.size()) + " vertices in the band" : error,
+           !error.empty());
+  }
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("The vertices whose coordinate (as shown) lies between the two values, in metres; Shift adds.");
   ImGui::TextDisabled("Click: pick (and inspect) a vertex; drag: box");
   ImGui::TextDisabled("select; Shift adds. Right drag: orbit; middle:");
   ImGui::TextDisabled("pan; wheel: zoom; F: frame the scene; Alt+drag:");

@@ -149,6 +149,8 @@ class EditorApp {
     bool wireframe = false, legend = false, groundGrid = false;
     bool operator==(const ViewportState& o) const;
   } drawn_;
+  int bandAxis_ = 1;                 // the Selection panel's band: axis (y) and range (m)
+  double band_[2] = {0.9, 1.1};
   unsigned lastEditId_ = 0;  // ImGui item that made the last document edit (coalescing)
 
   enum class FileDialog { None, Open, SaveAs };

@@ -8,6 +8,7 @@
 #include <weft/core/Error.h>
 #include <weft/diff/SceneParameter.h>
 #include <weft/diff/TaskLoss.h>
+#include <weft/mesh/BoundaryLoops.h>
 #include <weft/render/Bounds.h>
 #include <weft/scene/JsonPath.h>
 #include <weft/scene/SceneLoader.h>
@@ -221,6 +222,51 @@ void EditorSession::boxSelectPixels(float x0, float y0, float x1, float y1, int 
     selection_.set(inside);
 }
 
+namespace {
+
+// The cloth a global node belongs to (ClothModel numbers cloths' vertices one after another),
+// -1 when it is no cloth vertex.
+int clothOfNode(const ClothModel& model, int node) {
+  if (node < 0 || node >= model.vertexOffset.back()) return -1;
+  return int(std::upper_bound(model.vertexOffset.begin(), model.vertexOffset.end(), node) - model.vertexOffset.begin()) - 1;
+}
+
+}  // namespace
+
+std::string EditorSession::selectBoundaryLoop(bool add) {
+  const int node = selection_.focus();
+  if (node < 0) return "click a vertex on the border first (its loop is selected)";
+  const Scene* scene = document_.scene();
+  if (!scene) return "the scene does not validate: " + document_.validationError();
+  const ClothModel model = buildClothModel(*scene);
+  const int cloth = clothOfNode(model, node);
+  if (cloth < 0) return "vertex " + std::to_string(node) + " is not a cloth vertex";
+  const int offset = model.vertexOffset[std::size_t(cloth)];
+  for (const std::vector<int>& loop : boundaryLoops(scene->cloths[std::size_t(cloth)].mesh)) {
+    if (std::find(loop.begin(), loop.end(), node - offset) == loop.end()) continue;
+    std::vector<int> nodes;
+    for (int v : loop) nodes.push_back(v + offset);
+    if (add) selection_.add(nodes);
+    else selection_.set(nodes);
+    return "";
+  }
+  return "vertex " + std::to_string(node) + " is not on a border of its cloth";
+}
+
+std::string EditorSession::selectBand(int axis, double low, double high, bool add) {
+  if (axis < 0 || axis > 2) return "the axis is x, y or z";
+  if (!(low <= high)) return "the band's low end is above its high end";
+  const render::RenderScene* shown = viewportScene();
+  if (!shown) return "the scene does not validate: " + document_.validationError();
+  std::vector<int> nodes;
+  const auto& positions = shown->cloth.positions;
+  for (Eigen::Index v = 0; v < positions.rows(); ++v)
+    if (positions(v, axis) >= low && positions(v, axis) <= high) nodes.push_back(int(v));
+  if (add) selection_.add(nodes);
+  else selection_.set(nodes);
+  return "";
+}
+
 std::string EditorSession::pinSelection() {
   if (selection_.empty()) return "nothing is selected";
   const Scene* scene = document_.scene();
@@ -238,12 +284,9 @@ std::string EditorSession::makeHandle() {
   if (!scene) return "the scene does not validate: " + document_.validationError();
   const ClothModel model = buildClothModel(*scene);
   const std::vector<int> nodes = selection_.nodes();
-  const auto clothOf = [&](int node) {
-    return int(std::upper_bound(model.vertexOffset.begin(), model.vertexOffset.end(), node) - model.vertexOffset.begin()) - 1;
-  };
-  const int cloth = clothOf(nodes.front());
-  if (cloth < 0 || nodes.back() >= model.vertexOffset.back()) return "the selection is not cloth vertices";
-  if (clothOf(nodes.back()) != cloth) return "a handle holds vertices of one cloth: select vertices of one cloth only";
+  const int cloth = clothOfNode(model, nodes.front());
+  if (cloth < 0 || clothOfNode(model, nodes.back()) < 0) return "the selection is not cloth vertices";
+  if (clothOfNode(model, nodes.back()) != cloth) return "a handle holds vertices of one cloth: select vertices of one cloth only";
   std::vector<int> local;
   for (int n : nodes) local.push_back(n - model.vertexOffset[std::size_t(cloth)]);
   const std::string base = "cloths." + std::to_string(cloth);

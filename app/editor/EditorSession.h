@@ -87,6 +87,13 @@ class EditorSession {
   std::string clickObject(float x, float y, int width, int height);
   // Selects global nodes; returns an error text for a node that is not a cloth vertex.
   std::string selectNodes(const std::vector<int>& nodes, bool add);
+  // Selection by region. The border loop (mesh/BoundaryLoops.h) of the cloth's rest mesh that
+  // holds the inspected vertex (a skirt's waist or hem, a cuff); or the cloth vertices whose
+  // coordinate `axis` (0 x, 1 y, 2 z) lies in [low, high] as the viewport shows them (a band:
+  // the top 2 cm, one side). Error text or "" (also when the band holds no vertex: the
+  // selection is then empty, or unchanged when adding).
+  std::string selectBoundaryLoop(bool add);
+  std::string selectBand(int axis, double low, double high, bool add);
   // Adds a fixed attachment holding the selected vertices (one undo step). Error text or "".
   std::string pinSelection();
 

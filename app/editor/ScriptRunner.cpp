@@ -21,7 +21,7 @@ double now() {
 std::string kindOf(const nlohmann::json& action) {
   if (!action.is_object() || action.empty()) return "?";
   for (const char* k : {"open", "new", "set", "remove", "select", "select_add", "clear_selection", "click",
-                        "box_select", "pin", "simulate", "cancel", "scrub", "step", "play", "pause",
+                        "box_select", "select_loop", "select_band", "pin", "simulate", "cancel", "scrub", "step", "play", "pause",
                         "undo", "redo", "save", "camera", "screenshot", "window_screenshot", "frames",
                         "expect", "write_state", "import_garment", "add_obstacle", "add_mesh_obstacle",
                         "panel", "contact_colours", "force_arrows", "set_targets", "target", "move_targets",
@@ -432,6 +432,18 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
       fail(error);
       return false;
     }
+  } else if (kind == "select_loop" || kind == "select_band") {
+    std::string error;
+    const bool add = a.value("add", false);
+    if (kind == "select_loop") {
+      error = session.selectBoundaryLoop(add);
+    } else {
+      const nlohmann::json& band = a.at(kind);
+      const std::string axis = band.at("axis").get<std::string>();
+      const int index = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
+      error = session.selectBand(index, band.at("min").get<double>(), band.at("max").get<double>(), add);
+    }
+    if (const std::optional<bool> next = checkOutcome(a, error, "the selection changed")) return *next;
   } else if (kind == "clear_selection") {
     session.selection().clear();
   } else if (kind == "click") {

@@ -254,6 +254,26 @@ TEST(EditorWorkflow, TargetsGiveALiveLossAndAreSavedNextToTheScene) {
   EXPECT_FALSE(removed["document"].contains("task")) << "no term left: no task";
 }
 
+// Selection by region on the 1 m hanging cloth of 4 x 4 quads (row j at y = 1.5 - 0.25 j at
+// rest): a band along y, the border loop through a clicked vertex, and what each refuses.
+TEST(EditorWorkflow, SelectionByRegion) {
+  TempDir dir;
+  const ProcessResult r = runEditor(
+      dir, {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
+            {{"select_loop", true}, {"expect_error", "click a vertex on the border first"}},
+            {{"select_band", {{"axis", "y"}, {"min", 1.2}, {"max", 1.6}}}},
+            {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}}}}},
+            {{"select_band", {{"axis", "x"}, {"min", 0.4}, {"max", 0.6}}}, {"add", true}},
+            {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 19, 24}}}}},
+            {{"select_band", {{"axis", "w"}, {"min", 0.0}, {"max", 1.0}}}, {"expect_error", "x, y or z"}},
+            {{"select", {12}}},
+            {{"select_loop", true}, {"expect_error", "not on a border"}},
+            {{"select", {9}}},
+            {{"select_loop", true}},
+            {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 9, 10, 14, 15, 19, 20, 21, 22, 23, 24}}}}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+}
+
 // The Optimise tab's parameter list is edited in the editor: only the scene's differentiable
 // numbers, only once the task has a loss, each add and remove one undo step.
 TEST(EditorWorkflow, ParametersAreAddedAndRemovedInTheEditor) {
@@ -311,9 +331,12 @@ TEST(EditorWorkflow, FirstSessionFromReadmeConverges) {
   const nlohmann::json& cloth = targeted["document"]["cloths"][0];
   EXPECT_EQ(targeted["document"]["cloths"].size(), 1u);
   EXPECT_EQ(loadScene(writeScene(dir.file("check.json"), targeted["document"])).vertexCount(), 288);
-  EXPECT_EQ(cloth["attachments"][0]["vertices"].size(), 32u);
+  EXPECT_EQ(cloth["attachments"][0]["vertices"], nlohmann::json::array({0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  10,
+                                                                        11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21,
+                                                                        22, 23, 24, 25, 26, 27, 28, 29, 30, 31}))
+      << "the waist: the border loop through vertex 0";
   EXPECT_TRUE(targeted["document"]["obstacles"][0].contains("sphere"));
-  EXPECT_EQ(targeted["targets"].size(), 8u);
+  EXPECT_EQ(targeted["targets"].size(), 32u) << "the hem: the border loop through vertex 256";
   EXPECT_EQ(targeted["document"]["task"]["parameters"], nlohmann::json::array({"cloths.0.material.stretch"}));
   ASSERT_TRUE(targeted["loss"].is_number()) << targeted["loss_note"];
   const double start = targeted["loss"];
