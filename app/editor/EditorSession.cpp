@@ -8,7 +8,9 @@
 #include <weft/core/Error.h>
 #include <weft/diff/SceneParameter.h>
 #include <weft/diff/TaskLoss.h>
+#include <weft/io/MeshReader.h>
 #include <weft/mesh/BoundaryLoops.h>
+#include <weft/mesh/RigidTransform.h>
 #include <weft/render/Bounds.h>
 #include <weft/scene/JsonPath.h>
 #include <weft/scene/SceneLoader.h>
@@ -760,6 +762,66 @@ std::string EditorSession::loadTargetMotion(const std::string& file) {
                             doc["task"]["loss"] = nlohmann::json::object();
                           doc["task"]["loss"]["trajectory"] = {{"target", path}};
                         });
+}
+
+std::string EditorSession::loadTargetMesh(const std::string& file) {
+  const Scene* scene = document_.scene();
+  if (!scene) return "the scene does not validate: " + document_.validationError();
+  TriangleMesh mesh;
+  try {
+    mesh = readMesh(file);
+  } catch (const InputError& e) {
+    return file + ": " + e.reason();
+  } catch (const std::exception& e) {
+    return file + ": " + e.what();
+  }
+  const ClothModel model = buildClothModel(*scene);
+  std::string counts;
+  for (std::size_t c = 0; c < scene->cloths.size(); ++c) {
+    const int n = scene->cloths[c].mesh.vertexCount();
+    counts += (c ? ", " : "") + std::string("cloth ") + std::to_string(c) + " has " + std::to_string(n);
+    if (n != mesh.vertexCount()) continue;
+    // The cloth's own placement, as the loader applies it to the cloth's file (scale first).
+    const std::string base = "cloths." + std::to_string(c) + ".mesh";
+    if (const nlohmann::json* scale = document_.find(base + ".scale"); scale && scale->is_number())
+      mesh.vertices *= scale->get<double>();
+    if (const nlohmann::json* t = document_.find(base + ".transform"); t && t->is_object()) {
+      RigidTransform transform;
+      auto vec = [](const nlohmann::json& j) { return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()); };
+      if (t->contains("rotate_deg")) transform.rotateDeg = vec(t->at("rotate_deg"));
+      if (t->contains("translate")) transform.translate = vec(t->at("translate"));
+      transform.applyTo(mesh.vertices);
+    }
+    if (!mesh.vertices.allFinite()) return file + ": the mesh has non-finite vertex positions";
+    std::vector<FinalTarget> list;
+    const int offset = model.vertexOffset[c];
+    for (const FinalTarget& t : targets())  // other cloths' targets stay
+      if (t.node < offset || t.node >= offset + n) list.push_back(t);
+    for (int v = 0; v < n; ++v) list.push_back({offset + v, mesh.vertices.row(v).transpose()});
+    return editTargets("Target shape " + std::filesystem::path(file).filename().string(), std::move(list));
+  }
+  return file + ": " + std::to_string(mesh.vertexCount()) + " vertices, but " + counts +
+         " (a target shape has the garment's vertices, in its order)";
+}
+
+std::string EditorSession::setHemline(double height) {
+  if (!std::isfinite(height)) return "the hemline height must be a finite number";
+  if (selection_.empty()) return "select the hemline's vertices first (e.g. the hem's border loop)";
+  const std::vector<int> nodes = selection_.nodes();
+  return document_.edit("Hemline of " + std::to_string(nodes.size()) + " vertices", [&](nlohmann::json& doc) {
+    if (!doc.contains("task") || !doc["task"].is_object()) doc["task"] = nlohmann::json::object();
+    if (!doc["task"].contains("loss") || !doc["task"]["loss"].is_object()) doc["task"]["loss"] = nlohmann::json::object();
+    doc["task"]["loss"]["hemline"] = {{"vertices", nodes}, {"height", height}};
+  });
+}
+
+std::string EditorSession::removeHemline() {
+  if (!document_.find("task.loss.hemline")) return "the task has no hemline term";
+  return document_.edit("Remove hemline", [](nlohmann::json& doc) {
+    nlohmann::json& task = doc["task"];
+    task["loss"].erase("hemline");
+    if (task["loss"].empty() && (!task.contains("parameters") || task["parameters"].empty())) doc.erase("task");
+  });
 }
 
 std::string EditorSession::removeTargetMotion() {

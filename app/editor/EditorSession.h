@@ -158,6 +158,15 @@ class EditorSession {
   // as the task's trajectory term; checked by the engine's TaskLoss before it is added.
   std::string loadTargetMotion(const std::string& file);
   std::string removeTargetMotion();
+  // The final shape from a mesh file: a final-frame target for every vertex of the cloth whose
+  // mesh has as many vertices (the first such cloth), at the file's vertex positions placed as
+  // that cloth's own mesh is (its `scale` and `transform`): a target shape exported in the same
+  // frame and units as the garment's file. One undo step; error text or "".
+  std::string loadTargetMesh(const std::string& file);
+  // The built-in hemline term (task.loss.hemline, DiffCloth Eq. 34): the selected vertices'
+  // mean squared height gap to `height` (m) at the last state. One undo step each.
+  std::string setHemline(double height);
+  std::string removeHemline();
   // The task loss of the cached run (LiveLoss.h).
   const LossValue& liveLoss();
 

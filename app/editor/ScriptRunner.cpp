@@ -25,7 +25,7 @@ std::string kindOf(const nlohmann::json& action) {
                         "undo", "redo", "save", "camera", "screenshot", "window_screenshot", "frames",
                         "expect", "write_state", "import_garment", "add_obstacle", "add_mesh_obstacle",
                         "panel", "contact_colours", "force_arrows", "set_targets", "target", "move_targets",
-                        "drag_targets", "remove_targets", "load_target_motion", "remove_target_motion",
+                        "drag_targets", "remove_targets", "load_target_motion", "remove_target_motion", "load_target_mesh", "set_hemline", "remove_hemline",
                         "add_parameter", "remove_parameter", "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
                         "optimize_cancel", "optimize_apply", "optimize_revert", "gizmo", "gizmo_drag",
                         "make_handle", "handle_offset", "set_key", "delete_key", "jump_key",
@@ -666,6 +666,12 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     session.contactColours = a.at(kind).get<bool>();
   } else if (kind == "force_arrows") {
     session.forceArrows = a.at(kind).get<bool>();
+  } else if (kind == "load_target_mesh" || kind == "set_hemline" || kind == "remove_hemline") {
+    const std::string error = kind == "load_target_mesh" ? session.loadTargetMesh(a.at(kind).get<std::string>())
+                              : kind == "set_hemline"    ? session.setHemline(a.at(kind).get<double>())
+                                                         : session.removeHemline();
+    app.report(error.empty() ? kind + " done" : error, !error.empty());
+    if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
   } else if (kind == "add_parameter" || kind == "remove_parameter") {
     const std::string path = a.at(kind).get<std::string>();
     const std::string error =

@@ -105,11 +105,42 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   }
   ImGui::SetNextItemWidth(250.0f);
   ImGui::InputText("##motion", motionPath_, sizeof motionPath_);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A positions.npy for Load motion, or a mesh file for Load shape");
   ImGui::SameLine();
   ImGui::BeginDisabled(motionPath_[0] == '\0');
   if (ImGui::Button("Load motion")) {
     const std::string error = session.loadTargetMotion(motionPath_);
     app.report(error.empty() ? std::string("target motion ") + motionPath_ : error, !error.empty());
+  }
+  ImGui::SameLine();
+  // The final shape: a mesh of the garment's vertices, placed as the garment's own file.
+  if (ImGui::Button("Load shape")) {
+    const std::string error = session.loadTargetMesh(motionPath_);
+    app.report(error.empty() ? std::string("target shape ") + motionPath_ : error, !error.empty());
+  }
+  ImGui::EndDisabled();
+  ImGui::Separator();
+
+  // The built-in hemline term (the Dress task's loss).
+  const nlohmann::json* hemline = doc.find("task.loss.hemline");
+  if (hemline && hemline->is_object()) {
+    const std::size_t count = hemline->contains("vertices") ? hemline->at("vertices").size() : 0;
+    ImGui::TextWrapped("Hemline: %zu vertices at %s m", count,
+                       hemline->contains("height") ? hemline->at("height").dump().c_str() : "(a cone's height)");
+    if (ImGui::Button("Remove hemline")) {
+      const std::string error = session.removeHemline();
+      if (!error.empty()) app.report(error, true);
+    }
+  } else {
+    ImGui::TextDisabled("No hemline term.");
+  }
+  ImGui::SetNextItemWidth(120.0f);
+  ImGui::InputDouble("height (m)##hemline", &hemlineHeight_, 0.0, 0.0, "%.4g");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(selected.empty());
+  if (ImGui::Button("Hemline at selected")) {
+    const std::string error = session.setHemline(hemlineHeight_);
+    app.report(error.empty() ? "hemline set" : error, !error.empty());
   }
   ImGui::EndDisabled();
 }

@@ -1,8 +1,9 @@
 #pragma once
 // The "Targets" tab: final-frame targets for chosen vertices (set at the selected vertices'
 // shown positions, typed per target, moved by an offset, or dragged in the viewport with Alt
-// held), the final term's weight, a recorded target motion (the trajectory term), and the task
-// loss of the cached run, updated live as targets change.
+// held), the final term's weight, a recorded target motion (the trajectory term), a target
+// shape from a mesh file (final targets at every vertex), the built-in hemline term, and the
+// task loss of the cached run, updated live as targets change.
 
 #include <string>
 
@@ -18,6 +19,7 @@ class TargetPanel {
  private:
   double offset_[3] = {0.0, 0.05, 0.0};
   char motionPath_[1024] = {};
+  double hemlineHeight_ = 0.7;
   int editSerial_ = 0;  // numbers edits of a target field, so one typed value is one undo step
 };
 

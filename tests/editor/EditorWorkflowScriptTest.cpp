@@ -274,6 +274,57 @@ TEST(EditorWorkflow, SelectionByRegion) {
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 }
 
+// The Targets tab's other losses: a target shape from a mesh file (final targets at every vertex,
+// placed as the cloth's own mesh) and the built-in hemline term at the selected vertices.
+TEST(EditorWorkflow, TargetShapeFromAMeshAndTheHemline) {
+  TempDir dir;
+  // The 4 x 4 grid's own frame (XZ plane, vertex (i, j) = 5 j + i), moved 0.1 m along x.
+  std::string obj;
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) obj += "v " + std::to_string(-0.4 + 0.25 * i) + " 0 " + std::to_string(-0.5 + 0.25 * j) + "\n";
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const int v = 5 * j + i + 1;  // OBJ counts from 1
+      obj += "f " + std::to_string(v) + " " + std::to_string(v + 5) + " " + std::to_string(v + 1) + "\n";
+      obj += "f " + std::to_string(v + 1) + " " + std::to_string(v + 5) + " " + std::to_string(v + 6) + "\n";
+    }
+  const std::string shape = dir.write("shape.obj", obj);
+  const std::string small = dir.write("small.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const ProcessResult r = runEditor(
+      dir, {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
+            {{"load_target_mesh", small}, {"expect_error", "3 vertices, but cloth 0 has 25"}},
+            {{"load_target_mesh", shape}},
+            {{"write_state", dir.file("shape.json")}},
+            {{"set_hemline", 0.4}, {"expect_error", "select the hemline's vertices first"}},
+            {{"select", {20, 21, 22, 23, 24}}},
+            {{"set_hemline", 0.4}},
+            {{"simulate", true}},
+            {{"scrub", 4}},
+            {{"write_state", dir.file("hemline.json")}},
+            {{"remove_hemline", true}},
+            {{"write_state", dir.file("removed.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  // Every vertex has a target: its rest position (the grid rotated 90 degrees about x, raised 1 m)
+  // moved 0.1 m along x.
+  const nlohmann::json targets = readJson(dir.file("shape.json"))["targets"];
+  ASSERT_EQ(targets.size(), 25u);
+  EXPECT_TRUE(vec(targets["0"]).isApprox(Vec3(-0.4, 1.5, 0.0), 1e-12)) << targets["0"];
+  EXPECT_TRUE(vec(targets["24"]).isApprox(Vec3(0.6, 0.5, 0.0), 1e-12)) << targets["24"];
+
+  const nlohmann::json hemline = readJson(dir.file("hemline.json"));
+  EXPECT_EQ(hemline["document"]["task"]["loss"]["hemline"],
+            (nlohmann::json{{"vertices", {20, 21, 22, 23, 24}}, {"height", 0.4}}));
+  ASSERT_TRUE(hemline["loss_terms"].contains("hemline")) << hemline["loss_terms"];
+  // The bottom row hangs at about y = 0.5 after four steps (it falls a few millimetres).
+  EXPECT_NEAR(hemline["loss_terms"]["hemline"].get<double>(), 0.01, 0.003);
+  EXPECT_TRUE(hemline["loss_terms"].contains("final"));
+
+  const nlohmann::json removed = readJson(dir.file("removed.json"));
+  EXPECT_FALSE(removed["document"]["task"]["loss"].contains("hemline"));
+  EXPECT_TRUE(removed["document"]["task"]["loss"].contains("final")) << "the shape's targets stay";
+}
+
 // The Optimise tab's parameter list is edited in the editor: only the scene's differentiable
 // numbers, only once the task has a loss, each add and remove one undo step.
 TEST(EditorWorkflow, ParametersAreAddedAndRemovedInTheEditor) {
