@@ -9,6 +9,7 @@
 #include <weft/diff/Backpropagation.h>
 #include <weft/diff/ForwardPass.h>
 #include <weft/diff/GradientCheck.h>
+#include <weft/physics/Simulator.h>
 
 #include <gtest/gtest.h>
 
@@ -59,6 +60,43 @@ TEST(Backpropagation, InitialVelocityGradientIsTheSumOfTheNodalOnes) {
                                          tight.solver.backward);
   EXPECT_NEAR(g.gradient[0], g.dLdv0.col(2).sum(), 1e-12 * std::abs(g.gradient[0]));
   EXPECT_EQ(g.solver.solves, 10);
+}
+
+// dL/dx_n at an intermediate state against central differences: state n's positions moved
+// (velocities held) and the run continued from there by Simulator::restart.
+TEST(Backpropagation, StateGradientMatchesFiniteDifferencesMidRun) {
+  TempDir dir;
+  const Scene scene = withTightForwardSolver(test::windTaskScene(dir, {"wind.strength"}, 12), 1e-10);
+  const ForwardPass pass = runForwardPass(scene);
+  const TaskLoss loss(scene);
+  BackwardSettings exact = scene.solver.backward;
+  exact.method = "direct";  // per-vertex values: the default 1e-4 solve tolerance shows in them
+  const GradientResult g = backpropagate(scene, pass.trajectory, loss, ParameterSet::fromTask(scene), exact);
+  ASSERT_EQ(g.dLdx.size(), pass.trajectory.positions.size());
+  EXPECT_EQ(g.dLdx[0], g.dLdx0);
+  const int n = 6;
+  auto lossFrom = [&](const NodeMatrix& xn) {
+    Simulator sim(scene);
+    sim.restart(n, xn, pass.trajectory.velocities[n]);
+    Trajectory rest;
+    sim.run(scene.time.steps - n, rest);
+    Trajectory whole = pass.trajectory;
+    whole.positions[std::size_t(n)] = xn;  // the loss looks at state n too
+    for (int k = 1; k < static_cast<int>(rest.positions.size()); ++k) {
+      whole.positions[std::size_t(n + k)] = rest.positions[std::size_t(k)];
+      whole.velocities[std::size_t(n + k)] = rest.velocities[std::size_t(k)];
+    }
+    return loss.value(whole);
+  };
+  const double eps = 1e-6;
+  for (const auto& [node, axis] : {std::pair{44, 0}, std::pair{48, 2}, std::pair{10, 1}}) {
+    NodeMatrix plus = pass.trajectory.positions[n], minus = plus;
+    plus(node, axis) += eps;
+    minus(node, axis) -= eps;
+    const double fd = (lossFrom(plus) - lossFrom(minus)) / (2 * eps);
+    const double adjoint = g.dLdx[n](node, axis);
+    EXPECT_NEAR(adjoint, fd, 1e-4 * std::abs(fd) + 1e-9) << "node " << node << " axis " << axis;
+  }
 }
 
 }  // namespace

@@ -64,6 +64,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
   }
   result.dLdx0 = dLdx[0];
   result.dLdv0 = dLdvNext;
+  result.dLdx = std::move(dLdx);  // already computed: keeping it costs nothing
   partials.accumulateInitial(result.dLdv0, result.gradient);
   result.solver = solver.stats();
   result.solver.adjointGrowth = growth.factor();

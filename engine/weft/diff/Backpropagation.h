@@ -25,6 +25,9 @@ struct GradientResult {
   double loss = 0.0;
   Eigen::VectorXd gradient;  // dL/dtheta, in the ParameterSet's order
   NodeMatrix dLdx0, dLdv0;   // initial-state gradients
+  // dL/dx_n for every state n = 0..N: the loss's derivative with respect to state n's positions
+  // with its velocities held (dLdx[0] is dLdx0). The editor's vertex inspector shows it.
+  std::vector<NodeMatrix> dLdx;
   AdjointSolverStats solver;
   double seconds = 0.0;
   // Of `seconds`: preparing Delta P (the projections' derivatives at x_{n+1}, Eq. 18) and the

@@ -9,6 +9,7 @@
 #include <weft/physics/WindForce.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -894,6 +895,16 @@ const StepStats& Simulator::step() {
   if (!(maxSpeed < kBlowUpSpeed))
     throw NumericalError(step_, "solver", "velocity " + std::to_string(maxSpeed) + " m/s: the integration blew up");
   return stats_;
+}
+
+void Simulator::restart(int step, const NodeMatrix& x, const NodeMatrix& v) {
+  if (x.rows() != x_.rows() || v.rows() != v_.rows() || step < 0)
+    throw std::invalid_argument("Simulator::restart: the state must have one row per node and step >= 0");
+  x_ = x;
+  v_ = v;
+  step_ = step;
+  time_ = step * h_;
+  warmStart_.setZero();
 }
 
 void Simulator::diagnoseNonFinite(const NodeMatrix& lastGood) const {

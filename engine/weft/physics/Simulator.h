@@ -67,6 +67,12 @@ class Simulator {
   void run(int steps, Trajectory& trajectory,
            const std::function<void(const StepStats&)>& progress = nullptr);
 
+  // Continues from another state: positions x and velocities v (m x 3) at state `step` (time
+  // step * dt), the solver's warm start dropped. For checks that perturb a recorded state
+  // (finite differences of dL/dx_n); contact warm starts are not carried over, so use it where
+  // the forward solve is converged tightly enough not to depend on its start.
+  void restart(int step, const NodeMatrix& x, const NodeMatrix& v);
+
   // Modules built for this scene, in a fixed order, with their accumulated seconds.
   const std::vector<std::string>& moduleNames() const { return moduleNames_; }
   const std::vector<double>& moduleSeconds() const { return moduleSeconds_; }
