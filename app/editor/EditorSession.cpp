@@ -6,6 +6,7 @@
 #include "ObstacleTemplates.h"
 
 #include <weft/core/Error.h>
+#include <weft/diff/Backpropagation.h>
 #include <weft/diff/SceneParameter.h>
 #include <weft/diff/TaskLoss.h>
 #include <weft/io/MeshReader.h>
@@ -835,14 +836,14 @@ std::string EditorSession::removeTargetMotion() {
 
 const LossValue& EditorSession::liveLoss() { return liveLoss_.evaluate(document_, cache_); }
 
-std::string EditorSession::startOptimizer(const OptimizerRun::Setup& setup, bool paused) {
+std::string EditorSession::withHeldTargets(const std::function<std::string(const Scene&)>& use) {
   if (!document_.valid()) return "the scene does not validate: " + document_.validationError();
   nlohmann::json doc = document_.document();
   const std::vector<FinalTarget> list = targets();
   std::string temporary;
   if (!list.empty()) {
-    // The run reads its targets through the engine's TaskLoss, from a file: targets not saved
-    // yet go to a private temporary one, read once when the run starts and removed then.
+    // The engine's TaskLoss reads targets from a file: targets not saved yet go to a private
+    // temporary one, read once while `use` builds the loss and removed then.
     std::string name = (std::filesystem::temp_directory_path() / "weft-editor-target-XXXXXX").string();
     const int fd = ::mkstemp(name.data());
     if (fd < 0) return "cannot create a temporary target file";
@@ -860,12 +861,58 @@ std::string EditorSession::startOptimizer(const OptimizerRun::Setup& setup, bool
   try {
     const Scene scene = parseScene(doc, document_.file().empty() ? document_.displayName() : document_.file(),
                                    document_.directory());
-    error = optimizer_.start(scene, setup, paused);
+    error = use(scene);
   } catch (const std::exception& e) {
     error = e.what();
   }
   if (!temporary.empty()) ::unlink(temporary.c_str());
   return error;
+}
+
+std::string EditorSession::startOptimizer(const OptimizerRun::Setup& setup, bool paused) {
+  return withHeldTargets([&](const Scene& scene) { return optimizer_.start(scene, setup, paused); });
+}
+
+std::string EditorSession::computeStateGradients() {
+  const Scene* current = document_.scene();
+  if (!current) return "the scene does not validate: " + document_.validationError();
+  if (!current->task) return "the scene has no task: set targets or load a target motion first";
+  const int frames = cache_.frameCount();
+  if (cache_.status() != SimulationCache::Status::Done || frames != current->time.steps + 1 ||
+      cache_.staleFor(document_.document()))
+    return "simulate the scene (all time.steps) first: the gradient is of the cached run";
+  // The cached run as the backward pass reads a recorded one.
+  Trajectory trajectory;
+  const bool contact = !current->obstacles.empty() ||
+                       std::any_of(current->cloths.begin(), current->cloths.end(),
+                                   [](const Cloth& c) { return c.selfCollision.has_value(); });
+  for (int k = 0; k < frames; ++k) {
+    const std::shared_ptr<const CachedFrame> f = cache_.frame(k);
+    trajectory.positions.push_back(f->positions);
+    trajectory.velocities.push_back(f->velocities);
+    if (k == 0) continue;
+    trajectory.steps.push_back(f->stats);
+    if (contact) trajectory.contacts.push_back(f->contacts);
+  }
+  stateGradients_.clear();
+  const std::string error = withHeldTargets([&](const Scene& scene) {
+    // Per-vertex values show a solve's error more than a parameter's sum does: solve tightly.
+    BackwardSettings settings = scene.solver.backward;
+    settings.tolerance = std::min(settings.tolerance, 1e-8);
+    const GradientResult g = backpropagate(scene, trajectory, TaskLoss(scene), ParameterSet(), settings);
+    stateGradients_ = g.dLdx;
+    return std::string();
+  });
+  gradientsRun_ = cache_.runId();
+  gradientsRevision_ = document_.revision();
+  return error;
+}
+
+std::optional<Vec3> EditorSession::stateGradient(int node, int state) const {
+  if (gradientsRun_ != cache_.runId() || gradientsRevision_ != document_.revision()) return std::nullopt;
+  if (state < 0 || state >= int(stateGradients_.size()) || node < 0 || node >= stateGradients_[std::size_t(state)].rows())
+    return std::nullopt;
+  return Vec3(stateGradients_[std::size_t(state)].row(node).transpose());
 }
 
 std::string EditorSession::setParameterValues(const std::string& label, const std::vector<double>& values) {

@@ -21,6 +21,7 @@
 #include <weft/render/Camera.h>
 #include <weft/render/RenderScene.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -169,6 +170,13 @@ class EditorSession {
   std::string removeHemline();
   // The task loss of the cached run (LiveLoss.h).
   const LossValue& liveLoss();
+  // The loss gradient of the cached run under the task as it is now: dL/dx_n of every state (the
+  // backward pass of diff/Backpropagation.h over the cached states and contacts), for the
+  // vertex inspector. Runs on the calling thread (a backward pass costs about as much as the
+  // run). Error text or "".
+  std::string computeStateGradients();
+  // dL/dx of `node` at `state`, once computed for this cache and task (nullopt otherwise).
+  std::optional<Vec3> stateGradient(int node, int state) const;
 
   // The task's parameters (task.parameters): what the optimiser may change. `path` must be one
   // of differentiableParameterPaths (diff/SceneParameter.h) and the task must have a loss (a
@@ -211,6 +219,12 @@ class EditorSession {
                           const std::string& coalesceKey = "");
   std::optional<Vec3> shownPosition(int node);  // double precision, unlike the render frame
   std::string setParameterValues(const std::string& label, const std::vector<double>& values);
+  // Calls `use` with the document's scene whose final term reads the targets the editor holds
+  // (from a private temporary file, removed afterwards): what the engine's TaskLoss needs.
+  std::string withHeldTargets(const std::function<std::string(const Scene&)>& use);
+  std::vector<NodeMatrix> stateGradients_;
+  long gradientsRun_ = -1;
+  long gradientsRevision_ = -1;
   // The active object's centre in the scene's own (rest) coordinates, from the validated scene;
   // nullopt when it cannot be found. A handle's is where its keys put it at the shown time.
   std::optional<Vec3> objectOrigin() const;

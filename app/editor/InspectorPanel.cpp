@@ -60,6 +60,19 @@ void InspectorPanel::draw(EditorSession& session) {
     ImGui::TextUnformatted("branch   ");
     ImGui::SameLine(0, 0);
     ImGui::TextColored(branchColour(r->branch), "%s", r->branch == ContactBranch::None ? "no contact" : branchName(r->branch));
+    // The task loss's gradient at this vertex and state: dL/dx_n with the state's velocities held
+    // (the loss's units per metre), from a backward pass over the cached run.
+    if (const auto g = session.stateGradient(r->node, r->state)) {
+      vectorText("dL/dx", *g, "/m");
+      gradientError_.clear();
+    } else if (ImGui::SmallButton("Compute loss gradient")) {
+      gradientError_ = session.computeStateGradients();
+    }
+    if (!gradientError_.empty()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
+      ImGui::TextWrapped("%s", gradientError_.c_str());
+      ImGui::PopStyleColor();
+    }
     if (!r->contacts.empty()) {
       vectorText("force", r->contactForce, "N");
       vectorText("impulse", r->contactImpulse, "N s");

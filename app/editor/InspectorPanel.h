@@ -4,6 +4,8 @@
 // at the playback state; the overlay switches (branch colours, force arrows); and per-step plots
 // of the contacts per branch, PD iterations and the residual, with the current state marked.
 
+#include <string>
+
 namespace weft::editor {
 
 class EditorSession;
@@ -11,6 +13,9 @@ class EditorSession;
 class InspectorPanel {
  public:
   void draw(EditorSession& session);
+
+ private:
+  std::string gradientError_;  // why the last "Compute loss gradient" failed
 };
 
 }  // namespace weft::editor

@@ -26,7 +26,7 @@ std::string kindOf(const nlohmann::json& action) {
                         "expect", "write_state", "import_garment", "add_obstacle", "add_mesh_obstacle",
                         "panel", "contact_colours", "force_arrows", "set_targets", "target", "move_targets",
                         "drag_targets", "remove_targets", "load_target_motion", "remove_target_motion", "load_target_mesh", "set_hemline", "remove_hemline",
-                        "add_parameter", "remove_parameter", "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
+                        "add_parameter", "remove_parameter", "compute_gradient", "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
                         "optimize_cancel", "optimize_apply", "optimize_revert", "gizmo", "gizmo_drag",
                         "make_handle", "handle_offset", "set_key", "delete_key", "jump_key",
                         "click_object", "mouse_move", "mouse_press", "mouse_release", "mouse_click",
@@ -59,6 +59,10 @@ nlohmann::json inspectorState(const EditorSession& session) {
           {"branch", static_cast<int>(r->branch)},
           {"contact_force", vec(r->contactForce)},
           {"contact_impulse", vec(r->contactImpulse)},
+          {"gradient", [&] {
+             const auto g = session.stateGradient(r->node, r->state);
+             return g ? vec(*g) : nlohmann::json(nullptr);
+           }()},
           {"contacts", contacts}};
 }
 
@@ -671,6 +675,10 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
                               : kind == "set_hemline"    ? session.setHemline(a.at(kind).get<double>())
                                                          : session.removeHemline();
     app.report(error.empty() ? kind + " done" : error, !error.empty());
+    if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
+  } else if (kind == "compute_gradient") {
+    const std::string error = session.computeStateGradients();
+    app.report(error.empty() ? "loss gradient computed" : error, !error.empty());
     if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
   } else if (kind == "add_parameter" || kind == "remove_parameter") {
     const std::string path = a.at(kind).get<std::string>();

@@ -9,6 +9,8 @@
 #include "support/SceneBuilder.h"
 #include "support/TempDir.h"
 
+#include <weft/diff/Backpropagation.h>
+#include <weft/diff/ForwardPass.h>
 #include <weft/io/Npy.h>
 #include <weft/physics/Simulator.h>
 #include <weft/render/Image.h>
@@ -272,6 +274,51 @@ TEST(EditorWorkflow, SelectionByRegion) {
             {{"select_loop", true}},
             {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 9, 10, 14, 15, 19, 20, 21, 22, 23, 24}}}}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+}
+
+// The vertex inspector's loss gradient dL/dx_n: at the last state it is the final term's own
+// derivative, 2 (x - target); at an earlier one, what the engine's backward pass gives for the
+// saved scene.
+TEST(EditorWorkflow, InspectorShowsTheLossGradient) {
+  TempDir dir;
+  const std::string scene = writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 6, 500.0));
+  const ProcessResult r = runEditor(
+      dir, {{{"open", scene}},
+            {{"compute_gradient", true}, {"expect_error", "no task"}},
+            {{"simulate", true}},
+            {{"scrub", 6}},
+            {{"select", {20, 24}}},
+            {{"set_targets", true}},
+            {{"move_targets", {0.0, 0.1, 0.0}}},
+            {{"select", {24}}},
+            {{"write_state", dir.file("before.json")}},
+            {{"compute_gradient", true}},
+            {{"write_state", dir.file("last.json")}},
+            {{"scrub", 3}},
+            {{"write_state", dir.file("middle.json")}},
+            {{"save", true}},
+            {{"move_targets", {0.0, 0.1, 0.0}}},
+            {{"write_state", dir.file("moved.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  EXPECT_TRUE(readJson(dir.file("before.json"))["inspector"]["gradient"].is_null()) << "not computed yet";
+  const nlohmann::json last = readJson(dir.file("last.json"))["inspector"];
+  ASSERT_EQ(last["state"], 6);
+  ASSERT_TRUE(last["gradient"].is_array()) << last;
+  EXPECT_TRUE(vec(last["gradient"]).isApprox(Vec3(0.0, -0.2, 0.0), 1e-9)) << last["gradient"];
+
+  const nlohmann::json middle = readJson(dir.file("middle.json"))["inspector"];
+  ASSERT_EQ(middle["state"], 3);
+  const Scene saved = loadScene(scene);
+  const ForwardPass pass = runForwardPass(saved);
+  BackwardSettings exact = saved.solver.backward;
+  exact.method = "direct";
+  const GradientResult g = backpropagate(saved, pass.trajectory, TaskLoss(saved), ParameterSet(), exact);
+  const Vec3 engine = g.dLdx[3].row(24).transpose();
+  EXPECT_GT(engine.norm(), 1e-3);
+  EXPECT_TRUE(vec(middle["gradient"]).isApprox(engine, 1e-5)) << middle["gradient"] << " vs " << engine.transpose();
+
+  EXPECT_TRUE(readJson(dir.file("moved.json"))["inspector"]["gradient"].is_null()) << "a target edit makes it stale";
 }
 
 // The Targets tab's other losses: a target shape from a mesh file (final targets at every vertex,
