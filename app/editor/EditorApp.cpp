@@ -202,20 +202,20 @@ void EditorApp::doRedo() {
   if (session_.document().redo()) report("redid: " + label, false);
 }
 
-void EditorApp::requestClose() { whenSaved(PendingAction::Close, ""); }
-void EditorApp::requestNew() { whenSaved(PendingAction::New, ""); }
-void EditorApp::requestOpen(const std::string& file) { whenSaved(PendingAction::Open, file); }
+void EditorApp::requestClose() { askIfUnsaved(PendingAction::Close, ""); }
+void EditorApp::requestNew() { askIfUnsaved(PendingAction::New, ""); }
+void EditorApp::requestOpen(const std::string& file) { askIfUnsaved(PendingAction::Open, file); }
 
-void EditorApp::whenSaved(PendingAction action, const std::string& file) {
+void EditorApp::askIfUnsaved(PendingAction action, const std::string& file) {
   if (session_.document().dirty()) {
     pending_ = action;
     pendingFile_ = file;
   } else {
-    run(action, file);
+    carryOut(action, file);
   }
 }
 
-void EditorApp::run(PendingAction action, const std::string& file) {
+void EditorApp::carryOut(PendingAction action, const std::string& file) {
   switch (action) {
     case PendingAction::Close: closeConfirmed_ = true; break;
     case PendingAction::New:
@@ -1098,7 +1098,7 @@ void EditorApp::drawFileDialog() {
       } else {
         doSaveAs(pathBuffer_);
         // Saved for the unsaved-changes prompt: go on with what it asked about.
-        if (!session_.document().dirty()) run(afterSaveAs_, pendingFile_);
+        if (!session_.document().dirty()) carryOut(afterSaveAs_, pendingFile_);
       }
     }
     if ((ok && pathBuffer_[0]) || cancel) {
@@ -1138,11 +1138,11 @@ void EditorApp::drawUnsavedPrompt() {
     if (save) {
       doSave();
       if (!session_.document().dirty())
-        run(action, pendingFile_);
+        carryOut(action, pendingFile_);
       else if (fileDialog_ == FileDialog::SaveAs)
         afterSaveAs_ = action;  // a new document has no file yet: Save As first
     } else if (discard) {
-      run(action, pendingFile_);
+      carryOut(action, pendingFile_);
     }
     ImGui::EndPopup();
   }

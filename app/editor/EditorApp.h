@@ -162,8 +162,8 @@ class EditorApp {
   enum class PendingAction { None, Close, New, Open };
   PendingAction pending_ = PendingAction::None, afterSaveAs_ = PendingAction::None;
   std::string pendingFile_;
-  void whenSaved(PendingAction action, const std::string& file);
-  void run(PendingAction action, const std::string& file);
+  void askIfUnsaved(PendingAction action, const std::string& file);
+  void carryOut(PendingAction action, const std::string& file);
   std::string message_;
   bool messageIsError_ = false;
 };

@@ -883,24 +883,24 @@ std::string EditorSession::computeStateGradients() {
     return "simulate the scene (all time.steps) first: the gradient is of the cached run";
   // The cached run as the backward pass reads a recorded one.
   Trajectory trajectory;
-  const bool contact = !current->obstacles.empty() ||
-                       std::any_of(current->cloths.begin(), current->cloths.end(),
-                                   [](const Cloth& c) { return c.selfCollision.has_value(); });
+  bool touched = false;
   for (int k = 0; k < frames; ++k) {
     const std::shared_ptr<const CachedFrame> f = cache_.frame(k);
     trajectory.positions.push_back(f->positions);
     trajectory.velocities.push_back(f->velocities);
     if (k == 0) continue;
     trajectory.steps.push_back(f->stats);
-    if (contact) trajectory.contacts.push_back(f->contacts);
+    trajectory.contacts.push_back(f->contacts);
+    touched = touched || !f->contacts.points.empty();
   }
+  if (!touched) trajectory.contacts.clear();  // as a run without contact records it
   stateGradients_.clear();
   const std::string error = withHeldTargets([&](const Scene& scene) {
     // Per-vertex values show a solve's error more than a parameter's sum does: solve tightly.
     BackwardSettings settings = scene.solver.backward;
     settings.tolerance = std::min(settings.tolerance, 1e-8);
-    const GradientResult g = backpropagate(scene, trajectory, TaskLoss(scene), ParameterSet(), settings);
-    stateGradients_ = g.dLdx;
+    GradientResult g = backpropagate(scene, trajectory, TaskLoss(scene), ParameterSet(), settings);
+    stateGradients_ = std::move(g.dLdx);
     return std::string();
   });
   gradientsRun_ = cache_.runId();
