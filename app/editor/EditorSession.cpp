@@ -756,13 +756,8 @@ std::string EditorSession::loadTargetMotion(const std::string& file) {
   } catch (const std::exception& e) {
     return file + ": " + e.what();
   }
-  return document_.edit("Load target motion " + std::filesystem::path(file).filename().string(),
-                        [&](nlohmann::json& doc) {
-                          if (!doc.contains("task") || !doc["task"].is_object()) doc["task"] = nlohmann::json::object();
-                          if (!doc["task"].contains("loss") || !doc["task"]["loss"].is_object())
-                            doc["task"]["loss"] = nlohmann::json::object();
-                          doc["task"]["loss"]["trajectory"] = {{"target", path}};
-                        });
+  return setLossTerm("trajectory", {{"target", path}},
+                     "Load target motion " + std::filesystem::path(file).filename().string());
 }
 
 std::string EditorSession::loadTargetMesh(const std::string& file) {
@@ -809,27 +804,30 @@ std::string EditorSession::setHemline(double height) {
   if (!std::isfinite(height)) return "the hemline height must be a finite number";
   if (selection_.empty()) return "select the hemline's vertices first (e.g. the hem's border loop)";
   const std::vector<int> nodes = selection_.nodes();
-  return document_.edit("Hemline of " + std::to_string(nodes.size()) + " vertices", [&](nlohmann::json& doc) {
-    if (!doc.contains("task") || !doc["task"].is_object()) doc["task"] = nlohmann::json::object();
-    if (!doc["task"].contains("loss") || !doc["task"]["loss"].is_object()) doc["task"]["loss"] = nlohmann::json::object();
-    doc["task"]["loss"]["hemline"] = {{"vertices", nodes}, {"height", height}};
-  });
+  return setLossTerm("hemline", {{"vertices", nodes}, {"height", height}},
+                     "Hemline of " + std::to_string(nodes.size()) + " vertices");
 }
 
-std::string EditorSession::removeHemline() {
-  if (!document_.find("task.loss.hemline")) return "the task has no hemline term";
-  return document_.edit("Remove hemline", [](nlohmann::json& doc) {
-    nlohmann::json& task = doc["task"];
-    task["loss"].erase("hemline");
-    if (task["loss"].empty() && (!task.contains("parameters") || task["parameters"].empty())) doc.erase("task");
-  });
-}
+std::string EditorSession::removeHemline() { return removeLossTerm("hemline", "Remove hemline", "hemline term"); }
 
 std::string EditorSession::removeTargetMotion() {
-  if (!document_.find("task.loss.trajectory")) return "the task has no target motion";
-  return document_.edit("Remove target motion", [](nlohmann::json& doc) {
+  return removeLossTerm("trajectory", "Remove target motion", "target motion");
+}
+
+std::string EditorSession::setLossTerm(const std::string& term, const nlohmann::json& value, const std::string& label) {
+  return document_.edit(label, [&](nlohmann::json& doc) {
+    if (!doc.contains("task") || !doc["task"].is_object()) doc["task"] = nlohmann::json::object();
+    if (!doc["task"].contains("loss") || !doc["task"]["loss"].is_object()) doc["task"]["loss"] = nlohmann::json::object();
+    doc["task"]["loss"][term] = value;
+  });
+}
+
+std::string EditorSession::removeLossTerm(const std::string& term, const std::string& label, const std::string& what) {
+  if (!document_.find("task.loss." + term)) return "the task has no " + what;
+  return document_.edit(label, [&](nlohmann::json& doc) {
     nlohmann::json& task = doc["task"];
-    task["loss"].erase("trajectory");
+    task["loss"].erase(term);
+    // No term left: no task (a task needs a loss), unless it still names parameters.
     if (task["loss"].empty() && (!task.contains("parameters") || task["parameters"].empty())) doc.erase("task");
   });
 }

@@ -222,6 +222,10 @@ class EditorSession {
   // Calls `use` with the document's scene whose final term reads the targets the editor holds
   // (from a private temporary file, removed afterwards): what the engine's TaskLoss needs.
   std::string withHeldTargets(const std::function<std::string(const Scene&)>& use);
+  // Sets or removes one term of task.loss (one undo step); removing the last term removes the
+  // task unless it names parameters. `what` names the term in the error when it is absent.
+  std::string setLossTerm(const std::string& term, const nlohmann::json& value, const std::string& label);
+  std::string removeLossTerm(const std::string& term, const std::string& label, const std::string& what);
   std::vector<NodeMatrix> stateGradients_;
   long gradientsRun_ = -1;
   long gradientsRevision_ = -1;
