@@ -17,6 +17,7 @@
 #include <weft/scene/SceneLoader.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -579,6 +580,7 @@ void EditorSession::tick(double seconds) {
   if (playback_.frame() >= frames) playback_.scrub(playback_.frame(), frames);
   stepSeries_.update(cache_);
   dropStaleActiveObject();
+  collectStateGradients();
 }
 
 const render::RenderScene* EditorSession::viewportScene() {
@@ -872,6 +874,7 @@ std::string EditorSession::startOptimizer(const OptimizerRun::Setup& setup, bool
 }
 
 std::string EditorSession::computeStateGradients() {
+  if (gradientJob_.valid()) return "the loss gradient is being computed";
   const Scene* current = document_.scene();
   if (!current) return "the scene does not validate: " + document_.validationError();
   if (!current->task) return "the scene has no task: set targets or load a target motion first";
@@ -880,30 +883,49 @@ std::string EditorSession::computeStateGradients() {
       cache_.staleFor(document_.document()))
     return "simulate the scene (all time.steps) first: the gradient is of the cached run";
   // The cached run as the backward pass reads a recorded one.
-  Trajectory trajectory;
+  auto trajectory = std::make_shared<Trajectory>();
   bool touched = false;
   for (int k = 0; k < frames; ++k) {
     const std::shared_ptr<const CachedFrame> f = cache_.frame(k);
-    trajectory.positions.push_back(f->positions);
-    trajectory.velocities.push_back(f->velocities);
+    trajectory->positions.push_back(f->positions);
+    trajectory->velocities.push_back(f->velocities);
     if (k == 0) continue;
-    trajectory.steps.push_back(f->stats);
-    trajectory.contacts.push_back(f->contacts);
+    trajectory->steps.push_back(f->stats);
+    trajectory->contacts.push_back(f->contacts);
     touched = touched || !f->contacts.points.empty();
   }
-  if (!touched) trajectory.contacts.clear();  // as a run without contact records it
-  stateGradients_.clear();
-  const std::string error = withHeldTargets([&](const Scene& scene) {
-    // Per-vertex values show a solve's error more than a parameter's sum does: solve tightly.
-    BackwardSettings settings = scene.solver.backward;
-    settings.tolerance = std::min(settings.tolerance, 1e-8);
-    GradientResult g = backpropagate(scene, trajectory, TaskLoss(scene), ParameterSet(), settings);
-    stateGradients_ = std::move(g.dLdx);
+  if (!touched) trajectory->contacts.clear();  // as a run without contact records it
+  // The loss is built here, while the editor's targets are in their temporary file; the job
+  // owns copies of everything it reads.
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const TaskLoss> loss;
+  const std::string error = withHeldTargets([&](const Scene& s) {
+    scene = std::make_shared<const Scene>(s);
+    loss = std::make_shared<const TaskLoss>(*scene);
     return std::string();
   });
-  gradientsRun_ = cache_.runId();
-  gradientsRevision_ = document_.revision();
-  return error;
+  if (!error.empty()) return error;
+  gradientError_.clear();
+  jobRun_ = cache_.runId();
+  jobRevision_ = document_.revision();
+  gradientJob_ = std::async(std::launch::async, [scene, loss, trajectory] {
+    // Per-vertex values show a solve's error more than a parameter's sum does: solve tightly.
+    BackwardSettings settings = scene->solver.backward;
+    settings.tolerance = std::min(settings.tolerance, 1e-8);
+    return backpropagate(*scene, *trajectory, *loss, ParameterSet(), settings).dLdx;
+  });
+  return "";
+}
+
+void EditorSession::collectStateGradients() {
+  if (!gradientJob_.valid() || gradientJob_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  try {
+    stateGradients_ = gradientJob_.get();
+    gradientsRun_ = jobRun_;
+    gradientsRevision_ = jobRevision_;
+  } catch (const std::exception& e) {
+    gradientError_ = std::string("the backward pass failed: ") + e.what();
+  }
 }
 
 std::optional<Vec3> EditorSession::stateGradient(int node, int state) const {

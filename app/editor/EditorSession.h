@@ -22,6 +22,7 @@
 #include <weft/render/RenderScene.h>
 
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -172,9 +173,12 @@ class EditorSession {
   const LossValue& liveLoss();
   // The loss gradient of the cached run under the task as it is now: dL/dx_n of every state (the
   // backward pass of diff/Backpropagation.h over the cached states and contacts), for the
-  // vertex inspector. Runs on the calling thread (a backward pass costs about as much as the
-  // run). Error text or "".
+  // vertex inspector. Starts it on a worker thread (a backward pass costs about as much as the
+  // run) and returns at once: error text, or "" when it started. tick() collects the result.
   std::string computeStateGradients();
+  bool computingStateGradients() const { return gradientJob_.valid(); }
+  // Why the last computation failed ("" when it did not).
+  const std::string& stateGradientError() const { return gradientError_; }
   // dL/dx of `node` at `state`, once computed for this cache and task (nullopt otherwise).
   std::optional<Vec3> stateGradient(int node, int state) const;
 
@@ -226,9 +230,15 @@ class EditorSession {
   // task unless it names parameters. `what` names the term in the error when it is absent.
   std::string setLossTerm(const std::string& term, const nlohmann::json& value, const std::string& label);
   std::string removeLossTerm(const std::string& term, const std::string& label, const std::string& what);
+  // The gradient job: its result (dL/dx_n per state) stamped with the cache run and document
+  // revision it was computed for, so that any later edit or run makes it stale.
+  void collectStateGradients();
+  std::future<std::vector<NodeMatrix>> gradientJob_;
+  long jobRun_ = -1, jobRevision_ = -1;
   std::vector<NodeMatrix> stateGradients_;
   long gradientsRun_ = -1;
   long gradientsRevision_ = -1;
+  std::string gradientError_;
   // The active object's centre in the scene's own (rest) coordinates, from the validated scene;
   // nullopt when it cannot be found. A handle's is where its keys put it at the shown time.
   std::optional<Vec3> objectOrigin() const;

@@ -65,12 +65,15 @@ void InspectorPanel::draw(EditorSession& session) {
     if (const auto g = session.stateGradient(r->node, r->state)) {
       vectorText("dL/dx", *g, "/m");
       gradientError_.clear();
+    } else if (session.computingStateGradients()) {
+      ImGui::TextDisabled("computing the loss gradient (backward pass)...");
     } else if (ImGui::SmallButton("Compute loss gradient")) {
       gradientError_ = session.computeStateGradients();
     }
-    if (!gradientError_.empty()) {
+    const std::string& error = gradientError_.empty() ? session.stateGradientError() : gradientError_;
+    if (!error.empty()) {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
-      ImGui::TextWrapped("%s", gradientError_.c_str());
+      ImGui::TextWrapped("%s", error.c_str());
       ImGui::PopStyleColor();
     }
     if (!r->contacts.empty()) {

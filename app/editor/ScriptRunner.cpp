@@ -677,9 +677,31 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     app.report(error.empty() ? kind + " done" : error, !error.empty());
     if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
   } else if (kind == "compute_gradient") {
-    const std::string error = session.computeStateGradients();
-    app.report(error.empty() ? "loss gradient computed" : error, !error.empty());
-    if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
+    // Starts the backward pass off the UI thread, then waits for it one frame at a time, as a
+    // person would watch the inspector.
+    if (!waitingForGradient_) {
+      const std::string error = session.computeStateGradients();
+      if (!error.empty() || a.contains("expect_error")) {
+        app.report(error.empty() ? "loss gradient started" : error, !error.empty());
+        if (const std::optional<bool> next = checkOutcome(a, error, "it started")) return *next;
+      }
+      waitingForGradient_ = true;
+      waitStarted_ = now();
+      return false;
+    }
+    if (session.computingStateGradients()) {
+      if (now() - waitStarted_ > a.value("timeout_seconds", 300.0)) {
+        fail("the loss gradient did not arrive within the timeout");
+        waitingForGradient_ = false;
+      }
+      return false;
+    }
+    waitingForGradient_ = false;
+    if (!session.stateGradientError().empty()) {
+      fail(session.stateGradientError(), 3);
+      return false;
+    }
+    app.report("loss gradient computed", false);
   } else if (kind == "add_parameter" || kind == "remove_parameter") {
     const std::string path = a.at(kind).get<std::string>();
     const std::string error =

@@ -63,6 +63,7 @@ class ScriptRunner {
   int waitFrames_ = 0;
   bool waitingForSimulation_ = false;
   bool waitingForOptimizer_ = false;
+  bool waitingForGradient_ = false;
   int optimizerTarget_ = 0;  // evaluations an optimize_step waits for
   int gizmoStep_ = 0;        // mouse moves of a gizmo_drag done so far (0: not started)
   Eigen::Vector2f gizmoFrom_ = Eigen::Vector2f::Zero(), gizmoBy_ = Eigen::Vector2f::Zero();
