@@ -332,6 +332,26 @@ TEST(SimulateCli, NumericalFailureExitsThreeNamingStepAndModule) {
   EXPECT_FALSE(fs::exists(dir.file("run")));
 }
 
+// The contact solve's own guard: a plane that slides along itself at 1e310 m/s in its first step
+// (the speed overflows to infinity) gives its contacts a non-finite surface velocity; no impulse
+// of that may reach contact_forces.npy.
+TEST(SimulateCli, NonFiniteContactExitsThreeNamingTheContactSolve) {
+  TempDir dir;
+  nlohmann::json doc = test::gridScene(0.4, 2, 0.01, 3, 100.0);
+  doc["gravity"] = {0.0, -9.8, 0.0};
+  doc["cloths"][0]["mesh"]["transform"] = {{"translate", {0.0, 0.001, 0.0}}};
+  doc["obstacles"] = {{{"plane", {{"point", {0.0, 0.0, 0.0}}, {"normal", {0.0, 1.0, 0.0}}}},
+                       {"friction", 0.3},
+                       {"motion", {{"keyframes", {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}},
+                                                  {{"time", 0.01}, {"offset", {1e308, 0.0, 0.0}}}}}}}}};
+  const std::string scene = test::writeScene(dir.file("scene.json"), doc);
+  const test::ProcessResult r = runWeft({"simulate", scene, "--out", dir.file("run"), "--quiet"});
+  EXPECT_EQ(r.exitCode, 3) << describe(r);
+  EXPECT_THAT(r.err, StartsWith("error: numerical failure: step 1: contact_solve: non-finite contact impulse or velocity"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir.file("run")));
+}
+
 TEST(SimulateCli, UsageErrorsExitTwo) {
   TempDir dir;
   const test::ProcessResult none = runWeft({});
