@@ -7,7 +7,8 @@ namespace weft {
 namespace {
 
 int findRoot(std::vector<int>& parent, int v) {
-  while (parent[std::size_t(v)] != v) v = parent[std::size_t(v)] = parent[std::size_t(parent[std::size_t(v)])];
+  while (parent[std::size_t(v)] != v)
+    v = parent[std::size_t(v)] = parent[std::size_t(parent[std::size_t(v)])];
   return v;
 }
 
@@ -37,9 +38,8 @@ std::vector<std::vector<int>> boundaryLoops(const TriangleMesh& mesh) {
     components[std::size_t(c)].push_back(v);
   }
   for (std::vector<int>& loop : components) {
-    const bool simple = std::all_of(loop.begin(), loop.end(), [&](int v) {
-      return neighbours[std::size_t(v)].size() == 2;
-    });
+    const bool simple = std::all_of(loop.begin(), loop.end(),
+                                    [&](int v) { return neighbours[std::size_t(v)].size() == 2; });
     if (!simple) continue;  // stays sorted
     std::vector<int> walk{loop.front()};
     const std::vector<int>& first = neighbours[std::size_t(loop.front())];
