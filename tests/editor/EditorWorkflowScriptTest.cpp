@@ -21,6 +21,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 namespace weft::test {
 namespace {
@@ -189,6 +190,32 @@ TEST(EditorWorkflow, OptimiserLowersTheLossThenApplyAndUndo) {
   const nlohmann::json reverted = readJson(dir.file("reverted.json"));
   EXPECT_EQ(reverted["document"]["cloths"][0]["material"]["stretch"], 400.0);
   EXPECT_EQ(reverted["document"]["wind"]["strength"], 1.5);
+}
+
+// The gradient-free baselines run from the Optimise tab as L-BFGS-B does (on a worker, stepped
+// by evaluations), sample new points, and the same seed gives the same samples.
+TEST(EditorWorkflow, GradientFreeMethodsRunFromTheEditorAndFollowTheirSeed) {
+  for (const char* method : {"cmaes", "es1p1"}) {
+    SCOPED_TRACE(method);
+    TempDir dir;
+    const nlohmann::json actions = {{{"open", std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json"}},
+                                    {{"optimize", {{"method", method}, {"seed", 7}}}},
+                                    {{"optimize_step", 6}},
+                                    {{"write_state", dir.file("state.json")}},
+                                    {{"optimize_cancel", true}}};
+    ASSERT_EQ(runEditor(dir, actions).exitCode, 0);
+    const nlohmann::json first = readJson(dir.file("state.json"))["optimizer"];
+    ASSERT_EQ(runEditor(dir, actions).exitCode, 0);
+    const nlohmann::json second = readJson(dir.file("state.json"))["optimizer"];
+    EXPECT_EQ(first["method"], method);
+    ASSERT_GE(first["evaluations"].get<int>(), 6);
+    EXPECT_EQ(first["losses"], second["losses"]) << "same seed, same samples";
+    EXPECT_EQ(first["values"], second["values"]);
+    std::set<double> stretches;
+    for (const nlohmann::json& v : first["values"]) stretches.insert(v[0].get<double>());
+    EXPECT_GT(stretches.size(), 3u) << "the strategy samples new points";
+    EXPECT_LE(first["best_loss"].get<double>(), first["losses"][0].get<double>());
+  }
 }
 
 TEST(EditorWorkflow, TargetsGiveALiveLossAndAreSavedNextToTheScene) {
