@@ -11,9 +11,9 @@
 #include <weft/render/RenderError.h>
 #include <weft/render/Renderer.h>
 
+#include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 #include <imgui_internal.h>  // GetTopMostPopupModal: whether a dialog is open, and which
-#include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -41,21 +41,28 @@ double numberAt(const EditorDocument& doc, const std::string& path, double fallb
 // Alt must be up: Alt+Z is not Ctrl+Z, Alt+F not F (Alt is the target-drag modifier).
 bool keyChord(bool ctrl, bool shift, int key) {
   const ImGuiIO& io = ImGui::GetIO();
-  return io.KeyCtrl == ctrl && io.KeyShift == shift && !io.KeyAlt && ImGui::IsKeyPressed(key, false);
+  return io.KeyCtrl == ctrl && io.KeyShift == shift && !io.KeyAlt &&
+         ImGui::IsKeyPressed(key, false);
 }
 
 // GLFW's key codes for letters are their upper-case ASCII codes; ImGui 1.86 indexes
 // io.KeysDown by the platform's codes.
-constexpr int kKeyN = 'N', kKeyO = 'O', kKeyS = 'S', kKeyQ = 'Q', kKeyF = 'F', kKeyI = 'I', kKeyK = 'K';
+constexpr int kKeyN = 'N', kKeyO = 'O', kKeyS = 'S', kKeyQ = 'Q', kKeyF = 'F', kKeyI = 'I',
+              kKeyK = 'K';
 
 }  // namespace
 
 bool parsePanelTab(const std::string& text, PanelTab& tab) {
-  if (text == "scene") tab = PanelTab::Scene;
-  else if (text == "inspect") tab = PanelTab::Inspect;
-  else if (text == "targets") tab = PanelTab::Targets;
-  else if (text == "optimise" || text == "optimize") tab = PanelTab::Optimise;
-  else return false;
+  if (text == "scene")
+    tab = PanelTab::Scene;
+  else if (text == "inspect")
+    tab = PanelTab::Inspect;
+  else if (text == "targets")
+    tab = PanelTab::Targets;
+  else if (text == "optimise" || text == "optimize")
+    tab = PanelTab::Optimise;
+  else
+    return false;
   return true;
 }
 
@@ -139,15 +146,18 @@ void EditorApp::handleShortcuts() {
     doRedo();
   const int available = session_.timelineFrames();
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Space))) togglePlayback();
-  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_RightArrow))) session_.playback().step(1, available);
-  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) session_.playback().step(-1, available);
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_RightArrow)))
+    session_.playback().step(1, available);
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_LeftArrow)))
+    session_.playback().step(-1, available);
   if (keyChord(false, false, kKeyF))
     session_.frameCamera(float(viewportWidth_) / float(std::max(viewportHeight_, 1)));
   if (keyChord(false, false, kKeyK) && session_.activeObject().kind == EditorObject::Kind::Handle) {
     const std::string error = session_.setKey();
     report(error.empty() ? "key set" : error, !error.empty());
   }
-  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)) && !draggingGizmo_) session_.setActiveObject("");
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)) && !draggingGizmo_)
+    session_.setActiveObject("");
 }
 
 void EditorApp::togglePlayback() {
@@ -202,9 +212,15 @@ void EditorApp::doRedo() {
   if (session_.document().redo()) report("redid: " + label, false);
 }
 
-void EditorApp::requestClose() { askIfUnsaved(PendingAction::Close, ""); }
-void EditorApp::requestNew() { askIfUnsaved(PendingAction::New, ""); }
-void EditorApp::requestOpen(const std::string& file) { askIfUnsaved(PendingAction::Open, file); }
+void EditorApp::requestClose() {
+  askIfUnsaved(PendingAction::Close, "");
+}
+void EditorApp::requestNew() {
+  askIfUnsaved(PendingAction::New, "");
+}
+void EditorApp::requestOpen(const std::string& file) {
+  askIfUnsaved(PendingAction::Open, file);
+}
 
 void EditorApp::askIfUnsaved(PendingAction action, const std::string& file) {
   if (session_.document().dirty()) {
@@ -217,22 +233,31 @@ void EditorApp::askIfUnsaved(PendingAction action, const std::string& file) {
 
 void EditorApp::carryOut(PendingAction action, const std::string& file) {
   switch (action) {
-    case PendingAction::Close: closeConfirmed_ = true; break;
+    case PendingAction::Close:
+      closeConfirmed_ = true;
+      break;
     case PendingAction::New:
       session_.newDocument();
       report("new document", false);
       break;
-    case PendingAction::Open: doOpen(file); break;
-    case PendingAction::None: break;
+    case PendingAction::Open:
+      doOpen(file);
+      break;
+    case PendingAction::None:
+      break;
   }
 }
 
 std::string EditorApp::unsavedPrompt() const {
   switch (pending_) {
-    case PendingAction::Close: return "close";
-    case PendingAction::New: return "new";
-    case PendingAction::Open: return "open";
-    case PendingAction::None: break;
+    case PendingAction::Close:
+      return "close";
+    case PendingAction::New:
+      return "new";
+    case PendingAction::Open:
+      return "open";
+    case PendingAction::None:
+      break;
   }
   return "";
 }
@@ -264,7 +289,8 @@ void EditorApp::drawMenuBar() {
     if (ImGui::MenuItem("Save", "Ctrl+S")) doSave();
     if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) fileDialog_ = FileDialog::SaveAs;
     ImGui::Separator();
-    if (ImGui::MenuItem("Import garment...", "Ctrl+I")) importDialog_->open(MeshImportDialog::Kind::Garment);
+    if (ImGui::MenuItem("Import garment...", "Ctrl+I"))
+      importDialog_->open(MeshImportDialog::Kind::Garment);
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) requestClose();
     ImGui::EndMenu();
@@ -286,17 +312,20 @@ void EditorApp::drawMenuBar() {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Add")) {
-    if (ImGui::MenuItem("Garment (mesh file)...", "Ctrl+I")) importDialog_->open(MeshImportDialog::Kind::Garment);
+    if (ImGui::MenuItem("Garment (mesh file)...", "Ctrl+I"))
+      importDialog_->open(MeshImportDialog::Kind::Garment);
     ImGui::Separator();
     for (const std::string& shape : analyticObstacleShapes()) {
       const std::string label = "Obstacle: " + shape;
       if (ImGui::MenuItem(label.c_str())) {
         const std::string error = session_.addObstacle(shape);
-        report(error.empty() ? "added a " + shape + " (edit it under Obstacles)" : error, !error.empty());
+        report(error.empty() ? "added a " + shape + " (edit it under Obstacles)" : error,
+               !error.empty());
         showTab(PanelTab::Scene);
       }
     }
-    if (ImGui::MenuItem("Obstacle: mesh file...")) importDialog_->open(MeshImportDialog::Kind::Obstacle);
+    if (ImGui::MenuItem("Obstacle: mesh file..."))
+      importDialog_->open(MeshImportDialog::Kind::Obstacle);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
@@ -314,9 +343,11 @@ void EditorApp::drawMenuBar() {
   }
   if (ImGui::BeginMenu("Panels")) {
     if (ImGui::MenuItem("Scene", nullptr, tab_ == PanelTab::Scene)) showTab(PanelTab::Scene);
-    if (ImGui::MenuItem("Inspect (vertex, contacts, solver)", nullptr, tab_ == PanelTab::Inspect)) showTab(PanelTab::Inspect);
+    if (ImGui::MenuItem("Inspect (vertex, contacts, solver)", nullptr, tab_ == PanelTab::Inspect))
+      showTab(PanelTab::Inspect);
     if (ImGui::MenuItem("Targets", nullptr, tab_ == PanelTab::Targets)) showTab(PanelTab::Targets);
-    if (ImGui::MenuItem("Optimise", nullptr, tab_ == PanelTab::Optimise)) showTab(PanelTab::Optimise);
+    if (ImGui::MenuItem("Optimise", nullptr, tab_ == PanelTab::Optimise))
+      showTab(PanelTab::Optimise);
     ImGui::EndMenu();
   }
   std::string title = doc.displayName() + (doc.dirty() ? " *" : "");
@@ -331,7 +362,8 @@ void EditorApp::applyEdit(const std::string& error, unsigned itemId) {
 }
 
 template <class Value, class Widget>
-bool EditorApp::documentField(const char* label, const std::string& path, Value value, Widget&& widget) {
+bool EditorApp::documentField(const char* label, const std::string& path, Value value,
+                              Widget&& widget) {
   // One document edit per change; consecutive changes of the same item (typing, dragging) merge
   // into one undo step.
   ImGui::PushID(path.c_str());
@@ -365,10 +397,13 @@ bool EditorApp::vectorField(const char* label, const std::string& path, const do
       if ((*j)[std::size_t(i)].is_number()) v[i] = (*j)[std::size_t(i)].get<double>();
   ImGui::PushID(path.c_str());
   const ImGuiID id = ImGui::GetID(label);
-  const bool changed = ImGui::InputScalarN(label, ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g");
+  const bool changed =
+      ImGui::InputScalarN(label, ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g");
   if (changed) {
     const bool coalesce = id == lastEditId_ && !ImGui::IsItemActivated();
-    applyEdit(session_.document().setValue(path, nlohmann::json::array({v[0], v[1], v[2]}), coalesce), id);
+    applyEdit(
+        session_.document().setValue(path, nlohmann::json::array({v[0], v[1], v[2]}), coalesce),
+        id);
   }
   if (ImGui::IsItemDeactivated()) lastEditId_ = 0;
   ImGui::PopID();
@@ -409,7 +444,9 @@ void EditorApp::drawScenePanel(float top, float height) {
     ImGui::PopStyleColor();
   }
   if (!message_.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, messageIsError_ ? kErrorColour : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::PushStyleColor(ImGuiCol_Text, messageIsError_
+                                             ? kErrorColour
+                                             : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("%s", message_.c_str());
     ImGui::PopStyleColor();
   }
@@ -419,17 +456,28 @@ void EditorApp::drawScenePanel(float top, float height) {
     const struct {
       const char* label;
       PanelTab tab;
-    } tabs[] = {{"Scene", PanelTab::Scene}, {"Inspect", PanelTab::Inspect}, {"Targets", PanelTab::Targets},
+    } tabs[] = {{"Scene", PanelTab::Scene},
+                {"Inspect", PanelTab::Inspect},
+                {"Targets", PanelTab::Targets},
                 {"Optimise", PanelTab::Optimise}};
     for (const auto& t : tabs) {
-      const ImGuiTabItemFlags flags = tabRequested_ && requestedTab_ == t.tab ? ImGuiTabItemFlags_SetSelected : 0;
+      const ImGuiTabItemFlags flags =
+          tabRequested_ && requestedTab_ == t.tab ? ImGuiTabItemFlags_SetSelected : 0;
       if (ImGui::BeginTabItem(t.label, nullptr, flags)) {
         tab_ = t.tab;
         switch (t.tab) {
-          case PanelTab::Scene: sceneTab(); break;
-          case PanelTab::Inspect: inspector_->draw(session_); break;
-          case PanelTab::Targets: targets_->draw(session_, *this); break;
-          case PanelTab::Optimise: optimiser_->draw(session_, *this); break;
+          case PanelTab::Scene:
+            sceneTab();
+            break;
+          case PanelTab::Inspect:
+            inspector_->draw(session_);
+            break;
+          case PanelTab::Targets:
+            targets_->draw(session_, *this);
+            break;
+          case PanelTab::Optimise:
+            optimiser_->draw(session_, *this);
+            break;
         }
         ImGui::EndTabItem();
       }
@@ -488,7 +536,8 @@ void EditorApp::clothPanel() {
       } else if (session_.document().find(base + ".mesh.grid")) {
         const nlohmann::json* size = session_.document().find(base + ".mesh.grid.size");
         const nlohmann::json* res = session_.document().find(base + ".mesh.grid.resolution");
-        ImGui::TextDisabled("grid %s m, %s quads", size ? size->dump().c_str() : "?", res ? res->dump().c_str() : "?");
+        ImGui::TextDisabled("grid %s m, %s quads", size ? size->dump().c_str() : "?",
+                            res ? res->dump().c_str() : "?");
       }
       if (ImGui::TreeNode("placement", "placement (mesh.transform)")) {
         vectorField("rotate (deg)", base + ".mesh.transform.rotate_deg", zero);
@@ -515,7 +564,8 @@ void EditorApp::clothPanel() {
       if (attachments && attachments->is_array()) {
         for (std::size_t a = 0; a < attachments->size(); ++a) {
           const nlohmann::json& at = (*attachments)[a];
-          const std::size_t n = at.contains("vertices") && at["vertices"].is_array() ? at["vertices"].size() : 0;
+          const std::size_t n =
+              at.contains("vertices") && at["vertices"].is_array() ? at["vertices"].size() : 0;
           const std::string kind = at.value("kind", std::string("fixed"));
           ImGui::PushID(int(a));
           ImGui::Text("attachment %zu: %s, %zu vertices", a, kind.c_str(), n);
@@ -584,7 +634,8 @@ void EditorApp::obstaclePanel() {
       if (o.contains(s)) shape = s;
     const std::string base = "obstacles." + std::to_string(i);
     ImGui::PushID(int(i));
-    const bool open = ImGui::TreeNodeEx("obstacle", ImGuiTreeNodeFlags_DefaultOpen, "%zu: %s", i, shape.c_str());
+    const bool open =
+        ImGui::TreeNodeEx("obstacle", ImGuiTreeNodeFlags_DefaultOpen, "%zu: %s", i, shape.c_str());
     ImGui::SameLine();
     placeButton(base);
     ImGui::SameLine();
@@ -613,7 +664,8 @@ void EditorApp::obstaclePanel() {
           vectorField("rotate (deg)", s + ".rotate_deg", zero);
         } else if (shape == "mesh") {
           const nlohmann::json* file = doc.find(s + ".file");
-          ImGui::TextDisabled("mesh file: %s", file && file->is_string() ? file->get<std::string>().c_str() : "?");
+          ImGui::TextDisabled("mesh file: %s",
+                              file && file->is_string() ? file->get<std::string>().c_str() : "?");
           numberField("scale", s + ".scale", 1.0);
           vectorField("rotate (deg)", s + ".transform.rotate_deg", zero);
           vectorField("translate (m)", s + ".transform.translate", zero);
@@ -654,14 +706,16 @@ void EditorApp::selectionPanel() {
   ImGui::Text("%zu vertices selected", nodes.size());
   if (!nodes.empty()) {
     std::string list;
-    for (std::size_t i = 0; i < nodes.size() && i < 24; ++i) list += (i ? ", " : "") + std::to_string(nodes[i]);
+    for (std::size_t i = 0; i < nodes.size() && i < 24; ++i)
+      list += (i ? ", " : "") + std::to_string(nodes[i]);
     if (nodes.size() > 24) list += ", ...";
     ImGui::TextWrapped("%s", list.c_str());
   }
   ImGui::BeginDisabled(nodes.empty() || !session_.document().valid());
   if (ImGui::Button("Pin selection")) {
     const std::string error = session_.pinSelection();
-    report(error.empty() ? "pinned " + std::to_string(nodes.size()) + " vertices" : error, !error.empty());
+    report(error.empty() ? "pinned " + std::to_string(nodes.size()) + " vertices" : error,
+           !error.empty());
   }
   ImGui::SameLine();
   if (ImGui::Button("Make handle")) {
@@ -678,7 +732,8 @@ void EditorApp::selectionPanel() {
   ImGui::BeginDisabled(session_.selection().focus() < 0);
   if (ImGui::Button("Select its border loop")) {
     const std::string error = session_.selectBoundaryLoop(ImGui::GetIO().KeyShift);
-    report(error.empty() ? "selected the border loop: " + std::to_string(nodes.size()) + " vertices" : error,
+    report(error.empty() ? "selected the border loop: " + std::to_string(nodes.size()) + " vertices"
+                         : error,
            !error.empty());
   }
   ImGui::EndDisabled();
@@ -693,13 +748,17 @@ void EditorApp::selectionPanel() {
   ImGui::SameLine();
   ImGui::BeginDisabled(!session_.document().valid());
   if (ImGui::Button("Select band")) {
-    const std::string error = session_.selectBand(bandAxis_, band_[0], band_[1], ImGui::GetIO().KeyShift);
-    report(error.empty() ? "selected " + std::to_string(nodes.size()) + " vertices in the band" : error,
+    const std::string error =
+        session_.selectBand(bandAxis_, band_[0], band_[1], ImGui::GetIO().KeyShift);
+    report(error.empty() ? "selected " + std::to_string(nodes.size()) + " vertices in the band"
+                         : error,
            !error.empty());
   }
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("The vertices whose coordinate (as shown) lies between the two values, in metres; Shift adds.");
+    ImGui::SetTooltip(
+        "The vertices whose coordinate (as shown) lies between the two values, in metres; Shift "
+        "adds.");
   ImGui::TextDisabled("Click: pick (and inspect) a vertex; drag: box");
   ImGui::TextDisabled("select; Shift adds. Right drag: orbit; middle:");
   ImGui::TextDisabled("pan; wheel: zoom; F: frame the scene; Alt+drag:");
@@ -713,9 +772,11 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   ImGui::SetNextWindowPos(ImVec2(left, top));
   ImGui::SetNextWindowSize(ImVec2(width, height));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  // No background: the image covers the whole window, and on a software GL every filled pixel counts.
+  // No background: the image covers the whole window, and on a software GL every filled pixel
+  // counts.
   ImGui::Begin("Viewport", nullptr,
-               kFixedWindow | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBackground);
+               kFixedWindow | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoTitleBar |
+                   ImGuiWindowFlags_NoBackground);
   ImGui::PopStyleVar();
   const ImVec2 size = ImGui::GetContentRegionAvail();
   viewportWidth_ = std::max(1, int(size.x));
@@ -726,7 +787,8 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   // every pixel under it (Dear ImGui blends everything it draws; the reset callback restores its
   // state for what follows).
   ImDrawList* drawList = ImGui::GetWindowDrawList();
-  drawList->AddCallback([](const ImDrawList*, const ImDrawCmd*) { weftEditorGl.Disable(GL_BLEND); }, nullptr);
+  drawList->AddCallback([](const ImDrawList*, const ImDrawCmd*) { weftEditorGl.Disable(GL_BLEND); },
+                        nullptr);
   ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(viewport_->colorTexture())),
                ImVec2(float(viewportWidth_), float(viewportHeight_)), ImVec2(0, 1), ImVec2(1, 0));
   drawList->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
@@ -742,7 +804,9 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   render::Camera& camera = session_.camera();
   // The gizmo comes first: a press on one of its handles drags it rather than selecting.
   const GizmoHandle hoveredHandle =
-      hovered && !draggingGizmo_ ? session_.pickGizmo(mouse.x, mouse.y, viewportWidth_, viewportHeight_) : GizmoHandle::None;
+      hovered && !draggingGizmo_
+          ? session_.pickGizmo(mouse.x, mouse.y, viewportWidth_, viewportHeight_)
+          : GizmoHandle::None;
   if (hovered && io.MouseWheel != 0.0f) camera.zoom(std::pow(0.9f, io.MouseWheel));
   // Orbit and pan follow every pixel of the drag: IsMouseDragging would hold them back until
   // ImGui's 6 px drag threshold and drop the motion before it (these buttons have no click to
@@ -751,15 +815,18 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   if (dragging && ImGui::IsMouseDown(ImGuiMouseButton_Right))
     camera.orbit(-io.MouseDelta.x * 0.4f, io.MouseDelta.y * 0.4f);
   if (dragging && ImGui::IsMouseDown(ImGuiMouseButton_Middle)) {
-    const float scale = camera.distance * 2.0f * std::tan(camera.fovYDeg * 3.14159265f / 360.0f) / float(viewportHeight_);
+    const float scale = camera.distance * 2.0f * std::tan(camera.fovYDeg * 3.14159265f / 360.0f) /
+                        float(viewportHeight_);
     camera.pan(-io.MouseDelta.x * scale, io.MouseDelta.y * scale);
   }
   if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     if (hoveredHandle != GizmoHandle::None) {
       const std::string error =
           session_.beginGizmoDrag(hoveredHandle, mouse.x, mouse.y, viewportWidth_, viewportHeight_);
-      if (error.empty()) draggingGizmo_ = true;
-      else report(error, true);
+      if (error.empty())
+        draggingGizmo_ = true;
+      else
+        report(error, true);
     } else if (io.KeyAlt && !session_.targets().empty()) {
       // Alt + drag moves the selected vertices' targets in the view plane (one undo step).
       draggingTargets_ = true;
@@ -779,8 +846,9 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
     if (dx != 0.0f || dy != 0.0f) {
       targetDragLast_[0] = mouse.x;
       targetDragLast_[1] = mouse.y;
-      const std::string error = session_.dragTargets(session_.selection().nodes(), dx, dy, viewportWidth_,
-                                                     viewportHeight_, "target drag " + std::to_string(dragCount_));
+      const std::string error =
+          session_.dragTargets(session_.selection().nodes(), dx, dy, viewportWidth_,
+                               viewportHeight_, "target drag " + std::to_string(dragCount_));
       if (!error.empty()) report(error, true), draggingTargets_ = false;
     }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) draggingTargets_ = false;
@@ -790,7 +858,8 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
       const std::string error = session_.dragGizmo(mouse.x, mouse.y);
       if (!error.empty()) report(error, true);
     }
-    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) || session_.draggedHandle() == GizmoHandle::None) {
+    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) ||
+        session_.draggedHandle() == GizmoHandle::None) {
       session_.endGizmoDrag();
       draggingGizmo_ = false;
     }
@@ -818,15 +887,19 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   if (const render::RenderScene* scene = session_.viewportScene()) {
     for (const FinalTarget& t : session_.targets()) {
       if (t.node >= scene->cloth.positions.rows()) continue;
-      const auto from = projectToPixel(camera, scene->cloth.positions.row(t.node).transpose(), viewportWidth_, viewportHeight_);
-      const auto to = projectToPixel(camera, t.position.cast<float>(), viewportWidth_, viewportHeight_);
+      const auto from = projectToPixel(camera, scene->cloth.positions.row(t.node).transpose(),
+                                       viewportWidth_, viewportHeight_);
+      const auto to =
+          projectToPixel(camera, t.position.cast<float>(), viewportWidth_, viewportHeight_);
       if (from && to)
-        draw->AddLine(ImVec2(origin.x + from->x(), origin.y + from->y()), ImVec2(origin.x + to->x(), origin.y + to->y()),
-                      IM_COL32(160, 80, 200, 220), 1.5f);
+        draw->AddLine(ImVec2(origin.x + from->x(), origin.y + from->y()),
+                      ImVec2(origin.x + to->x(), origin.y + to->y()), IM_COL32(160, 80, 200, 220),
+                      1.5f);
     }
     for (int node : session_.selection().nodes()) {
       if (node >= scene->cloth.positions.rows()) continue;
-      const auto p = projectToPixel(camera, scene->cloth.positions.row(node).transpose(), viewportWidth_, viewportHeight_);
+      const auto p = projectToPixel(camera, scene->cloth.positions.row(node).transpose(),
+                                    viewportWidth_, viewportHeight_);
       if (!p) continue;
       const ImVec2 at(origin.x + p->x(), origin.y + p->y());
       draw->AddCircleFilled(at, 4.0f, IM_COL32(255, 210, 60, 255));
@@ -839,8 +912,9 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   }
   drawGizmo(draw, origin.x, origin.y, hoveredHandle);
   if (!session_.document().valid())
-    draw->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(230, 80, 70, 255),
-                  "The scene does not validate: showing the last valid state (see the Scene panel).");
+    draw->AddText(
+        ImVec2(origin.x + 10, origin.y + 10), IM_COL32(230, 80, 70, 255),
+        "The scene does not validate: showing the last valid state (see the Scene panel).");
   ImGui::End();
 }
 
@@ -856,13 +930,16 @@ void EditorApp::pickObjectAt(float x, float y) {
 void EditorApp::drawGizmo(ImDrawList* draw, float originX, float originY, GizmoHandle hovered) {
   const auto gizmo = session_.gizmo(viewportWidth_, viewportHeight_);
   if (!gizmo) return;
-  const GizmoHandle active = session_.draggedHandle() != GizmoHandle::None ? session_.draggedHandle() : hovered;
-  const ImU32 axisColours[3] = {IM_COL32(225, 60, 50, 255), IM_COL32(60, 175, 60, 255), IM_COL32(50, 100, 230, 255)};
+  const GizmoHandle active =
+      session_.draggedHandle() != GizmoHandle::None ? session_.draggedHandle() : hovered;
+  const ImU32 axisColours[3] = {IM_COL32(225, 60, 50, 255), IM_COL32(60, 175, 60, 255),
+                                IM_COL32(50, 100, 230, 255)};
   const ImU32 highlight = IM_COL32(255, 200, 40, 255), outline = IM_COL32(20, 20, 24, 200);
   auto at = [&](const Eigen::Vector2f& p) { return ImVec2(originX + p.x(), originY + p.y()); };
   // Rings under the arrows; every handle has a dark outline so it reads on light and dark.
-  for (GizmoHandle h : {GizmoHandle::RotateX, GizmoHandle::RotateY, GizmoHandle::RotateZ, GizmoHandle::TranslateX,
-                        GizmoHandle::TranslateY, GizmoHandle::TranslateZ}) {
+  for (GizmoHandle h :
+       {GizmoHandle::RotateX, GizmoHandle::RotateY, GizmoHandle::RotateZ, GizmoHandle::TranslateX,
+        GizmoHandle::TranslateY, GizmoHandle::TranslateZ}) {
     if (!gizmo->has(h)) continue;
     const std::vector<Eigen::Vector2f> line = gizmo->screenPolyline(h);
     if (line.size() < 2) continue;
@@ -878,12 +955,14 @@ void EditorApp::drawGizmo(ImDrawList* draw, float originX, float originY, GizmoH
       if (along.norm() > 1.0f) {
         const Eigen::Vector2f d = along.normalized(), n(-d.y(), d.x());
         const Eigen::Vector2f base = tip - 12.0f * d;
-        draw->AddTriangleFilled(at(tip + 3.0f * d), at(base + 6.5f * n), at(base - 6.5f * n), outline);
+        draw->AddTriangleFilled(at(tip + 3.0f * d), at(base + 6.5f * n), at(base - 6.5f * n),
+                                outline);
         draw->AddTriangleFilled(at(tip), at(base + 5.0f * n), at(base - 5.0f * n), colour);
       }
     }
   }
-  if (const auto centre = projectToPixel(session_.camera(), gizmo->origin(), viewportWidth_, viewportHeight_)) {
+  if (const auto centre =
+          projectToPixel(session_.camera(), gizmo->origin(), viewportWidth_, viewportHeight_)) {
     draw->AddCircleFilled(at(*centre), 4.5f, outline);
     draw->AddCircleFilled(at(*centre), 3.0f, IM_COL32(250, 250, 250, 255));
   }
@@ -891,8 +970,8 @@ void EditorApp::drawGizmo(ImDrawList* draw, float originX, float originY, GizmoH
 
 bool EditorApp::ViewportState::operator==(const ViewportState& o) const {
   return frameVersion == o.frameVersion && width == o.width && height == o.height &&
-         std::equal(camera, camera + 11, o.camera) && wireframe == o.wireframe && legend == o.legend &&
-         groundGrid == o.groundGrid;
+         std::equal(camera, camera + 11, o.camera) && wireframe == o.wireframe &&
+         legend == o.legend && groundGrid == o.groundGrid;
 }
 
 void EditorApp::renderViewport() {
@@ -903,8 +982,10 @@ void EditorApp::renderViewport() {
   now.frameVersion = session_.frameVersion();
   now.width = viewportWidth_;
   now.height = viewportHeight_;
-  const float camera[11] = {c.target.x(), c.target.y(), c.target.z(), c.distance, c.yawDeg, c.pitchDeg,
-                            c.fovYDeg, c.orthographic ? 1.0f : 0.0f, c.orthoHalfHeight, c.nearPlane, c.farPlane};
+  const float camera[11] = {
+      c.target.x(),      c.target.y(), c.target.z(), c.distance,
+      c.yawDeg,          c.pitchDeg,   c.fovYDeg,    c.orthographic ? 1.0f : 0.0f,
+      c.orthoHalfHeight, c.nearPlane,  c.farPlane};
   std::copy(camera, camera + 11, now.camera);
   now.wireframe = style_.wireframe;
   now.legend = style_.legend;
@@ -946,7 +1027,8 @@ render::Image EditorApp::windowImage() {
   for (int y = 0; y < h; ++y) {
     const std::uint8_t* src = &rgba[static_cast<std::size_t>(h - 1 - y) * w * 4];
     std::uint8_t* dst = image.at(0, y);
-    for (int x = 0; x < w; ++x, src += 4, dst += 3) dst[0] = src[0], dst[1] = src[1], dst[2] = src[2];
+    for (int x = 0; x < w; ++x, src += 4, dst += 3)
+      dst[0] = src[0], dst[1] = src[1], dst[2] = src[2];
   }
   return image;
 }
@@ -962,7 +1044,8 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
   ImGui::BeginDisabled(!doc.valid() || cache.running());
   if (ImGui::Button("Simulate")) {
     const std::string error = session_.simulate();
-    report(error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : error, !error.empty());
+    report(error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : error,
+           !error.empty());
   }
   ImGui::EndDisabled();
   ImGui::SameLine();
@@ -974,8 +1057,8 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
   ImGui::SameLine();
   const int available = cache.frameCount();
   char progress[96];
-  std::snprintf(progress, sizeof progress, "%d / %d states (%s)", available, cache.requestedFrames(),
-                SimulationCache::statusName(cache.status()));
+  std::snprintf(progress, sizeof progress, "%d / %d states (%s)", available,
+                cache.requestedFrames(), SimulationCache::statusName(cache.status()));
   ImGui::ProgressBar(float(cache.progress()), ImVec2(-1, 0), progress);
 
   if (cache.status() == SimulationCache::Status::Failed) {
@@ -983,7 +1066,9 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
     ImGui::TextWrapped("simulation failed: %s", cache.error().c_str());
     ImGui::PopStyleColor();
   } else if (session_.cacheStale()) {
-    ImGui::TextColored(kWarningColour, "The scene changed since this simulation: the frames are stale. Simulate again.");
+    ImGui::TextColored(
+        kWarningColour,
+        "The scene changed since this simulation: the frames are stale. Simulate again.");
   }
 
   Playback& playback = session_.playback();
@@ -1001,7 +1086,8 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
   ImGui::SameLine();
   int k = playback.frame();
   ImGui::SetNextItemWidth(std::max(100.0f, ImGui::GetContentRegionAvail().x - 260.0f));
-  if (ImGui::SliderInt("##frame", &k, 0, std::max(frames - 1, 0), k < available ? "state %d" : "state %d (not simulated)"))
+  if (ImGui::SliderInt("##frame", &k, 0, std::max(frames - 1, 0),
+                       k < available ? "state %d" : "state %d (not simulated)"))
     playback.scrub(k, frames);
   drawKeyTicks(frames);
   ImGui::EndDisabled();
@@ -1011,10 +1097,13 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
   if (f && scene) {
     ImGui::Text("t = %.4f s", f->state * scene->time.dt);
     ImGui::Text("contacts: take-off %d, stick %d, slip %d   PD iterations %d, residual %.3g m/s^2",
-                f->stats.takeoff, f->stats.stick, f->stats.slip, f->stats.pdIterations, f->stats.residual);
+                f->stats.takeoff, f->stats.stick, f->stats.slip, f->stats.pdIterations,
+                f->stats.residual);
   } else {
     ImGui::Text("t = %.4f s", session_.timelineTime());
-    ImGui::TextDisabled(available == 0 ? "no frames: press Simulate" : "not simulated this far: the view shows the last cached state");
+    ImGui::TextDisabled(available == 0
+                            ? "no frames: press Simulate"
+                            : "not simulated this far: the view shows the last cached state");
   }
   if (session_.activeObject().kind == EditorObject::Kind::Handle)
     keyControls();
@@ -1033,14 +1122,16 @@ void EditorApp::drawKeyTicks(int frames) {
   const double dt = doc.scene()->time.dt;
   const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
   const float padding = 2.0f, width = high.x - low.x - 2.0f * padding;
-  const float grab = std::min(std::max(width / float(frames), ImGui::GetStyle().GrabMinSize), width);
+  const float grab =
+      std::min(std::max(width / float(frames), ImGui::GetStyle().GrabMinSize), width);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   for (const HandleKey& key : keys) {
     const double frame = key.time / dt;
     if (frame < -0.5 || frame > frames - 0.5) continue;
-    const float x = low.x + padding + 0.5f * grab + float(frame / double(frames - 1)) * (width - grab);
-    draw->AddTriangleFilled(ImVec2(x, high.y - 6.0f), ImVec2(x - 4.0f, high.y + 1.0f), ImVec2(x + 4.0f, high.y + 1.0f),
-                            IM_COL32(255, 200, 40, 255));
+    const float x =
+        low.x + padding + 0.5f * grab + float(frame / double(frames - 1)) * (width - grab);
+    draw->AddTriangleFilled(ImVec2(x, high.y - 6.0f), ImVec2(x - 4.0f, high.y + 1.0f),
+                            ImVec2(x + 4.0f, high.y + 1.0f), IM_COL32(255, 200, 40, 255));
     draw->AddLine(ImVec2(x, low.y), ImVec2(x, high.y), IM_COL32(255, 200, 40, 160), 1.0f);
   }
 }
@@ -1057,8 +1148,9 @@ void EditorApp::keyControls() {
   ImGui::SetNextItemWidth(230.0f);
   // "###": one widget identity whatever the label says, so typing is not cut off when the first
   // keystroke makes the offset pending.
-  if (ImGui::InputScalarN(session_.handleOffsetPending() ? "offset (m, not keyed)###offset" : "offset (m)###offset",
-                          ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g")) {
+  if (ImGui::InputScalarN(
+          session_.handleOffsetPending() ? "offset (m, not keyed)###offset" : "offset (m)###offset",
+          ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g")) {
     const std::string error = session_.setHandleOffset(Vec3(v[0], v[1], v[2]));
     if (!error.empty()) report(error, true);
   }
@@ -1069,10 +1161,14 @@ void EditorApp::keyControls() {
       report(error.empty() ? done : error, !error.empty());
     }
   };
-  action("Set key (K)", [&] { return session_.setKey(); }, "key set");
-  action("Delete key", [&] { return session_.deleteKey(); }, "key deleted");
-  action("< key", [&] { return session_.jumpToKey(-1); }, "previous key");
-  action("key >", [&] { return session_.jumpToKey(1); }, "next key");
+  action(
+      "Set key (K)", [&] { return session_.setKey(); }, "key set");
+  action(
+      "Delete key", [&] { return session_.deleteKey(); }, "key deleted");
+  action(
+      "< key", [&] { return session_.jumpToKey(-1); }, "previous key");
+  action(
+      "key >", [&] { return session_.jumpToKey(1); }, "next key");
 }
 
 void EditorApp::drawFileDialog() {
@@ -1088,7 +1184,8 @@ void EditorApp::drawFileDialog() {
     ImGui::SetNextItemWidth(520.0f);
     // The path is what the dialog is for: typing goes into it at once, without a click first.
     if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-    const bool enter = ImGui::InputText("##path", pathBuffer_, sizeof pathBuffer_, ImGuiInputTextFlags_EnterReturnsTrue);
+    const bool enter = ImGui::InputText("##path", pathBuffer_, sizeof pathBuffer_,
+                                        ImGuiInputTextFlags_EnterReturnsTrue);
     const bool ok = ImGui::Button(fileDialog_ == FileDialog::Open ? "Open" : "Save") || enter;
     ImGui::SameLine();
     const bool cancel = ImGui::Button("Cancel");
@@ -1128,8 +1225,8 @@ void EditorApp::drawUnsavedPrompt() {
     ImGui::SameLine();
     const bool discard = ImGui::Button("Discard");
     ImGui::SameLine();
-    const bool cancel =
-        ImGui::Button("Cancel") || (keys && keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)));
+    const bool cancel = ImGui::Button("Cancel") ||
+                        (keys && keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)));
     const PendingAction action = pending_;
     if (save || discard || cancel) {
       pending_ = PendingAction::None;

@@ -107,7 +107,8 @@ class EditorApp {
   void togglePlayback();  // the Play/Pause button and Space
 
   // Widgets bound to a JSON path of the document. `fallback` is shown when the key is absent.
-  bool numberField(const char* label, const std::string& path, double fallback, const char* format = "%.6g");
+  bool numberField(const char* label, const std::string& path, double fallback,
+                   const char* format = "%.6g");
   bool integerField(const char* label, const std::string& path, int fallback);
   template <class Value, class Widget>
   bool documentField(const char* label, const std::string& path, Value value, Widget&& widget);
@@ -149,7 +150,7 @@ class EditorApp {
     bool wireframe = false, legend = false, groundGrid = false;
     bool operator==(const ViewportState& o) const;
   } drawn_;
-  int bandAxis_ = 1;                 // the Selection panel's band: axis (y) and range (m)
+  int bandAxis_ = 1;  // the Selection panel's band: axis (y) and range (m)
   double band_[2] = {0.9, 1.1};
   unsigned lastEditId_ = 0;  // ImGui item that made the last document edit (coalescing)
 

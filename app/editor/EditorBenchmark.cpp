@@ -29,7 +29,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // CPU time of the whole process (every thread: the UI, llvmpipe's rasterizer threads, a worker).
-double processCpuMs() { return 1e3 * processCpuSeconds(); }
+double processCpuMs() {
+  return 1e3 * processCpuSeconds();
+}
 
 struct FrameTime {
   double wall = 0, cpu = 0;  // ms
@@ -95,11 +97,13 @@ int runEditorBenchmark(const EditorBenchmarkOptions& o, std::ostream& out) {
   else
     session.newDocument(windDocument(o.grid, o.steps));
   if (!session.document().valid())
-    throw InputError(o.scene.empty() ? "bench" : o.scene, "-", session.document().validationError());
+    throw InputError(o.scene.empty() ? "bench" : o.scene, "-",
+                     session.document().validationError());
   const int vertices = session.document().scene()->vertexCount();
   const int steps = o.scene.empty() ? o.steps : session.document().scene()->time.steps;
 
-  std::unique_ptr<render::RenderContext> context = render::createHeadlessContext(o.width, o.height, o.backend, &out);
+  std::unique_ptr<render::RenderContext> context =
+      render::createHeadlessContext(o.width, o.height, o.backend, &out);
   const std::string backend = context->backendName();
   std::vector<std::pair<std::string, std::vector<FrameTime>>> modes;
   {
@@ -113,9 +117,10 @@ int runEditorBenchmark(const EditorBenchmarkOptions& o, std::ostream& out) {
       const double cpuStart = processCpuMs();
       app.frame();
       weftEditorGl.Finish();
-      return FrameTime{std::chrono::duration<double, std::milli>(Clock::now() - start).count(), processCpuMs() - cpuStart};
+      return FrameTime{std::chrono::duration<double, std::milli>(Clock::now() - start).count(),
+                       processCpuMs() - cpuStart};
     };
-    app.showTab(PanelTab::Inspect);  // the plots panel: the busiest UI while scrubbing
+    app.showTab(PanelTab::Inspect);            // the plots panel: the busiest UI while scrubbing
     for (int i = 0; i < 3; ++i) timedFrame();  // shaders, buffers, first layout
     session.frameCamera(float(app.viewportWidth()) / float(std::max(app.viewportHeight(), 1)));
     session.selection().set({vertices / 2});
@@ -154,21 +159,25 @@ int runEditorBenchmark(const EditorBenchmarkOptions& o, std::ostream& out) {
   std::vector<Summary> rows;
   for (const auto& [mode, ms] : modes) rows.push_back(summarise(mode, ms));
   std::ostringstream md;
-  md << "Editor frame time: " << vertices << " cloth vertices, " << steps + 1 << " cached states, " << o.width
-     << "x" << o.height << ", " << backend << ", " << std::thread::hardware_concurrency() << " hardware threads\n\n";
-  md << "| mode | frames | median ms | p95 ms | mean ms | median fps | median CPU ms (all threads) |\n"
+  md << "Editor frame time: " << vertices << " cloth vertices, " << steps + 1 << " cached states, "
+     << o.width << "x" << o.height << ", " << backend << ", " << std::thread::hardware_concurrency()
+     << " hardware threads\n\n";
+  md << "| mode | frames | median ms | p95 ms | mean ms | median fps | median CPU ms (all threads) "
+        "|\n"
      << "| --- | --- | --- | --- | --- | --- | --- |\n";
   md << std::fixed << std::setprecision(1);
   for (const Summary& s : rows)
-    md << "| " << s.mode << " | " << s.frames << " | " << s.median << " | " << s.p95 << " | " << s.mean << " | "
-       << (s.median > 0 ? 1000.0 / s.median : 0.0) << " | " << s.cpuMedian << " |\n";
+    md << "| " << s.mode << " | " << s.frames << " | " << s.median << " | " << s.p95 << " | "
+       << s.mean << " | " << (s.median > 0 ? 1000.0 / s.median : 0.0) << " | " << s.cpuMedian
+       << " |\n";
   out << md.str();
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     std::ofstream csv(o.out + "/editor-bench.csv");
     csv << "mode,frame,ms,cpu_ms\n";
     for (const auto& [mode, times] : modes)
-      for (std::size_t i = 0; i < times.size(); ++i) csv << mode << "," << i << "," << times[i].wall << "," << times[i].cpu << "\n";
+      for (std::size_t i = 0; i < times.size(); ++i)
+        csv << mode << "," << i << "," << times[i].wall << "," << times[i].cpu << "\n";
     std::ofstream table(o.out + "/editor-bench.md");
     table << md.str();
     if (!csv || !table) throw InputError(o.out, "-", "cannot write the benchmark files");

@@ -24,7 +24,7 @@ struct EditorBenchmarkOptions {
   int steps = 30;     // states cached for scrubbing: steps + 1
   int frames = 240;   // UI frames measured per mode
   int width = 1280, height = 720;
-  std::string out;    // folder for the CSV and Markdown ("" = print only)
+  std::string out;  // folder for the CSV and Markdown ("" = print only)
   render::HeadlessBackend backend = render::HeadlessBackend::Auto;
 };
 

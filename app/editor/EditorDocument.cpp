@@ -47,7 +47,8 @@ nlohmann::json EditorDocument::defaultSceneDocument() {
 
 void EditorDocument::open(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "-", "cannot open the file: " + std::string(std::strerror(errno)));
+  if (!in)
+    throw InputError(file, "-", "cannot open the file: " + std::string(std::strerror(errno)));
   std::stringstream text;
   text << in.rdbuf();
   nlohmann::json parsed;
@@ -217,9 +218,13 @@ void EditorDocument::commit(std::string label, std::string coalesceKey, nlohmann
   revalidate();
 }
 
-bool EditorDocument::undo() { return restore(undo_, redo_); }
+bool EditorDocument::undo() {
+  return restore(undo_, redo_);
+}
 
-bool EditorDocument::redo() { return restore(redo_, undo_); }
+bool EditorDocument::redo() {
+  return restore(redo_, undo_);
+}
 
 bool EditorDocument::restore(std::vector<Step>& from, std::vector<Step>& to) {
   // Undo and redo are one move: the newest step of one stack is restored, and the current state
@@ -250,7 +255,6 @@ void EditorDocument::revalidate() {
     error_ = e.what();
   }
 }
-
 
 RecentFiles::RecentFiles(std::string storeFile, std::size_t limit)
     : storeFile_(std::move(storeFile)), limit_(limit) {

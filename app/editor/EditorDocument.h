@@ -69,9 +69,10 @@ class EditorDocument {
   std::string edit(const std::string& label, const std::function<void(nlohmann::json&)>& change);
   // The same, for an edit of the document and its sidecar together (one undo step; consecutive
   // edits with the same non-empty `coalesceKey` merge into one, as for a drag).
-  std::string editWithSidecar(const std::string& label,
-                              const std::function<void(nlohmann::json& document, nlohmann::json& sidecar)>& change,
-                              const std::string& coalesceKey = "");
+  std::string editWithSidecar(
+      const std::string& label,
+      const std::function<void(nlohmann::json& document, nlohmann::json& sidecar)>& change,
+      const std::string& coalesceKey = "");
 
   // Editor data that belongs to the document but is not scene JSON (the scene format has no
   // place for it): the positions of final-frame targets, which the session writes as a .npy next
@@ -98,8 +99,8 @@ class EditorDocument {
     nlohmann::json sidecarBefore;
     long beforeState = 0;  // identity of the document state `before`
   };
-  void commit(std::string label, std::string coalesceKey, nlohmann::json after, nlohmann::json sidecarAfter,
-              bool coalesce);
+  void commit(std::string label, std::string coalesceKey, nlohmann::json after,
+              nlohmann::json sidecarAfter, bool coalesce);
   void revalidate();
   bool restore(std::vector<Step>& from, std::vector<Step>& to);  // undo or redo
 

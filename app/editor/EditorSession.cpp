@@ -79,7 +79,8 @@ std::string EditorSession::writeTargets(const std::string& sceneFile) {
   if (list.empty()) return "";
   const Scene* scene = document_.scene();
   if (!scene)
-    return "the final targets were not written: the scene does not validate (save again once it does)";
+    return "the final targets were not written: the scene does not validate (save again once it "
+           "does)";
   // Targets read from an opened scene are written only once edited (the scene then names the
   // editor's file); until then the scene's own file stays as it is.
   const std::string owned = ownedFinalTargetFile(document_.document(), document_.sidecar());
@@ -87,12 +88,14 @@ std::string EditorSession::writeTargets(const std::string& sceneFile) {
   // Written before a Save As renames it (EditorDocument::saveAs): under the name it will have.
   const std::string name = finalTargetFileAfterSaveAs(owned, document_.file(), sceneFile);
   const std::string directory = std::filesystem::absolute(sceneFile).parent_path().string();
-  writeTargetNpy(resolveScenePath(directory, name), finalTargetMatrix(list, buildClothModel(*scene).rest.vertices));
+  writeTargetNpy(resolveScenePath(directory, name),
+                 finalTargetMatrix(list, buildClothModel(*scene).rest.vertices));
   return "";
 }
 
 std::string EditorSession::save() {
-  if (document_.file().empty()) throw InputError("untitled", "-", "the document has no file yet: use Save As");
+  if (document_.file().empty())
+    throw InputError("untitled", "-", "the document has no file yet: use Save As");
   const std::string warning = writeTargets(document_.file());
   document_.save();
   recent_.add(document_.file());
@@ -119,7 +122,8 @@ std::string EditorSession::importGarment(const MeshImportOptions& options) {
   if (!prepared.ok()) return prepared.error;
   const std::string name = std::filesystem::path(options.file).filename().string();
   return document_.edit("Import garment " + name, [&](nlohmann::json& doc) {
-    if (!doc.contains("cloths") || !doc["cloths"].is_array()) doc["cloths"] = nlohmann::json::array();
+    if (!doc.contains("cloths") || !doc["cloths"].is_array())
+      doc["cloths"] = nlohmann::json::array();
     doc["cloths"].push_back(prepared.entry);
   });
 }
@@ -132,7 +136,8 @@ std::string EditorSession::addObstacle(const std::string& shape) {
     return e.what();
   }
   return document_.edit("Add " + shape, [&](nlohmann::json& doc) {
-    if (!doc.contains("obstacles") || !doc["obstacles"].is_array()) doc["obstacles"] = nlohmann::json::array();
+    if (!doc.contains("obstacles") || !doc["obstacles"].is_array())
+      doc["obstacles"] = nlohmann::json::array();
     doc["obstacles"].push_back(obstacle);
   });
 }
@@ -142,7 +147,8 @@ std::string EditorSession::importMeshObstacle(const MeshImportOptions& options) 
   if (!prepared.ok()) return prepared.error;
   const std::string name = std::filesystem::path(options.file).filename().string();
   return document_.edit("Add mesh obstacle " + name, [&](nlohmann::json& doc) {
-    if (!doc.contains("obstacles") || !doc["obstacles"].is_array()) doc["obstacles"] = nlohmann::json::array();
+    if (!doc.contains("obstacles") || !doc["obstacles"].is_array())
+      doc["obstacles"] = nlohmann::json::array();
     doc["obstacles"].push_back(prepared.entry);
   });
 }
@@ -155,7 +161,9 @@ std::string EditorSession::simulate(int steps) {
   return "";
 }
 
-int EditorSession::availableFrames() const { return cache_.frameCount(); }
+int EditorSession::availableFrames() const {
+  return cache_.frameCount();
+}
 
 int EditorSession::timelineFrames() const {
   const Scene* scene = document_.valid() ? document_.scene() : lastValidScene_.get();
@@ -208,8 +216,9 @@ std::string EditorSession::clickObject(float x, float y, int width, int height) 
       time = f->state * shown->time.dt;
   // Planes count where they are drawn (the renderer's square around the rest of the frame).
   const render::Bounds bounds = render::sceneBounds(*frame);
-  const DrawnPlaneExtent planes{bounds.empty() ? Vec3(camera_.target.cast<double>()) : Vec3(bounds.center().cast<double>()),
-                                double(render::planeHalfSize(bounds))};
+  const DrawnPlaneExtent planes{
+      bounds.empty() ? Vec3(camera_.target.cast<double>()) : Vec3(bounds.center().cast<double>()),
+      double(render::planeHalfSize(bounds))};
   const auto hit = pickObject(*shown, time, frame->cloth, pixelRay(camera_, x, y, width, height),
                               camera_.farPlane, planes);
   return setActiveObject(hit ? hit->object.path() : "");
@@ -232,7 +241,9 @@ namespace {
 // -1 when it is no cloth vertex.
 int clothOfNode(const ClothModel& model, int node) {
   if (node < 0 || node >= model.vertexOffset.back()) return -1;
-  return int(std::upper_bound(model.vertexOffset.begin(), model.vertexOffset.end(), node) - model.vertexOffset.begin()) - 1;
+  return int(std::upper_bound(model.vertexOffset.begin(), model.vertexOffset.end(), node) -
+             model.vertexOffset.begin()) -
+         1;
 }
 
 }  // namespace
@@ -250,8 +261,10 @@ std::string EditorSession::selectBoundaryLoop(bool add) {
     if (std::find(loop.begin(), loop.end(), node - offset) == loop.end()) continue;
     std::vector<int> nodes;
     for (int v : loop) nodes.push_back(v + offset);
-    if (add) selection_.add(nodes);
-    else selection_.set(nodes);
+    if (add)
+      selection_.add(nodes);
+    else
+      selection_.set(nodes);
     return "";
   }
   return "vertex " + std::to_string(node) + " is not on a border of its cloth";
@@ -266,8 +279,10 @@ std::string EditorSession::selectBand(int axis, double low, double high, bool ad
   const auto& positions = shown->cloth.positions;
   for (Eigen::Index v = 0; v < positions.rows(); ++v)
     if (positions(v, axis) >= low && positions(v, axis) <= high) nodes.push_back(int(v));
-  if (add) selection_.add(nodes);
-  else selection_.set(nodes);
+  if (add)
+    selection_.add(nodes);
+  else
+    selection_.set(nodes);
   return "";
 }
 
@@ -277,9 +292,9 @@ std::string EditorSession::pinSelection() {
   if (!scene) return "the scene does not validate: " + document_.validationError();
   const ClothModel model = buildClothModel(*scene);
   const std::vector<int> nodes = selection_.nodes();
-  return document_.edit("Pin " + std::to_string(nodes.size()) + " vertices", [&](nlohmann::json& doc) {
-    addFixedAttachments(doc, nodes, model.vertexOffset);
-  });
+  return document_.edit(
+      "Pin " + std::to_string(nodes.size()) + " vertices",
+      [&](nlohmann::json& doc) { addFixedAttachments(doc, nodes, model.vertexOffset); });
 }
 
 std::string EditorSession::makeHandle() {
@@ -289,19 +304,21 @@ std::string EditorSession::makeHandle() {
   const ClothModel model = buildClothModel(*scene);
   const std::vector<int> nodes = selection_.nodes();
   const int cloth = clothOfNode(model, nodes.front());
-  if (cloth < 0 || clothOfNode(model, nodes.back()) < 0) return "the selection is not cloth vertices";
-  if (clothOfNode(model, nodes.back()) != cloth) return "a handle holds vertices of one cloth: select vertices of one cloth only";
+  if (cloth < 0 || clothOfNode(model, nodes.back()) < 0)
+    return "the selection is not cloth vertices";
+  if (clothOfNode(model, nodes.back()) != cloth)
+    return "a handle holds vertices of one cloth: select vertices of one cloth only";
   std::vector<int> local;
   for (int n : nodes) local.push_back(n - model.vertexOffset[std::size_t(cloth)]);
   const std::string base = "cloths." + std::to_string(cloth);
   const nlohmann::json* attachments = document_.find(base + ".attachments");
   const int index = attachments && attachments->is_array() ? int(attachments->size()) : 0;
-  const std::string error = document_.edit("Make a handle of " + std::to_string(nodes.size()) + " vertices",
-                                           [&](nlohmann::json& doc) {
-                                             nlohmann::json& c = doc.at("cloths").at(std::size_t(cloth));
-                                             if (!c.contains("attachments")) c["attachments"] = nlohmann::json::array();
-                                             c["attachments"].push_back(newHandleAttachment(local));
-                                           });
+  const std::string error = document_.edit(
+      "Make a handle of " + std::to_string(nodes.size()) + " vertices", [&](nlohmann::json& doc) {
+        nlohmann::json& c = doc.at("cloths").at(std::size_t(cloth));
+        if (!c.contains("attachments")) c["attachments"] = nlohmann::json::array();
+        c["attachments"].push_back(newHandleAttachment(local));
+      });
   if (!error.empty()) return error;
   return setActiveObject(base + ".attachments." + std::to_string(index));
 }
@@ -333,17 +350,22 @@ std::optional<Vec3> EditorSession::objectOrigin() const {
     return Vec3(0.5 * (v.colwise().minCoeff() + v.colwise().maxCoeff()).transpose());
   };
   switch (active_.kind) {
-    case EditorObject::Kind::None: return std::nullopt;
+    case EditorObject::Kind::None:
+      return std::nullopt;
     case EditorObject::Kind::Obstacle: {
       if (active_.index >= int(scene->obstacles.size())) return std::nullopt;
       const Obstacle& o = scene->obstacles[std::size_t(active_.index)];
       switch (o.shape) {
-        case Obstacle::Shape::Plane: return o.point;
+        case Obstacle::Shape::Plane:
+          return o.point;
         case Obstacle::Shape::Sphere:
-        case Obstacle::Shape::Box: return o.center;
+        case Obstacle::Shape::Box:
+          return o.center;
         case Obstacle::Shape::Capsule:
-        case Obstacle::Shape::Cylinder: return Vec3(0.5 * (o.a + o.b));
-        case Obstacle::Shape::Mesh: return boundsCentre(o.mesh.vertices);
+        case Obstacle::Shape::Cylinder:
+          return Vec3(0.5 * (o.a + o.b));
+        case Obstacle::Shape::Mesh:
+          return boundsCentre(o.mesh.vertices);
       }
       return std::nullopt;
     }
@@ -359,10 +381,12 @@ std::optional<Vec3> EditorSession::objectOrigin() const {
       Vec3 centroid = Vec3::Zero();
       for (int v : a.vertices) centroid += cloth.mesh.vertices.row(v).transpose();
       centroid /= double(a.vertices.size());
-      // Where the trajectory puts the centroid now, with the offset being edited in place of its own.
+      // Where the trajectory puts the centroid now, with the offset being edited in place of its
+      // own.
       const double t = timelineTime();
       const auto offset = handleOffset();
-      return Vec3(a.trajectory.target(centroid, t) - a.trajectory.offset(t) + offset.value_or(a.trajectory.offset(t)));
+      return Vec3(a.trajectory.target(centroid, t) - a.trajectory.offset(t) +
+                  offset.value_or(a.trajectory.offset(t)));
     }
   }
   return std::nullopt;
@@ -370,7 +394,8 @@ std::optional<Vec3> EditorSession::objectOrigin() const {
 
 RigidPose EditorSession::shownPose() const {
   const Scene* scene = document_.scene();
-  if (!scene || active_.kind != EditorObject::Kind::Obstacle || active_.index >= int(scene->obstacles.size()))
+  if (!scene || active_.kind != EditorObject::Kind::Obstacle ||
+      active_.index >= int(scene->obstacles.size()))
     return RigidPose();
   const Obstacle& o = scene->obstacles[std::size_t(active_.index)];
   return o.motion ? poseAt(*o.motion, timelineTime()) : RigidPose();
@@ -381,7 +406,8 @@ std::optional<Gizmo> EditorSession::gizmo(int width, int height) const {
   if (!origin || !origin->allFinite()) return std::nullopt;
   // A moving obstacle's gizmo sits on the obstacle as the viewport shows it at this time.
   const Vec3 shown = shownPose().apply(*origin);
-  return Gizmo(shown.cast<float>(), objectRotates(document_.document(), active_), camera_, width, height);
+  return Gizmo(shown.cast<float>(), objectRotates(document_.document(), active_), camera_, width,
+               height);
 }
 
 GizmoHandle EditorSession::pickGizmo(float x, float y, int width, int height) const {
@@ -389,21 +415,25 @@ GizmoHandle EditorSession::pickGizmo(float x, float y, int width, int height) co
   return g ? g->pickPixel(x, y) : GizmoHandle::None;
 }
 
-std::string EditorSession::beginGizmoDrag(GizmoHandle handle, float x, float y, int width, int height) {
+std::string EditorSession::beginGizmoDrag(GizmoHandle handle, float x, float y, int width,
+                                          int height) {
   endGizmoDrag();
   const auto g = gizmo(width, height);
   if (!g) {
-    if (active_.kind == EditorObject::Kind::None) return "nothing to move: choose an obstacle, a cloth or a handle first";
+    if (active_.kind == EditorObject::Kind::None)
+      return "nothing to move: choose an obstacle, a cloth or a handle first";
     return "the scene does not validate: " + document_.validationError();
   }
-  if (!g->has(handle)) return std::string("this object has no ") + gizmoHandleName(handle) + " handle";
+  if (!g->has(handle))
+    return std::string("this object has no ") + gizmoHandleName(handle) + " handle";
   if (active_.kind == EditorObject::Kind::Handle && !handleError().empty()) return handleError();
   auto drag = GizmoDrag::begin(*g, handle, Eigen::Vector2f(x, y));
   if (!drag)
     return isRotation(handle) ? "press on the ring, away from the gizmo's centre"
                               : "this axis points at the camera: turn the view to drag along it";
   const char* axes = "XYZ";
-  DragState state{*drag, active_, nlohmann::json(), Vec3(g->origin().cast<double>()), Vec3::Zero(), "", ""};
+  DragState state{*drag, active_, nlohmann::json(), Vec3(g->origin().cast<double>()), Vec3::Zero(),
+                  "",    ""};
   if (active_.kind == EditorObject::Kind::Handle) {
     state.startOffset = handleOffset().value_or(Vec3::Zero());
   } else {
@@ -442,8 +472,9 @@ std::string EditorSession::dragGizmo(float x, float y) {
   const Mat3 shownRotation = shownPose().rotation;
   const bool turned = !shownRotation.isApprox(Mat3::Identity(), 1e-12);
   if (turned && isRotation(handle))
-    return active_.path() + ": its motion has turned it at this time; turn it at a time where it is not turned "
-                            "(e.g. frame 0)";
+    return active_.path() +
+           ": its motion has turned it at this time; turn it at a time where it is not turned "
+           "(e.g. frame 0)";
   try {
     if (isRotation(handle)) {
       rotateObject(entry, active_.kind, axis, amount, drag_->centre);
@@ -460,13 +491,17 @@ std::string EditorSession::dragGizmo(float x, float y) {
   const std::string path = active_.path();
   // One undo step per drag: every move of the same drag merges into the step it started.
   return document_.editWithSidecar(
-      drag_->label, [&](nlohmann::json& doc, nlohmann::json&) { entryAt(doc, path) = entry; }, drag_->coalesceKey);
+      drag_->label, [&](nlohmann::json& doc, nlohmann::json&) { entryAt(doc, path) = entry; },
+      drag_->coalesceKey);
 }
 
-void EditorSession::endGizmoDrag() { drag_.reset(); }
+void EditorSession::endGizmoDrag() {
+  drag_.reset();
+}
 
 std::string EditorSession::handleError() const {
-  if (active_.kind != EditorObject::Kind::Handle) return "choose a handle first (make one from a selection)";
+  if (active_.kind != EditorObject::Kind::Handle)
+    return "choose a handle first (make one from a selection)";
   if (!document_.valid()) return "the scene does not validate: " + document_.validationError();
   const nlohmann::json* attachment = document_.find(active_.path());
   if (!attachment || !hasKeyframes(*attachment))
@@ -513,7 +548,8 @@ std::string EditorSession::setKey() {
   const std::string path = active_.path();
   char label[64];
   std::snprintf(label, sizeof label, "Set key at t = %.4g s", t);
-  error = document_.edit(label, [&](nlohmann::json& doc) { setHandleKey(entryAt(doc, path), t, *offset, 0.5 * dt); });
+  error = document_.edit(
+      label, [&](nlohmann::json& doc) { setHandleKey(entryAt(doc, path), t, *offset, 0.5 * dt); });
   if (error.empty()) pending_.reset();
   return error;
 }
@@ -531,7 +567,8 @@ std::string EditorSession::deleteKey() {
   const std::string path = active_.path();
   char label[64];
   std::snprintf(label, sizeof label, "Delete key at t = %.4g s", t);
-  error = document_.edit(label, [&](nlohmann::json& doc) { deleteHandleKey(entryAt(doc, path), t, 0.5 * dt); });
+  error = document_.edit(
+      label, [&](nlohmann::json& doc) { deleteHandleKey(entryAt(doc, path), t, 0.5 * dt); });
   if (error.empty()) pending_.reset();
   return error;
 }
@@ -543,7 +580,9 @@ std::string EditorSession::jumpToKey(int direction) {
   int best = -1;
   for (const HandleKey& k : keys()) {
     const int f = int(std::llround(k.time / scene->time.dt));
-    if (direction > 0 ? f > frame && (best < 0 || f < best) : f < frame && f >= 0 && (best < 0 || f > best)) best = f;
+    if (direction > 0 ? f > frame && (best < 0 || f < best)
+                      : f < frame && f >= 0 && (best < 0 || f > best))
+      best = f;
   }
   if (best < 0) return direction > 0 ? "no key after this frame" : "no key before this frame";
   playback_.scrub(best, timelineFrames());
@@ -555,7 +594,8 @@ void EditorSession::frameCamera(float aspect, render::NamedView view) {
   const render::RenderScene* scene = viewportScene();
   render::Bounds bounds;
   if (scene) bounds = render::sceneBounds(*scene);
-  if (bounds.empty()) bounds.extend(render::Vec3f(-1, -1, -1)), bounds.extend(render::Vec3f(1, 1, 1));
+  if (bounds.empty())
+    bounds.extend(render::Vec3f(-1, -1, -1)), bounds.extend(render::Vec3f(1, 1, 1));
   camera_ = render::namedViewCamera(view, bounds, aspect);
 }
 
@@ -643,11 +683,13 @@ std::optional<Vec3> EditorSession::shownPosition(int node) {
   viewportScene();
   if (showingCache_) {
     const auto f = cache_.frame(std::min(playback_.frame(), cache_.frameCount() - 1));
-    if (f && node >= 0 && node < f->positions.rows()) return Vec3(f->positions.row(node).transpose());
+    if (f && node >= 0 && node < f->positions.rows())
+      return Vec3(f->positions.row(node).transpose());
     return std::nullopt;
   }
   Builder* b = builderFor(lastValidScene_, documentBuilder_);
-  if (b && node >= 0 && node < b->model.rest.vertices.rows()) return Vec3(b->model.rest.vertices.row(node).transpose());
+  if (b && node >= 0 && node < b->model.rest.vertices.rows())
+    return Vec3(b->model.rest.vertices.row(node).transpose());
   return std::nullopt;
 }
 
@@ -656,7 +698,8 @@ std::optional<VertexReport> EditorSession::inspect() const {
   const int available = cache_.frameCount();
   const std::shared_ptr<const Scene> cached = cache_.scene();
   if (node < 0 || available == 0 || !cached) return std::nullopt;
-  if (lastValidScene_ && lastValidScene_->vertexCount() != cached->vertexCount()) return std::nullopt;
+  if (lastValidScene_ && lastValidScene_->vertexCount() != cached->vertexCount())
+    return std::nullopt;
   const auto f = cache_.frame(std::min(playback_.frame(), available - 1));
   if (!f) return std::nullopt;
   std::vector<int> offsets{0};
@@ -668,7 +711,10 @@ std::string EditorSession::editTargets(const std::string& label, std::vector<Fin
                                        const std::string& coalesceKey) {
   const std::string file = finalTargetFileName(document_.file());
   return document_.editWithSidecar(
-      label, [&](nlohmann::json& doc, nlohmann::json& sidecar) { setFinalTargets(doc, sidecar, list, file); },
+      label,
+      [&](nlohmann::json& doc, nlohmann::json& sidecar) {
+        setFinalTargets(doc, sidecar, list, file);
+      },
       coalesceKey);
 }
 
@@ -683,10 +729,12 @@ std::string EditorSession::setTargetsFromSelection() {
       if (t.node == node) t.position = *p, found = true;
     if (!found) list.push_back({node, *p});
   }
-  return editTargets("Set " + std::to_string(selection_.nodes().size()) + " targets", std::move(list));
+  return editTargets("Set " + std::to_string(selection_.nodes().size()) + " targets",
+                     std::move(list));
 }
 
-std::string EditorSession::setTarget(int node, const Vec3& position, const std::string& coalesceKey) {
+std::string EditorSession::setTarget(int node, const Vec3& position,
+                                     const std::string& coalesceKey) {
   if (!position.allFinite()) return "a target position must be finite";
   const Scene* scene = lastValidScene_.get();
   if (!scene || node < 0 || node >= scene->vertexCount())
@@ -699,7 +747,8 @@ std::string EditorSession::setTarget(int node, const Vec3& position, const std::
   return editTargets("Set target of vertex " + std::to_string(node), std::move(list), coalesceKey);
 }
 
-std::string EditorSession::moveTargets(const std::vector<int>& nodes, const Vec3& delta, const std::string& coalesceKey) {
+std::string EditorSession::moveTargets(const std::vector<int>& nodes, const Vec3& delta,
+                                       const std::string& coalesceKey) {
   if (!delta.allFinite()) return "the offset must be finite";
   std::vector<FinalTarget> list = targets();
   int moved = 0;
@@ -709,8 +758,8 @@ std::string EditorSession::moveTargets(const std::vector<int>& nodes, const Vec3
   return editTargets("Move " + std::to_string(moved) + " targets", std::move(list), coalesceKey);
 }
 
-std::string EditorSession::dragTargets(const std::vector<int>& nodes, float dx, float dy, int width, int height,
-                                       const std::string& coalesceKey) {
+std::string EditorSession::dragTargets(const std::vector<int>& nodes, float dx, float dy, int width,
+                                       int height, const std::string& coalesceKey) {
   std::vector<FinalTarget> list = targets();
   int moved = 0;
   for (FinalTarget& t : list) {
@@ -736,9 +785,12 @@ std::string EditorSession::dragTargets(const std::vector<int>& nodes, float dx, 
 std::string EditorSession::removeTargets(const std::vector<int>& nodes) {
   std::vector<FinalTarget> list = targets(), kept;
   for (const FinalTarget& t : list)
-    if (!nodes.empty() && std::find(nodes.begin(), nodes.end(), t.node) == nodes.end()) kept.push_back(t);
-  if (kept.size() == list.size()) return list.empty() ? "there are no targets" : "none of these vertices has a target";
-  return editTargets("Remove " + std::to_string(list.size() - kept.size()) + " targets", std::move(kept));
+    if (!nodes.empty() && std::find(nodes.begin(), nodes.end(), t.node) == nodes.end())
+      kept.push_back(t);
+  if (kept.size() == list.size())
+    return list.empty() ? "there are no targets" : "none of these vertices has a target";
+  return editTargets("Remove " + std::to_string(list.size() - kept.size()) + " targets",
+                     std::move(kept));
 }
 
 std::string EditorSession::loadTargetMotion(const std::string& file) {
@@ -777,7 +829,8 @@ std::string EditorSession::loadTargetMesh(const std::string& file) {
   std::string counts;
   for (std::size_t c = 0; c < scene->cloths.size(); ++c) {
     const int n = scene->cloths[c].mesh.vertexCount();
-    counts += (c ? ", " : "") + std::string("cloth ") + std::to_string(c) + " has " + std::to_string(n);
+    counts +=
+        (c ? ", " : "") + std::string("cloth ") + std::to_string(c) + " has " + std::to_string(n);
     if (n != mesh.vertexCount()) continue;
     // The cloth's own placement, as the loader applies it to the cloth's file (scale first).
     const std::string base = "cloths." + std::to_string(c) + ".mesh";
@@ -785,7 +838,9 @@ std::string EditorSession::loadTargetMesh(const std::string& file) {
       mesh.vertices *= scale->get<double>();
     if (const nlohmann::json* t = document_.find(base + ".transform"); t && t->is_object()) {
       RigidTransform transform;
-      auto vec = [](const nlohmann::json& j) { return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()); };
+      auto vec = [](const nlohmann::json& j) {
+        return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+      };
       if (t->contains("rotate_deg")) transform.rotateDeg = vec(t->at("rotate_deg"));
       if (t->contains("translate")) transform.translate = vec(t->at("translate"));
       transform.applyTo(mesh.vertices);
@@ -796,7 +851,8 @@ std::string EditorSession::loadTargetMesh(const std::string& file) {
     for (const FinalTarget& t : targets())  // other cloths' targets stay
       if (t.node < offset || t.node >= offset + n) list.push_back(t);
     for (int v = 0; v < n; ++v) list.push_back({offset + v, mesh.vertices.row(v).transpose()});
-    return editTargets("Target shape " + std::filesystem::path(file).filename().string(), std::move(list));
+    return editTargets("Target shape " + std::filesystem::path(file).filename().string(),
+                       std::move(list));
   }
   return file + ": " + std::to_string(mesh.vertexCount()) + " vertices, but " + counts +
          " (a target shape has the garment's vertices, in its order)";
@@ -810,31 +866,39 @@ std::string EditorSession::setHemline(double height) {
                      "Hemline of " + std::to_string(nodes.size()) + " vertices");
 }
 
-std::string EditorSession::removeHemline() { return removeLossTerm("hemline", "Remove hemline", "hemline term"); }
+std::string EditorSession::removeHemline() {
+  return removeLossTerm("hemline", "Remove hemline", "hemline term");
+}
 
 std::string EditorSession::removeTargetMotion() {
   return removeLossTerm("trajectory", "Remove target motion", "target motion");
 }
 
-std::string EditorSession::setLossTerm(const std::string& term, const nlohmann::json& value, const std::string& label) {
+std::string EditorSession::setLossTerm(const std::string& term, const nlohmann::json& value,
+                                       const std::string& label) {
   return document_.edit(label, [&](nlohmann::json& doc) {
     if (!doc.contains("task") || !doc["task"].is_object()) doc["task"] = nlohmann::json::object();
-    if (!doc["task"].contains("loss") || !doc["task"]["loss"].is_object()) doc["task"]["loss"] = nlohmann::json::object();
+    if (!doc["task"].contains("loss") || !doc["task"]["loss"].is_object())
+      doc["task"]["loss"] = nlohmann::json::object();
     doc["task"]["loss"][term] = value;
   });
 }
 
-std::string EditorSession::removeLossTerm(const std::string& term, const std::string& label, const std::string& what) {
+std::string EditorSession::removeLossTerm(const std::string& term, const std::string& label,
+                                          const std::string& what) {
   if (!document_.find("task.loss." + term)) return "the task has no " + what;
   return document_.edit(label, [&](nlohmann::json& doc) {
     nlohmann::json& task = doc["task"];
     task["loss"].erase(term);
     // No term left: no task (a task needs a loss), unless it still names parameters.
-    if (task["loss"].empty() && (!task.contains("parameters") || task["parameters"].empty())) doc.erase("task");
+    if (task["loss"].empty() && (!task.contains("parameters") || task["parameters"].empty()))
+      doc.erase("task");
   });
 }
 
-const LossValue& EditorSession::liveLoss() { return liveLoss_.evaluate(document_, cache_); }
+const LossValue& EditorSession::liveLoss() {
+  return liveLoss_.evaluate(document_, cache_);
+}
 
 std::string EditorSession::withHeldTargets(const std::function<std::string(const Scene&)>& use) {
   if (!document_.valid()) return "the scene does not validate: " + document_.validationError();
@@ -844,13 +908,15 @@ std::string EditorSession::withHeldTargets(const std::function<std::string(const
   if (!list.empty()) {
     // The engine's TaskLoss reads targets from a file: targets not saved yet go to a private
     // temporary one, read once while `use` builds the loss and removed then.
-    std::string name = (std::filesystem::temp_directory_path() / "weft-editor-target-XXXXXX").string();
+    std::string name =
+        (std::filesystem::temp_directory_path() / "weft-editor-target-XXXXXX").string();
     const int fd = ::mkstemp(name.data());
     if (fd < 0) return "cannot create a temporary target file";
     ::close(fd);
     temporary = name;
     try {
-      writeTargetNpy(temporary, finalTargetMatrix(list, buildClothModel(*document_.scene()).rest.vertices));
+      writeTargetNpy(temporary,
+                     finalTargetMatrix(list, buildClothModel(*document_.scene()).rest.vertices));
     } catch (const std::exception& e) {
       ::unlink(temporary.c_str());
       return e.what();
@@ -859,8 +925,9 @@ std::string EditorSession::withHeldTargets(const std::function<std::string(const
   }
   std::string error;
   try {
-    const Scene scene = parseScene(doc, document_.file().empty() ? document_.displayName() : document_.file(),
-                                   document_.directory());
+    const Scene scene =
+        parseScene(doc, document_.file().empty() ? document_.displayName() : document_.file(),
+                   document_.directory());
     error = use(scene);
   } catch (const std::exception& e) {
     error = e.what();
@@ -870,7 +937,8 @@ std::string EditorSession::withHeldTargets(const std::function<std::string(const
 }
 
 std::string EditorSession::startOptimizer(const OptimizerRun::Setup& setup, bool paused) {
-  return withHeldTargets([&](const Scene& scene) { return optimizer_.start(scene, setup, paused); });
+  return withHeldTargets(
+      [&](const Scene& scene) { return optimizer_.start(scene, setup, paused); });
 }
 
 std::string EditorSession::computeStateGradients() {
@@ -918,7 +986,9 @@ std::string EditorSession::computeStateGradients() {
 }
 
 void EditorSession::collectStateGradients() {
-  if (!gradientJob_.valid() || gradientJob_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  if (!gradientJob_.valid() ||
+      gradientJob_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return;
   try {
     stateGradients_ = gradientJob_.get();
     gradientsRun_ = jobRun_;
@@ -929,18 +999,23 @@ void EditorSession::collectStateGradients() {
 }
 
 std::optional<Vec3> EditorSession::stateGradient(int node, int state) const {
-  if (gradientsRun_ != cache_.runId() || gradientsRevision_ != document_.revision()) return std::nullopt;
-  if (state < 0 || state >= int(stateGradients_.size()) || node < 0 || node >= stateGradients_[std::size_t(state)].rows())
+  if (gradientsRun_ != cache_.runId() || gradientsRevision_ != document_.revision())
+    return std::nullopt;
+  if (state < 0 || state >= int(stateGradients_.size()) || node < 0 ||
+      node >= stateGradients_[std::size_t(state)].rows())
     return std::nullopt;
   return Vec3(stateGradients_[std::size_t(state)].row(node).transpose());
 }
 
-std::string EditorSession::setParameterValues(const std::string& label, const std::vector<double>& values) {
+std::string EditorSession::setParameterValues(const std::string& label,
+                                              const std::vector<double>& values) {
   const std::vector<std::string>& paths = optimizer_.parameters();
-  if (paths.empty() || values.size() != paths.size()) return "there is no optimisation result to use";
+  if (paths.empty() || values.size() != paths.size())
+    return "there is no optimisation result to use";
   for (const std::string& path : paths) {
     const nlohmann::json* v = document_.find(path);
-    if (!v || !v->is_number()) return path + " is no longer a number in the scene: cannot write the result";
+    if (!v || !v->is_number())
+      return path + " is no longer a number in the scene: cannot write the result";
   }
   return document_.edit(label, [&](nlohmann::json& doc) {
     for (std::size_t i = 0; i < paths.size(); ++i) {
@@ -953,11 +1028,15 @@ std::string EditorSession::setParameterValues(const std::string& label, const st
 std::string EditorSession::applyOptimizerResult() {
   const auto best = optimizer_.best();
   if (!best) return "the optimiser has no evaluation yet";
-  return setParameterValues("Apply optimised parameters (loss " + [&] {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", best->loss);
-    return std::string(text);
-  }() + ")", best->values);
+  return setParameterValues(
+      "Apply optimised parameters (loss " +
+          [&] {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.3g", best->loss);
+            return std::string(text);
+          }() +
+          ")",
+      best->values);
 }
 
 std::string EditorSession::revertToOptimizerStart() {
@@ -967,9 +1046,11 @@ std::string EditorSession::revertToOptimizerStart() {
 std::string EditorSession::addTaskParameter(const std::string& path) {
   const Scene* scene = document_.scene();
   if (!scene) return "the scene does not validate: " + document_.validationError();
-  if (!scene->task) return "the task has no loss yet: set targets or load a target motion first (Targets tab)";
+  if (!scene->task)
+    return "the task has no loss yet: set targets or load a target motion first (Targets tab)";
   const std::vector<std::string>& chosen = scene->task->parameters;
-  if (std::find(chosen.begin(), chosen.end(), path) != chosen.end()) return path + " is already a parameter";
+  if (std::find(chosen.begin(), chosen.end(), path) != chosen.end())
+    return path + " is already a parameter";
   const std::vector<std::string> offered = differentiableParameterPaths(*scene);
   if (std::find(offered.begin(), offered.end(), path) == offered.end()) {
     try {  // the engine's own reason (no such value, not differentiable)
@@ -995,8 +1076,10 @@ std::string EditorSession::removeTaskParameter(const std::string& path) {
     nlohmann::json kept = nlohmann::json::array();
     for (const nlohmann::json& p : task["parameters"])
       if (p != path) kept.push_back(p);
-    if (kept.empty()) task.erase("parameters");
-    else task["parameters"] = kept;
+    if (kept.empty())
+      task.erase("parameters");
+    else
+      task["parameters"] = kept;
     if (task.contains("bounds") && task["bounds"].is_object()) {
       task["bounds"].erase(path);
       if (task["bounds"].empty()) task.erase("bounds");

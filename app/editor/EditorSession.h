@@ -62,7 +62,8 @@ class EditorSession {
 
   // Scene building. Each returns an error text ("" on success) and is one undo step; nothing is
   // added when the mesh or shape is rejected.
-  MeshImport previewGarment(const MeshImportOptions& options) const;  // what importGarment would add
+  MeshImport previewGarment(
+      const MeshImportOptions& options) const;  // what importGarment would add
   std::string importGarment(const MeshImportOptions& options);
   std::string addObstacle(const std::string& shape);  // plane, sphere, capsule, box, cylinder
   std::string importMeshObstacle(const MeshImportOptions& options);
@@ -150,7 +151,8 @@ class EditorSession {
   std::vector<FinalTarget> targets() const { return finalTargets(document_.sidecar()); }
   std::string setTargetsFromSelection();  // a target at each selected vertex's shown position
   std::string setTarget(int node, const Vec3& position, const std::string& coalesceKey = "");
-  std::string moveTargets(const std::vector<int>& nodes, const Vec3& delta, const std::string& coalesceKey = "");
+  std::string moveTargets(const std::vector<int>& nodes, const Vec3& delta,
+                          const std::string& coalesceKey = "");
   // Moves the targets of `nodes` in the camera's image plane by a pixel offset (x right, y down)
   // of a width x height view, each at its own depth: what dragging them in the viewport does.
   std::string dragTargets(const std::vector<int>& nodes, float dx, float dy, int width, int height,
@@ -228,8 +230,10 @@ class EditorSession {
   std::string withHeldTargets(const std::function<std::string(const Scene&)>& use);
   // Sets or removes one term of task.loss (one undo step); removing the last term removes the
   // task unless it names parameters. `what` names the term in the error when it is absent.
-  std::string setLossTerm(const std::string& term, const nlohmann::json& value, const std::string& label);
-  std::string removeLossTerm(const std::string& term, const std::string& label, const std::string& what);
+  std::string setLossTerm(const std::string& term, const nlohmann::json& value,
+                          const std::string& label);
+  std::string removeLossTerm(const std::string& term, const std::string& label,
+                             const std::string& what);
   // The gradient job: its result (dL/dx_n per state) stamped with the cache run and document
   // revision it was computed for, so that any later edit or run makes it stale.
   void collectStateGradients();

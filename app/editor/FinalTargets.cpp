@@ -21,14 +21,16 @@ namespace fs = std::filesystem;
 std::vector<FinalTarget> finalTargets(const nlohmann::json& sidecar) {
   std::vector<FinalTarget> out;
   if (!sidecar.is_object() || !sidecar.contains("final_targets")) return out;
-  const nlohmann::json& positions = sidecar["final_targets"].value("positions", nlohmann::json::object());
+  const nlohmann::json& positions =
+      sidecar["final_targets"].value("positions", nlohmann::json::object());
   for (auto it = positions.begin(); it != positions.end(); ++it) {
     FinalTarget t;
     t.node = std::stoi(it.key());
     for (int c = 0; c < 3; ++c) t.position[c] = it.value().at(std::size_t(c)).get<double>();
     out.push_back(t);
   }
-  std::sort(out.begin(), out.end(), [](const FinalTarget& a, const FinalTarget& b) { return a.node < b.node; });
+  std::sort(out.begin(), out.end(),
+            [](const FinalTarget& a, const FinalTarget& b) { return a.node < b.node; });
   return out;
 }
 
@@ -42,12 +44,13 @@ std::string finalTargetFileAfterSaveAs(const std::string& name, const std::strin
   return name == finalTargetFileName(oldScene) ? finalTargetFileName(newScene) : name;
 }
 
-void renameFinalTargetFile(nlohmann::json& document, nlohmann::json& sidecar, const std::string& oldScene,
-                           const std::string& newScene) {
+void renameFinalTargetFile(nlohmann::json& document, nlohmann::json& sidecar,
+                           const std::string& oldScene, const std::string& newScene) {
   if (!sidecar.contains("final_targets") || !sidecar["final_targets"].is_object()) return;
   nlohmann::json& file = sidecar["final_targets"]["file"];
   if (!file.is_string()) return;
-  const std::string renamed = finalTargetFileAfterSaveAs(file.get<std::string>(), oldScene, newScene);
+  const std::string renamed =
+      finalTargetFileAfterSaveAs(file.get<std::string>(), oldScene, newScene);
   nlohmann::json* named = findJsonPath(document, "task.loss.final.target");
   if (named && *named == file) *named = renamed;
   file = renamed;
@@ -61,18 +64,21 @@ std::string ownedFinalTargetFile(const nlohmann::json& document, const nlohmann:
   return file.get<std::string>();
 }
 
-void setFinalTargets(nlohmann::json& document, nlohmann::json& sidecar, std::vector<FinalTarget> targets,
-                     const std::string& fileName) {
-  std::sort(targets.begin(), targets.end(), [](const FinalTarget& a, const FinalTarget& b) { return a.node < b.node; });
-  targets.erase(std::unique(targets.begin(), targets.end(),
-                            [](const FinalTarget& a, const FinalTarget& b) { return a.node == b.node; }),
-                targets.end());
+void setFinalTargets(nlohmann::json& document, nlohmann::json& sidecar,
+                     std::vector<FinalTarget> targets, const std::string& fileName) {
+  std::sort(targets.begin(), targets.end(),
+            [](const FinalTarget& a, const FinalTarget& b) { return a.node < b.node; });
+  targets.erase(
+      std::unique(targets.begin(), targets.end(),
+                  [](const FinalTarget& a, const FinalTarget& b) { return a.node == b.node; }),
+      targets.end());
   if (targets.empty()) {
     sidecar.erase("final_targets");
     if (!document.contains("task") || !document["task"].is_object()) return;
     nlohmann::json& task = document["task"];
     if (task.contains("loss") && task["loss"].is_object()) task["loss"].erase("final");
-    const bool noLoss = !task.contains("loss") || (task["loss"].is_object() && task["loss"].empty());
+    const bool noLoss =
+        !task.contains("loss") || (task["loss"].is_object() && task["loss"].empty());
     const bool noParameters = !task.contains("parameters") || task["parameters"].empty();
     // A task without a loss is invalid; one that has nothing else either goes with its last term.
     if (noLoss && noParameters) document.erase("task");
@@ -87,7 +93,8 @@ void setFinalTargets(nlohmann::json& document, nlohmann::json& sidecar, std::vec
     vertices.push_back(t.node);
   }
   sidecar["final_targets"] = {{"file", file}, {"positions", positions}};
-  if (!document.contains("task") || !document["task"].is_object()) document["task"] = nlohmann::json::object();
+  if (!document.contains("task") || !document["task"].is_object())
+    document["task"] = nlohmann::json::object();
   nlohmann::json& task = document["task"];
   if (!task.contains("loss") || !task["loss"].is_object()) task["loss"] = nlohmann::json::object();
   nlohmann::json term = {{"target", file}, {"vertices", vertices}};
@@ -102,7 +109,8 @@ nlohmann::json readFinalTargets(const Scene& scene) {
   const nlohmann::json& term = scene.task->loss["final"];
   if (!term.contains("vertices") || !term["vertices"].is_array()) return nlohmann::json::object();
   try {
-    const std::string path = resolveScenePath(scene.directory, term.at("target").get<std::string>());
+    const std::string path =
+        resolveScenePath(scene.directory, term.at("target").get<std::string>());
     const NpyArray a = readNpy(path);
     const std::size_t nodes = static_cast<std::size_t>(scene.vertexCount());
     std::size_t first = 0;  // offset of the last state
@@ -120,7 +128,8 @@ nlohmann::json readFinalTargets(const Scene& scene) {
     }
     // The loaded targets are edited from now on, but written to the editor's own file: the one
     // read may be shared (a recorded run).
-    return {{"final_targets", {{"file", finalTargetFileName(scene.file)}, {"positions", positions}}}};
+    return {
+        {"final_targets", {{"file", finalTargetFileName(scene.file)}, {"positions", positions}}}};
   } catch (const std::exception&) {
     return nlohmann::json::object();  // shown from the file (or its warning) as before
   }
@@ -139,10 +148,14 @@ void writeTargetNpy(const std::string& path, const NodeMatrix& target) {
     for (int c = 0; c < 3; ++c) flat[std::size_t(i) * 3 + std::size_t(c)] = target(i, c);
   const fs::path final = fs::absolute(path);
   std::error_code ec;
-  if (!fs::is_directory(final.parent_path(), ec)) throw InputError(path, "-", "the folder does not exist");
-  std::string temp = (final.parent_path() / ("." + final.filename().string() + ".tmp-XXXXXX")).string();
+  if (!fs::is_directory(final.parent_path(), ec))
+    throw InputError(path, "-", "the folder does not exist");
+  std::string temp =
+      (final.parent_path() / ("." + final.filename().string() + ".tmp-XXXXXX")).string();
   const int fd = ::mkstemp(temp.data());
-  if (fd < 0) throw InputError(path, "-", "cannot create a temporary file: " + std::string(std::strerror(errno)));
+  if (fd < 0)
+    throw InputError(path, "-",
+                     "cannot create a temporary file: " + std::string(std::strerror(errno)));
   ::close(fd);
   try {
     writeNpy(temp, {static_cast<std::size_t>(target.rows()), 3}, flat.data());

@@ -25,8 +25,8 @@
 namespace weft::editor {
 
 struct FinalTarget {
-  int node = -1;                  // global vertex (scene order)
-  Vec3 position = Vec3::Zero();   // m
+  int node = -1;                 // global vertex (scene order)
+  Vec3 position = Vec3::Zero();  // m
 };
 
 // The targets held by `sidecar`, sorted by node (empty when there are none).
@@ -41,8 +41,8 @@ std::string finalTargetFileName(const std::string& sceneFile);
 std::string finalTargetFileAfterSaveAs(const std::string& name, const std::string& oldScene,
                                        const std::string& newScene);
 // Renames the sidecar's target file, and the final term naming it, by that rule.
-void renameFinalTargetFile(nlohmann::json& document, nlohmann::json& sidecar, const std::string& oldScene,
-                           const std::string& newScene);
+void renameFinalTargetFile(nlohmann::json& document, nlohmann::json& sidecar,
+                           const std::string& oldScene, const std::string& newScene);
 
 // The target file the editor writes when `document` is saved: the sidecar holds targets and the
 // final term names the sidecar's own file. "" otherwise (no targets, or targets read from a file
@@ -54,8 +54,8 @@ std::string ownedFinalTargetFile(const nlohmann::json& document, const nlohmann:
 // `sidecar`. An empty set removes the final term (and the task when nothing else is left in it).
 // `fileName` is used when the sidecar does not name its file yet. A weight already in the scene
 // is kept.
-void setFinalTargets(nlohmann::json& document, nlohmann::json& sidecar, std::vector<FinalTarget> targets,
-                     const std::string& fileName);
+void setFinalTargets(nlohmann::json& document, nlohmann::json& sidecar,
+                     std::vector<FinalTarget> targets, const std::string& fileName);
 
 // For a scene just opened: the sidecar holding the targets of its final term when that term lists
 // vertices and its file reads ([V, 3], or [S, V, 3] whose last state is used). Returns an empty

@@ -9,12 +9,14 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-const char* const kNames[] = {"translate_x", "translate_y", "translate_z", "rotate_x", "rotate_y", "rotate_z"};
+const char* const kNames[] = {"translate_x", "translate_y", "translate_z",
+                              "rotate_x",    "rotate_y",    "rotate_z"};
 
 // Squared distance between a ray (t >= 0) and a segment, and the ray parameter of the closest
 // point. The infinite lines' closest points, clamped to the segment and then to the ray: exact
 // unless both clamps bind, and then off by less than the pick radius matters.
-float raySegmentDistance2(const Ray& ray, const Eigen::Vector3f& p, const Eigen::Vector3f& q, float& t) {
+float raySegmentDistance2(const Ray& ray, const Eigen::Vector3f& p, const Eigen::Vector3f& q,
+                          float& t) {
   const Eigen::Vector3f v = q - p, w = ray.origin - p;
   const float b = ray.direction.dot(v), c = v.dot(v), d = ray.direction.dot(w), e = v.dot(w);
   const float denominator = c - b * b;  // |direction| = 1
@@ -40,8 +42,13 @@ bool parseGizmoHandle(const std::string& text, GizmoHandle& handle) {
   return false;
 }
 
-Gizmo::Gizmo(const Eigen::Vector3f& origin, bool rotates, const render::Camera& camera, int width, int height)
-    : origin_(origin), rotates_(rotates), camera_(camera), width_(std::max(width, 1)), height_(std::max(height, 1)) {
+Gizmo::Gizmo(const Eigen::Vector3f& origin, bool rotates, const render::Camera& camera, int width,
+             int height)
+    : origin_(origin),
+      rotates_(rotates),
+      camera_(camera),
+      width_(std::max(width, 1)),
+      height_(std::max(height, 1)) {
   if (camera.orthographic) {
     metresPerPixel_ = 2.0f * camera.orthoHalfHeight / float(height_);
   } else {
@@ -88,7 +95,8 @@ GizmoHandle Gizmo::pick(const Ray& ray) const {
       const std::vector<Eigen::Vector3f> line = polyline(handle);
       for (std::size_t i = 0; i + 1 < line.size(); ++i) {
         float t = 0.0f;
-        if (raySegmentDistance2(ray, line[i], line[i + 1], t) <= radius2 && t < bestT) bestT = t, best = handle;
+        if (raySegmentDistance2(ray, line[i], line[i + 1], t) <= radius2 && t < bestT)
+          bestT = t, best = handle;
       }
     }
     if (best != GizmoHandle::None) return best;
@@ -96,7 +104,9 @@ GizmoHandle Gizmo::pick(const Ray& ray) const {
   return GizmoHandle::None;
 }
 
-GizmoHandle Gizmo::pickPixel(float x, float y) const { return pick(pixelRay(camera_, x, y, width_, height_)); }
+GizmoHandle Gizmo::pickPixel(float x, float y) const {
+  return pick(pixelRay(camera_, x, y, width_, height_));
+}
 
 std::optional<Eigen::Vector2f> Gizmo::grabPixel(GizmoHandle handle) const {
   if (!has(handle)) return std::nullopt;
@@ -111,9 +121,10 @@ std::optional<Eigen::Vector2f> Gizmo::grabPixel(GizmoHandle handle) const {
     const auto centre = projectToPixel(camera_, origin_, width_, height_);
     if (!centre) return std::nullopt;
     candidates = screenPolyline(handle);
-    std::stable_sort(candidates.begin(), candidates.end(), [&](const Eigen::Vector2f& a, const Eigen::Vector2f& b) {
-      return (a - *centre).squaredNorm() > (b - *centre).squaredNorm();
-    });
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [&](const Eigen::Vector2f& a, const Eigen::Vector2f& b) {
+                       return (a - *centre).squaredNorm() > (b - *centre).squaredNorm();
+                     });
   }
   for (const Eigen::Vector2f& p : candidates)
     if (p.x() >= 0 && p.y() >= 0 && p.x() < float(width_) && p.y() < float(height_) &&
@@ -122,7 +133,8 @@ std::optional<Eigen::Vector2f> Gizmo::grabPixel(GizmoHandle handle) const {
   return std::nullopt;
 }
 
-std::optional<GizmoDrag> GizmoDrag::begin(const Gizmo& gizmo, GizmoHandle handle, const Eigen::Vector2f& pixel) {
+std::optional<GizmoDrag> GizmoDrag::begin(const Gizmo& gizmo, GizmoHandle handle,
+                                          const Eigen::Vector2f& pixel) {
   if (!gizmo.has(handle)) return std::nullopt;
   const auto centre = projectToPixel(gizmo.camera(), gizmo.origin(), gizmo.width(), gizmo.height());
   if (!centre) return std::nullopt;
@@ -135,8 +147,10 @@ std::optional<GizmoDrag> GizmoDrag::begin(const Gizmo& gizmo, GizmoHandle handle
     // The axis's image over one arrow length, per metre: linear in the mouse motion, as a
     // drag along a line on screen should be (perspective makes the true mapping nonlinear).
     const float length = Gizmo::kArrowPixels * gizmo.metresPerPixel();
-    const auto tip = projectToPixel(gizmo.camera(), gizmo.origin() + length * axis, gizmo.width(), gizmo.height());
-    if (!tip || (*tip - *centre).norm() < 2.0f) return std::nullopt;  // the arrow points at the camera
+    const auto tip = projectToPixel(gizmo.camera(), gizmo.origin() + length * axis, gizmo.width(),
+                                    gizmo.height());
+    if (!tip || (*tip - *centre).norm() < 2.0f)
+      return std::nullopt;  // the arrow points at the camera
     drag.pixelsPerMetre_ = (*tip - *centre) / length;
   } else {
     if ((pixel - *centre).norm() < 1.0f) return std::nullopt;  // no angle about the centre itself
@@ -166,12 +180,15 @@ Eigen::Vector3d eulerXyzDegrees(const Eigen::Matrix3d& r, const Eigen::Vector3d&
   const double cosY = std::hypot(r(0, 0), r(1, 0));
   Eigen::Vector3d first, second;
   if (cosY > 1e-12) {
-    first = Eigen::Vector3d(std::atan2(r(2, 1), r(2, 2)), std::atan2(-r(2, 0), cosY), std::atan2(r(1, 0), r(0, 0))) * toDegrees;
+    first = Eigen::Vector3d(std::atan2(r(2, 1), r(2, 2)), std::atan2(-r(2, 0), cosY),
+                            std::atan2(r(1, 0), r(0, 0))) *
+            toDegrees;
     // The same rotation with the Y angle past +-90: (x + 180, 180 - y, z + 180).
     second = Eigen::Vector3d(first.x() + 180.0, 180.0 - first.y(), first.z() + 180.0);
   } else {
     // R = Ry(+-90) Rx(x) with z = 0: its second row is (0, cos x, -sin x).
-    first = second = Eigen::Vector3d(std::atan2(-r(1, 2), r(1, 1)), std::atan2(-r(2, 0), cosY), 0.0) * toDegrees;
+    first = second =
+        Eigen::Vector3d(std::atan2(-r(1, 2), r(1, 1)), std::atan2(-r(2, 0), cosY), 0.0) * toDegrees;
   }
   // Each angle moved by whole turns to lie nearest `near`, then the nearer of the two triples:
   // a drag turns the numbers continuously instead of flipping them at 90 or 180 degrees.

@@ -23,21 +23,29 @@ enum class GizmoHandle { None = -1, TranslateX, TranslateY, TranslateZ, RotateX,
 // "translate_x" ... "rotate_z" (the script's names), "none".
 const char* gizmoHandleName(GizmoHandle handle);
 bool parseGizmoHandle(const std::string& text, GizmoHandle& handle);
-inline bool isRotation(GizmoHandle h) { return h >= GizmoHandle::RotateX; }
+inline bool isRotation(GizmoHandle h) {
+  return h >= GizmoHandle::RotateX;
+}
 // 0, 1, 2 for the X, Y, Z handles (-1 for None).
-inline int gizmoAxis(GizmoHandle h) { return h == GizmoHandle::None ? -1 : static_cast<int>(h) % 3; }
+inline int gizmoAxis(GizmoHandle h) {
+  return h == GizmoHandle::None ? -1 : static_cast<int>(h) % 3;
+}
 
 class Gizmo {
  public:
   // Sizes in pixels: constant on screen whatever the distance, so the handles stay grabbable.
-  static constexpr float kArrowPixels = 80.0f;   // arrow length
-  static constexpr float kArrowStart = 0.2f;     // arrows start this fraction out (the centre is crowded)
-  static constexpr float kRingPixels = 100.0f;   // ring radius: outside the arrows, so they never cross
-  static constexpr float kPickPixels = 6.0f;     // how far from a handle's centre line a ray still grabs it
+  static constexpr float kArrowPixels = 80.0f;  // arrow length
+  static constexpr float kArrowStart =
+      0.2f;  // arrows start this fraction out (the centre is crowded)
+  static constexpr float kRingPixels =
+      100.0f;  // ring radius: outside the arrows, so they never cross
+  static constexpr float kPickPixels =
+      6.0f;  // how far from a handle's centre line a ray still grabs it
   static constexpr int kRingSegments = 64;
 
   // A gizmo at `origin` seen through `camera` in a width x height view; `rotates` adds the rings.
-  Gizmo(const Eigen::Vector3f& origin, bool rotates, const render::Camera& camera, int width, int height);
+  Gizmo(const Eigen::Vector3f& origin, bool rotates, const render::Camera& camera, int width,
+        int height);
 
   const Eigen::Vector3f& origin() const { return origin_; }
   bool rotates() const { return rotates_; }
@@ -79,7 +87,8 @@ class GizmoDrag {
  public:
   // nullopt when the handle cannot be dragged from this view: an arrow pointing at the camera
   // (it has no direction on screen), or a pixel on the gizmo's centre.
-  static std::optional<GizmoDrag> begin(const Gizmo& gizmo, GizmoHandle handle, const Eigen::Vector2f& pixel);
+  static std::optional<GizmoDrag> begin(const Gizmo& gizmo, GizmoHandle handle,
+                                        const Eigen::Vector2f& pixel);
 
   GizmoHandle handle() const { return handle_; }
   // The amount for the mouse at `pixel` (since the start).
@@ -99,6 +108,7 @@ class GizmoDrag {
 // nearest `near` (each angle within half a turn of it): what the document held before a drag, so
 // that the numbers change continuously. At gimbal lock (Y angle +-90) the Z angle is 0 and X
 // takes the whole turn about the shared axis.
-Eigen::Vector3d eulerXyzDegrees(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& near = Eigen::Vector3d::Zero());
+Eigen::Vector3d eulerXyzDegrees(const Eigen::Matrix3d& rotation,
+                                const Eigen::Vector3d& near = Eigen::Vector3d::Zero());
 
 }  // namespace weft::editor

@@ -29,15 +29,17 @@ void vectorText(const char* label, const Vec3& v, const char* unit) {
 // Series index k is the step that produced state k + 1.
 void plot(const char* label, const std::vector<float>& values, int state, const char* overlay) {
   const float width = ImGui::GetContentRegionAvail().x;
-  ImGui::PlotLines(label, values.empty() ? nullptr : values.data(), int(values.size()), 0, overlay, FLT_MAX,
-                   FLT_MAX, ImVec2(width, 44.0f));
+  ImGui::PlotLines(label, values.empty() ? nullptr : values.data(), int(values.size()), 0, overlay,
+                   FLT_MAX, FLT_MAX, ImVec2(width, 44.0f));
   if (values.size() < 2 || state < 1) return;
   const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
   const ImGuiStyle& style = ImGui::GetStyle();
   const float left = low.x + style.FramePadding.x, right = high.x - style.FramePadding.x;
-  const float t = float(std::min<std::size_t>(std::size_t(state - 1), values.size() - 1)) / float(values.size() - 1);
+  const float t = float(std::min<std::size_t>(std::size_t(state - 1), values.size() - 1)) /
+                  float(values.size() - 1);
   const float x = left + t * (right - left);
-  ImGui::GetWindowDrawList()->AddLine(ImVec2(x, low.y), ImVec2(x, high.y), IM_COL32(255, 210, 60, 200), 1.5f);
+  ImGui::GetWindowDrawList()->AddLine(ImVec2(x, low.y), ImVec2(x, high.y),
+                                      IM_COL32(255, 210, 60, 200), 1.5f);
 }
 
 }  // namespace
@@ -54,12 +56,14 @@ void InspectorPanel::draw(EditorSession& session) {
   if (focus < 0) {
     ImGui::TextDisabled("Click a cloth vertex to inspect it.");
   } else if (const auto r = session.inspect()) {
-    ImGui::Text("Vertex %d (cloth %d, vertex %d), state %d", r->node, r->cloth, r->localVertex, r->state);
+    ImGui::Text("Vertex %d (cloth %d, vertex %d), state %d", r->node, r->cloth, r->localVertex,
+                r->state);
     vectorText("position", r->position, "m");
     vectorText("velocity", r->velocity, "m/s");
     ImGui::TextUnformatted("branch   ");
     ImGui::SameLine(0, 0);
-    ImGui::TextColored(branchColour(r->branch), "%s", r->branch == ContactBranch::None ? "no contact" : branchName(r->branch));
+    ImGui::TextColored(branchColour(r->branch), "%s",
+                       r->branch == ContactBranch::None ? "no contact" : branchName(r->branch));
     // The task loss's gradient at this vertex and state: dL/dx_n with the state's velocities held
     // (the loss's units per metre), from a backward pass over the cached run.
     if (const auto g = session.stateGradient(r->node, r->state)) {
@@ -70,7 +74,8 @@ void InspectorPanel::draw(EditorSession& session) {
     } else if (ImGui::SmallButton("Compute loss gradient")) {
       gradientError_ = session.computeStateGradients();
     }
-    const std::string& error = gradientError_.empty() ? session.stateGradientError() : gradientError_;
+    const std::string& error =
+        gradientError_.empty() ? session.stateGradientError() : gradientError_;
     if (!error.empty()) {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
       ImGui::TextWrapped("%s", error.c_str());
@@ -79,7 +84,8 @@ void InspectorPanel::draw(EditorSession& session) {
     if (!r->contacts.empty()) {
       vectorText("force", r->contactForce, "N");
       vectorText("impulse", r->contactImpulse, "N s");
-      if (ImGui::BeginTable("contacts", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingStretchProp)) {
+      if (ImGui::BeginTable("contacts", 4,
+                            ImGuiTableFlags_Borders | ImGuiTableFlags_SizingStretchProp)) {
         ImGui::TableSetupColumn("with");
         ImGui::TableSetupColumn("branch");
         ImGui::TableSetupColumn("|force| (N)");
@@ -132,7 +138,8 @@ void InspectorPanel::draw(EditorSession& session) {
   }
   std::snprintf(text, sizeof text, "PD iterations %d", frame ? frame->stats.pdIterations : 0);
   plot("##pd", series.pdIterations(), state, text);
-  std::snprintf(text, sizeof text, "log10 residual (m/s^2) %.3g", frame ? frame->stats.residual : 0.0);
+  std::snprintf(text, sizeof text, "log10 residual (m/s^2) %.3g",
+                frame ? frame->stats.residual : 0.0);
   plot("##residual", series.log10Residual(), state, text);
 }
 

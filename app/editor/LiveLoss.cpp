@@ -9,7 +9,8 @@ namespace weft::editor {
 
 const LossValue& LiveLoss::evaluate(const EditorDocument& document, const SimulationCache& cache) {
   const int frames = cache.frameCount();
-  if (document.revision() == revision_ && cache.runId() == runId_ && frames == frames_) return value_;
+  if (document.revision() == revision_ && cache.runId() == runId_ && frames == frames_)
+    return value_;
   revision_ = document.revision();
   frames_ = frames;
   value_ = LossValue();
@@ -56,8 +57,8 @@ const LossValue& LiveLoss::evaluate(const EditorDocument& document, const Simula
       const nlohmann::json& term = scene->task->loss.at("final");
       std::vector<int> vertices;
       for (const FinalTarget& t : targets) vertices.push_back(t.node);
-      const FinalFrameLoss loss(finalTargetMatrix(targets, buildClothModel(*scene).rest.vertices), vertices,
-                                term.value("weight", 1.0));
+      const FinalFrameLoss loss(finalTargetMatrix(targets, buildClothModel(*scene).rest.vertices),
+                                vertices, term.value("weight", 1.0));
       const double v = loss.value(trajectory_);
       value_.terms.emplace_back("final", v);
       value_.total += v;

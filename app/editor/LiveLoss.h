@@ -19,7 +19,8 @@ namespace weft::editor {
 
 struct LossValue {
   bool available = false;
-  std::string note;  // why it is not available (no task, no complete run, a target that cannot be read)
+  std::string
+      note;  // why it is not available (no task, no complete run, a target that cannot be read)
   double total = 0.0;
   std::vector<std::pair<std::string, double>> terms;  // (term name, value)
 };

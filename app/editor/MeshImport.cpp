@@ -24,7 +24,9 @@ std::string metres(double v) {
   return text;
 }
 
-nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+nlohmann::json vec(const Vec3& v) {
+  return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
 
 // True when some vertex belongs to two triangles: a mesh without one is a pile of loose
 // triangles, which as cloth falls apart (a file exported with a vertex per triangle corner).
@@ -58,13 +60,15 @@ bool readAndPlace(const MeshImportOptions& o, const std::string& documentFile,
     read = readMesh(o.file);
   } catch (const std::exception& e) {
     const auto* input = dynamic_cast<const InputError*>(&e);
-    result.error = o.file + ": cannot read the mesh: " + (input ? input->reason() : std::string(e.what()));
+    result.error =
+        o.file + ": cannot read the mesh: " + (input ? input->reason() : std::string(e.what()));
     return false;
   }
   result.vertices = read.vertexCount();
   result.triangles = read.triangleCount();
   if (result.vertices == 0 || result.triangles == 0) {
-    result.error = o.file + ": the file holds no triangles (" + std::to_string(result.vertices) + " vertices)";
+    result.error =
+        o.file + ": the file holds no triangles (" + std::to_string(result.vertices) + " vertices)";
     return false;
   }
   if (!read.vertices.allFinite()) {
@@ -102,25 +106,29 @@ bool readAndPlace(const MeshImportOptions& o, const std::string& documentFile,
   result.upper = placed.colwise().maxCoeff().transpose();
   const double size = (result.upper - result.lower).maxCoeff();
   if (size > kLargestPlausible)
-    result.warnings.push_back("the mesh spans " + metres(size) +
-                              " m: the file is probably not in metres (set a scale, or fit it to a size)");
+    result.warnings.push_back(
+        "the mesh spans " + metres(size) +
+        " m: the file is probably not in metres (set a scale, or fit it to a size)");
   else if (size < kSmallestPlausible)
-    result.warnings.push_back("the mesh spans only " + metres(size) +
-                              " m: the file is probably not in metres (set a scale, or fit it to a size)");
+    result.warnings.push_back(
+        "the mesh spans only " + metres(size) +
+        " m: the file is probably not in metres (set a scale, or fit it to a size)");
 
   mesh = {{"file", documentRelativePath(o.file, documentFile, directory)}};
   if (scale != 1.0) mesh["scale"] = scale;
   if (!transform.rotateDeg.isZero() || !transform.translate.isZero())
-    mesh["transform"] = {{"rotate_deg", vec(transform.rotateDeg)}, {"translate", vec(transform.translate)}};
+    mesh["transform"] = {{"rotate_deg", vec(transform.rotateDeg)},
+                         {"translate", vec(transform.translate)}};
   return true;
 }
 
 // Validates `entry` alone through the loader, in a minimal scene; the loader's message names the
 // file and what is wrong, without the minimal scene's JSON path.
-void validate(const nlohmann::json& minimal, const std::string& documentFile, const std::string& directory,
-              MeshImport& result) {
+void validate(const nlohmann::json& minimal, const std::string& documentFile,
+              const std::string& directory, MeshImport& result) {
   try {
-    const Scene scene = parseScene(minimal, documentFile.empty() ? "untitled" : documentFile, directory);
+    const Scene scene =
+        parseScene(minimal, documentFile.empty() ? "untitled" : documentFile, directory);
     for (const std::string& w : scene.warnings) {
       // "<file>: <path>: what" -> "what" (the path is the minimal scene's, not the document's)
       const std::size_t cut = w.find(": ", w.find(": ") + 2);
@@ -158,12 +166,13 @@ MeshImport prepareGarment(const MeshImportOptions& o, const std::string& documen
   TriangleMesh read;
   if (!readAndPlace(o, documentFile, documentDirectory, result, mesh, read)) return result;
   if (result.triangles > 1 && !trianglesShareVertices(read))
-    result.warnings.push_back(
-        "no two triangles share a vertex: as cloth the " + std::to_string(result.triangles) +
-        " triangles fall apart (weld the file's vertices first)");
+    result.warnings.push_back("no two triangles share a vertex: as cloth the " +
+                              std::to_string(result.triangles) +
+                              " triangles fall apart (weld the file's vertices first)");
   if (o.repair) mesh["repair"] = true;
   result.entry = {{"mesh", mesh}, {"material", defaultGarmentMaterial()}};
-  const nlohmann::json minimal = {{"time", {{"dt", 0.01}, {"steps", 1}}}, {"cloths", {result.entry}}};
+  const nlohmann::json minimal = {{"time", {{"dt", 0.01}, {"steps", 1}}},
+                                  {"cloths", {result.entry}}};
   validate(minimal, documentFile, documentDirectory, result);
   if (!result.ok()) result.error = o.file + ": " + result.error;
   return result;
@@ -179,8 +188,9 @@ MeshImport prepareMeshObstacle(const MeshImportOptions& o, const std::string& do
   result.entry = {{"mesh", mesh}, {"friction", 0.3}};
   const nlohmann::json minimal = {
       {"time", {{"dt", 0.01}, {"steps", 1}}},
-      {"cloths", {{{"mesh", {{"grid", {{"size", {1.0, 1.0}}, {"resolution", {1, 1}}}}}},
-                   {"material", defaultGarmentMaterial()}}}},
+      {"cloths",
+       {{{"mesh", {{"grid", {{"size", {1.0, 1.0}}, {"resolution", {1, 1}}}}}},
+         {"material", defaultGarmentMaterial()}}}},
       {"obstacles", {result.entry}}};
   validate(minimal, documentFile, documentDirectory, result);
   if (!result.ok()) result.error = o.file + ": " + result.error;

@@ -17,15 +17,15 @@
 namespace weft::editor {
 
 struct MeshImportOptions {
-  std::string file;         // absolute, or relative to the working directory
-  double scale = 1.0;       // file units to metres, applied first
+  std::string file;    // absolute, or relative to the working directory
+  double scale = 1.0;  // file units to metres, applied first
   // Instead of `scale`: scale the mesh so that its largest extent is `fitSize` metres, and move
   // its bounding-box centre to `translate` (garment files come in any unit: cm, inches, ...).
   bool fit = false;
   double fitSize = 1.0;
   Vec3 rotateDeg = Vec3::Zero();  // about X, then Y, then Z (the scene's transform)
   Vec3 translate = Vec3::Zero();
-  bool repair = false;        // cloth: drop degenerate triangles (with a warning) instead of failing
+  bool repair = false;  // cloth: drop degenerate triangles (with a warning) instead of failing
   bool smoothNormals = true;  // obstacle: contact normals interpolated across triangles
 };
 
@@ -35,7 +35,7 @@ struct MeshImport {
   int vertices = 0, triangles = 0;
   Vec3 fileLower = Vec3::Zero(), fileUpper = Vec3::Zero();  // bounding box in file units
   Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();          // after scale and transform (m)
-  nlohmann::json entry;               // the cloths[] or obstacles[] entry
+  nlohmann::json entry;                                     // the cloths[] or obstacles[] entry
   bool ok() const { return error.empty(); }
 };
 

@@ -16,7 +16,8 @@ const char* title(MeshImportDialog::Kind kind) {
 
 bool vector3(const char* label, Vec3& v) {
   double d[3] = {v.x(), v.y(), v.z()};
-  const bool changed = ImGui::InputScalarN(label, ImGuiDataType_Double, d, 3, nullptr, nullptr, "%.4g");
+  const bool changed =
+      ImGui::InputScalarN(label, ImGuiDataType_Double, d, 3, nullptr, nullptr, "%.4g");
   if (changed) v = Vec3(d[0], d[1], d[2]);
   return changed;
 }
@@ -37,9 +38,10 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
   }
   if (!ImGui::BeginPopupModal(name, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
   bool changed = false;
-  ImGui::TextUnformatted(kind_ == Kind::Garment
-                             ? "Mesh file (OBJ, glTF, FBX, PLY, ...; absolute or relative to the working directory):"
-                             : "Obstacle mesh file (a closed, outward-facing surface):");
+  ImGui::TextUnformatted(
+      kind_ == Kind::Garment
+          ? "Mesh file (OBJ, glTF, FBX, PLY, ...; absolute or relative to the working directory):"
+          : "Obstacle mesh file (a closed, outward-facing surface):");
   ImGui::SetNextItemWidth(520.0f);
   changed |= ImGui::InputText("##file", path_, sizeof path_);
   ImGui::PushItemWidth(260.0f);
@@ -75,8 +77,8 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
   if (previewed_) {
     if (preview_.ok()) {
       const Vec3 size = preview_.upper - preview_.lower;
-      ImGui::Text("%d vertices, %d triangles; %.3g x %.3g x %.3g m once placed", preview_.vertices, preview_.triangles,
-                  size.x(), size.y(), size.z());
+      ImGui::Text("%d vertices, %d triangles; %.3g x %.3g x %.3g m once placed", preview_.vertices,
+                  preview_.triangles, size.x(), size.y(), size.z());
     } else {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
       ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 520.0f);
@@ -93,10 +95,12 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
     }
   }
   if (import) {
-    const std::string error =
-        kind_ == Kind::Garment ? session.importGarment(options_) : session.importMeshObstacle(options_);
+    const std::string error = kind_ == Kind::Garment ? session.importGarment(options_)
+                                                     : session.importMeshObstacle(options_);
     if (error.empty()) {
-      app.report(std::string(kind_ == Kind::Garment ? "imported " : "added mesh obstacle ") + options_.file, false);
+      app.report(std::string(kind_ == Kind::Garment ? "imported " : "added mesh obstacle ") +
+                     options_.file,
+                 false);
       ImGui::CloseCurrentPopup();
     } else {
       // Kept open, showing why: the document is unchanged.

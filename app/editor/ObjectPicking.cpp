@@ -45,14 +45,16 @@ bool insideDrawnSquare(const Obstacle& plane, const RigidPose& pose, const Drawn
   render::Vec3f e1, e2;
   render::perpendicularFrame(normal.cast<float>(), e1, e2);
   const Vec3 d = hit - centre;
-  return std::abs(d.dot(e1.cast<double>())) <= extent.halfSize && std::abs(d.dot(e2.cast<double>())) <= extent.halfSize;
+  return std::abs(d.dot(e1.cast<double>())) <= extent.halfSize &&
+         std::abs(d.dot(e2.cast<double>())) <= extent.halfSize;
 }
 
 }  // namespace
 
 std::optional<ObjectHit> pickObject(const Scene& scene, double time,
                                     const render::SurfaceMesh& cloth, const Ray& ray,
-                                    double maxDistance, const std::optional<DrawnPlaneExtent>& planes) {
+                                    double maxDistance,
+                                    const std::optional<DrawnPlaneExtent>& planes) {
   std::optional<ObjectHit> best;
   auto offer = [&](EditorObject::Kind kind, int index, double distance) {
     if (best && best->distance <= distance) return;
@@ -69,7 +71,8 @@ std::optional<ObjectHit> pickObject(const Scene& scene, double time,
     const RigidPose pose = o.motion ? poseAt(*o.motion, time) : RigidPose();
     if (const auto t = traceShape(*shape, pose, ray, maxDistance)) {
       const Vec3 hit = ray.origin.cast<double>() + *t * ray.direction.cast<double>().normalized();
-      if (o.shape == Obstacle::Shape::Plane && planes && !insideDrawnSquare(o, pose, *planes, hit)) continue;
+      if (o.shape == Obstacle::Shape::Plane && planes && !insideDrawnSquare(o, pose, *planes, hit))
+        continue;
       offer(EditorObject::Kind::Obstacle, int(k), *t);
     }
   }

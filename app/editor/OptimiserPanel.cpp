@@ -21,7 +21,8 @@ namespace {
 
 // The bounds a run would use for `path`: the parameter kind's default box, replaced by an
 // explicit task.bounds entry. False when the path is not an optimisable parameter.
-bool effectiveBounds(const Scene& scene, const std::string& path, double& lower, double& upper, std::string& error) {
+bool effectiveBounds(const Scene& scene, const std::string& path, double& lower, double& upper,
+                     std::string& error) {
   try {
     SceneParameter p = resolveSceneParameter(scene, path, "task.parameters");
     applyDefaultBounds(p);
@@ -35,11 +36,14 @@ bool effectiveBounds(const Scene& scene, const std::string& path, double& lower,
   }
 }
 
-nlohmann::json bound(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json bound(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
-void plotHistory(const char* id, const std::vector<float>& values, const char* overlay, float height) {
-  ImGui::PlotLines(id, values.empty() ? nullptr : values.data(), int(values.size()), 0, overlay, FLT_MAX, FLT_MAX,
-                   ImVec2(ImGui::GetContentRegionAvail().x, height));
+void plotHistory(const char* id, const std::vector<float>& values, const char* overlay,
+                 float height) {
+  ImGui::PlotLines(id, values.empty() ? nullptr : values.data(), int(values.size()), 0, overlay,
+                   FLT_MAX, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, height));
 }
 
 }  // namespace
@@ -55,11 +59,13 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
   if (!scene) {
     ImGui::TextDisabled("The scene does not validate.");
   } else if (!scene->task) {
-    ImGui::TextWrapped("The scene has no task yet: give it a loss first (Targets tab: targets or a target "
-                       "motion), then choose the parameters here.");
+    ImGui::TextWrapped(
+        "The scene has no task yet: give it a loss first (Targets tab: targets or a target "
+        "motion), then choose the parameters here.");
   } else {
     if (scene->task->parameters.empty())
-      ImGui::TextWrapped("The task names no parameters yet: add the ones the optimiser may change.");
+      ImGui::TextWrapped(
+          "The task names no parameters yet: add the ones the optimiser may change.");
     else
       ImGui::TextUnformatted("Parameters (task.parameters) and bounds:");
     ImGui::BeginDisabled(active);
@@ -102,14 +108,18 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
     if (ImGui::BeginCombo("add parameter", "choose...")) {
       const std::vector<std::string>& list = scene->task->parameters;
       for (const std::string& path : differentiableParameterPaths(*scene))
-        if (std::find(list.begin(), list.end(), path) == list.end() && ImGui::Selectable(path.c_str())) added = path;
+        if (std::find(list.begin(), list.end(), path) == list.end() &&
+            ImGui::Selectable(path.c_str()))
+          added = path;
       ImGui::EndCombo();
     }
     ImGui::EndDisabled();
     // Edited after drawing: an edit validates the document again and replaces `scene`.
     if (!added.empty() || !removed.empty()) {
-      const std::string error = added.empty() ? session.removeTaskParameter(removed) : session.addTaskParameter(added);
-      app.report(error.empty() ? (added.empty() ? "removed " + removed : "added " + added) : error, !error.empty());
+      const std::string error =
+          added.empty() ? session.removeTaskParameter(removed) : session.addTaskParameter(added);
+      app.report(error.empty() ? (added.empty() ? "removed " + removed : "added " + added) : error,
+                 !error.empty());
       scene = doc.scene();
     }
   }
@@ -138,8 +148,10 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
     setup.settings.learningRate = learningRate_;
     setup.settings.seed = static_cast<unsigned>(std::max(seed_, 0));
     const std::string error = session.startOptimizer(setup, paused);
-    if (!error.empty()) app.report(error, true);
-    else if (paused) run.step(1);
+    if (!error.empty())
+      app.report(error, true);
+    else if (paused)
+      run.step(1);
   };
   // Controls.
   ImGui::BeginDisabled(!scene || chosen.empty() || active);
@@ -194,12 +206,14 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
   ImGui::BeginDisabled(!best);
   if (ImGui::Button("Apply best")) {
     const std::string error = session.applyOptimizerResult();
-    app.report(error.empty() ? "applied the optimised parameters (Ctrl+Z undoes)" : error, !error.empty());
+    app.report(error.empty() ? "applied the optimised parameters (Ctrl+Z undoes)" : error,
+               !error.empty());
   }
   ImGui::SameLine();
   if (ImGui::Button("Revert to start values")) {
     const std::string error = session.revertToOptimizerStart();
-    app.report(error.empty() ? "reverted to the values the run started from" : error, !error.empty());
+    app.report(error.empty() ? "reverted to the values the run started from" : error,
+               !error.empty());
   }
   ImGui::EndDisabled();
   // Other edits since the start (the parameters themselves aside) make the result stale.

@@ -40,8 +40,11 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
   if (setup.parameters.empty()) return "choose at least one parameter to optimise";
   std::unique_ptr<SimulationObjective> objective;
   try {
-    if (!scene.task) throw InputError(scene.file, "task", "the scene has no task: set targets or load a target motion first");
-    objective = std::make_unique<SimulationObjective>(scene, ParameterSet::fromPaths(scene, setup.parameters));
+    if (!scene.task)
+      throw InputError(scene.file, "task",
+                       "the scene has no task: set targets or load a target motion first");
+    objective = std::make_unique<SimulationObjective>(
+        scene, ParameterSet::fromPaths(scene, setup.parameters));
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -49,7 +52,8 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
   const ParameterSpace& space = objective->space();
   method_ = setup.method;
   parameters_ = setup.parameters;
-  const Eigen::VectorXd lower = space.lowerValues(), upper = space.upperValues(), initial = space.initialValues();
+  const Eigen::VectorXd lower = space.lowerValues(), upper = space.upperValues(),
+                        initial = space.initialValues();
   lower_.assign(lower.data(), lower.data() + lower.size());
   upper_.assign(upper.data(), upper.data() + upper.size());
   initial_.assign(initial.data(), initial.data() + initial.size());
@@ -81,8 +85,8 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
     const ParameterSpace& space = objective_->space();
     try {
       const OptimizationResult result =
-          optimizer_->minimize(*gated_, space.toCoordinates(space.initialValues()), space.lowerCoordinates(),
-                               space.upperCoordinates());
+          optimizer_->minimize(*gated_, space.toCoordinates(space.initialValues()),
+                               space.lowerCoordinates(), space.upperCoordinates());
       {
         std::lock_guard<std::mutex> lock(mutex_);
         stopReason_ = result.stopReason;
@@ -122,7 +126,9 @@ void OptimizerRun::cancel() {
   join();
 }
 
-void OptimizerRun::wait() { join(); }
+void OptimizerRun::wait() {
+  join();
+}
 
 OptimizerRun::Status OptimizerRun::status() const {
   const Status s = status_.load();
@@ -132,12 +138,18 @@ OptimizerRun::Status OptimizerRun::status() const {
 
 const char* OptimizerRun::statusName(Status status) {
   switch (status) {
-    case Status::Idle: return "idle";
-    case Status::Running: return "running";
-    case Status::Paused: return "paused";
-    case Status::Finished: return "finished";
-    case Status::Cancelled: return "cancelled";
-    case Status::Failed: return "failed";
+    case Status::Idle:
+      return "idle";
+    case Status::Running:
+      return "running";
+    case Status::Paused:
+      return "paused";
+    case Status::Finished:
+      return "finished";
+    case Status::Cancelled:
+      return "cancelled";
+    case Status::Failed:
+      return "failed";
   }
   return "?";
 }

@@ -17,11 +17,14 @@ namespace {
 Vec3 vec3At(const nlohmann::json& entry, const char* key, const Vec3& fallback) {
   if (!entry.contains(key)) return fallback;
   const nlohmann::json& v = entry.at(key);
-  if (!v.is_array() || v.size() != 3) throw std::invalid_argument(std::string(key) + " must be [x, y, z]");
+  if (!v.is_array() || v.size() != 3)
+    throw std::invalid_argument(std::string(key) + " must be [x, y, z]");
   return Vec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
 }
 
-nlohmann::json array3(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+nlohmann::json array3(const Vec3& v) {
+  return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
 
 // Adds `delta` to component `axis` of the [x, y, z] at `key` ([0, 0, 0] when absent), leaving
 // the other two components exactly as they were.
@@ -49,7 +52,8 @@ nlohmann::json& keyframeList(nlohmann::json& attachment) {
   nlohmann::json& trajectory = attachment["trajectory"];
   if (!trajectory.is_object()) trajectory = nlohmann::json::object();
   if (trajectory.contains("hermite"))
-    throw std::invalid_argument("this handle follows a Hermite spline: edit its knots and tangents in the scene file");
+    throw std::invalid_argument(
+        "this handle follows a Hermite spline: edit its knots and tangents in the scene file");
   if (!trajectory.contains("keyframes") || !trajectory["keyframes"].is_array())
     trajectory["keyframes"] = nlohmann::json::array();
   return trajectory["keyframes"];
@@ -59,15 +63,20 @@ nlohmann::json& keyframeList(nlohmann::json& attachment) {
 
 std::string EditorObject::path() const {
   switch (kind) {
-    case Kind::None: return "";
-    case Kind::Obstacle: return "obstacles." + std::to_string(index);
-    case Kind::Cloth: return "cloths." + std::to_string(index);
-    case Kind::Handle: return "cloths." + std::to_string(index) + ".attachments." + std::to_string(attachment);
+    case Kind::None:
+      return "";
+    case Kind::Obstacle:
+      return "obstacles." + std::to_string(index);
+    case Kind::Cloth:
+      return "cloths." + std::to_string(index);
+    case Kind::Handle:
+      return "cloths." + std::to_string(index) + ".attachments." + std::to_string(attachment);
   }
   return "";
 }
 
-std::string findEditorObject(const nlohmann::json& document, const std::string& path, EditorObject& object) {
+std::string findEditorObject(const nlohmann::json& document, const std::string& path,
+                             EditorObject& object) {
   if (path.empty()) {
     object = EditorObject();
     return "";
@@ -78,17 +87,20 @@ std::string findEditorObject(const nlohmann::json& document, const std::string& 
     return std::stoi(text);
   };
   EditorObject found;
-  if (parts.size() == 2 && parts[0] == "obstacles") found = {EditorObject::Kind::Obstacle, index(parts[1]), -1};
-  else if (parts.size() == 2 && parts[0] == "cloths") found = {EditorObject::Kind::Cloth, index(parts[1]), -1};
+  if (parts.size() == 2 && parts[0] == "obstacles")
+    found = {EditorObject::Kind::Obstacle, index(parts[1]), -1};
+  else if (parts.size() == 2 && parts[0] == "cloths")
+    found = {EditorObject::Kind::Cloth, index(parts[1]), -1};
   else if (parts.size() == 4 && parts[0] == "cloths" && parts[2] == "attachments")
     found = {EditorObject::Kind::Handle, index(parts[1]), index(parts[3])};
   else
     return path + ": the gizmo places obstacles.N, cloths.N and cloths.N.attachments.M (a handle)";
   const nlohmann::json* entry = findJsonPath(document, path);
-  if (found.index < 0 || (found.kind == EditorObject::Kind::Handle && found.attachment < 0) || !entry ||
-      !entry->is_object())
+  if (found.index < 0 || (found.kind == EditorObject::Kind::Handle && found.attachment < 0) ||
+      !entry || !entry->is_object())
     return path + ": there is no such entry in the scene";
-  if (found.kind == EditorObject::Kind::Handle && entry->value("kind", std::string("fixed")) != "handle")
+  if (found.kind == EditorObject::Kind::Handle &&
+      entry->value("kind", std::string("fixed")) != "handle")
     return path + ": a fixed attachment does not move (only a handle, kind \"handle\", has keys)";
   object = found;
   return "";
@@ -116,12 +128,16 @@ void translateObject(nlohmann::json& entry, EditorObject::Kind kind, int axis, d
     shiftComponent(mesh["transform"], "translate", axis, delta);
     return;
   }
-  if (kind != EditorObject::Kind::Obstacle) throw std::invalid_argument("only obstacles and cloths move as a whole");
+  if (kind != EditorObject::Kind::Obstacle)
+    throw std::invalid_argument("only obstacles and cloths move as a whole");
   const std::string shape = obstacleShape(entry);
   nlohmann::json& s = entry.at(shape);
-  if (shape == "plane") shiftComponent(s, "point", axis, delta);
-  else if (shape == "sphere" || shape == "box") shiftComponent(s, "center", axis, delta);
-  else if (shape == "capsule" || shape == "cylinder") shiftComponent(s, "a", axis, delta), shiftComponent(s, "b", axis, delta);
+  if (shape == "plane")
+    shiftComponent(s, "point", axis, delta);
+  else if (shape == "sphere" || shape == "box")
+    shiftComponent(s, "center", axis, delta);
+  else if (shape == "capsule" || shape == "cylinder")
+    shiftComponent(s, "a", axis, delta), shiftComponent(s, "b", axis, delta);
   else if (shape == "mesh") {
     if (!s.contains("transform")) s["transform"] = nlohmann::json::object();
     shiftComponent(s["transform"], "translate", axis, delta);
@@ -130,11 +146,13 @@ void translateObject(nlohmann::json& entry, EditorObject::Kind kind, int axis, d
   }
 }
 
-void rotateObject(nlohmann::json& entry, EditorObject::Kind kind, int axis, double radians, const Vec3& centre) {
+void rotateObject(nlohmann::json& entry, EditorObject::Kind kind, int axis, double radians,
+                  const Vec3& centre) {
   if (axis < 0 || axis > 2) throw std::invalid_argument("axis must be 0, 1 or 2");
   const Mat3 q = Eigen::AngleAxisd(radians, Vec3::Unit(axis)).toRotationMatrix();
   if (kind == EditorObject::Kind::Cloth) return rotateTransform(entry.at("mesh"), q, centre);
-  if (kind != EditorObject::Kind::Obstacle) throw std::invalid_argument("only obstacles and cloths turn");
+  if (kind != EditorObject::Kind::Obstacle)
+    throw std::invalid_argument("only obstacles and cloths turn");
   const std::string shape = obstacleShape(entry);
   nlohmann::json& s = entry.at(shape);
   if (shape == "plane") {
@@ -167,20 +185,23 @@ std::vector<HandleKey> handleKeys(const nlohmann::json& attachment) {
   if (trajectory.contains("keyframes") && trajectory["keyframes"].is_array()) {
     for (const nlohmann::json& k : trajectory["keyframes"])
       if (k.is_object() && k.contains("time") && k["time"].is_number())
-        keys.push_back({k["time"].get<double>(), k.contains("offset") ? vec(k["offset"]) : Vec3(Vec3::Zero())});
+        keys.push_back({k["time"].get<double>(),
+                        k.contains("offset") ? vec(k["offset"]) : Vec3(Vec3::Zero())});
   } else if (trajectory.contains("hermite") && trajectory["hermite"].is_object()) {
     const nlohmann::json& h = trajectory["hermite"];
     const nlohmann::json times = h.value("times", nlohmann::json::array());
     const nlohmann::json points = h.value("points", nlohmann::json::array());
     for (std::size_t i = 0; i < times.size(); ++i)
-      if (times[i].is_number()) keys.push_back({times[i].get<double>(), i < points.size() ? vec(points[i]) : Vec3(Vec3::Zero())});
+      if (times[i].is_number())
+        keys.push_back(
+            {times[i].get<double>(), i < points.size() ? vec(points[i]) : Vec3(Vec3::Zero())});
   }
   return keys;
 }
 
 bool hasKeyframes(const nlohmann::json& attachment) {
-  return attachment.is_object() && attachment.contains("trajectory") && attachment["trajectory"].is_object() &&
-         !attachment["trajectory"].contains("hermite");
+  return attachment.is_object() && attachment.contains("trajectory") &&
+         attachment["trajectory"].is_object() && !attachment["trajectory"].contains("hermite");
 }
 
 void setHandleKey(nlohmann::json& attachment, double time, const Vec3& offset, double tolerance) {
@@ -217,7 +238,8 @@ bool deleteHandleKey(nlohmann::json& attachment, double time, double tolerance) 
 nlohmann::json newHandleAttachment(const std::vector<int>& vertices) {
   return {{"vertices", vertices},
           {"kind", "handle"},
-          {"trajectory", {{"keyframes", nlohmann::json::array({{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}}})}}}};
+          {"trajectory",
+           {{"keyframes", nlohmann::json::array({{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}}})}}}};
 }
 
 }  // namespace weft::editor

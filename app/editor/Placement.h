@@ -30,7 +30,8 @@ struct EditorObject {
 
 // The object at `path` of `document` ("" is none). Returns an error text when the path names
 // nothing the gizmo places (no such entry, or an attachment that is not a handle).
-std::string findEditorObject(const nlohmann::json& document, const std::string& path, EditorObject& object);
+std::string findEditorObject(const nlohmann::json& document, const std::string& path,
+                             EditorObject& object);
 
 // The shape key of an obstacle entry ("plane", "sphere", ..., "mesh"), "" when it has none.
 std::string obstacleShape(const nlohmann::json& obstacle);
@@ -45,7 +46,8 @@ void translateObject(nlohmann::json& entry, EditorObject::Kind kind, int axis, d
 // Turns it by `radians` about world axis `axis` through `centre`: a plane's normal, a capsule's or
 // cylinder's ends, a box's rotate_deg, a mesh's or cloth's mesh.transform (rotate_deg, and
 // translate so that `centre` stays put). A sphere does not turn.
-void rotateObject(nlohmann::json& entry, EditorObject::Kind kind, int axis, double radians, const Vec3& centre);
+void rotateObject(nlohmann::json& entry, EditorObject::Kind kind, int axis, double radians,
+                  const Vec3& centre);
 
 // A handle's keys: keyframes {time, offset}, or a Hermite spline's knots (time, point).
 struct HandleKey {

@@ -20,22 +20,86 @@ double now() {
 
 std::string kindOf(const nlohmann::json& action) {
   if (!action.is_object() || action.empty()) return "?";
-  for (const char* k : {"open", "new", "set", "remove", "select", "select_add", "clear_selection", "click",
-                        "box_select", "select_loop", "select_band", "pin", "simulate", "cancel", "scrub", "step", "play", "pause",
-                        "undo", "redo", "save", "camera", "screenshot", "window_screenshot", "frames",
-                        "expect", "write_state", "import_garment", "add_obstacle", "add_mesh_obstacle",
-                        "panel", "contact_colours", "force_arrows", "set_targets", "target", "move_targets",
-                        "drag_targets", "remove_targets", "load_target_motion", "remove_target_motion", "load_target_mesh", "set_hemline", "remove_hemline",
-                        "add_parameter", "remove_parameter", "compute_gradient", "optimize", "optimize_step", "optimize_resume", "optimize_pause", "optimize_wait",
-                        "optimize_cancel", "optimize_apply", "optimize_revert", "gizmo", "gizmo_drag",
-                        "make_handle", "handle_offset", "set_key", "delete_key", "jump_key",
-                        "click_object", "mouse_move", "mouse_press", "mouse_release", "mouse_click",
-                        "mouse_drag", "scroll", "key", "key_down", "key_up", "type", "close"})
+  for (const char* k : {"open",
+                        "new",
+                        "set",
+                        "remove",
+                        "select",
+                        "select_add",
+                        "clear_selection",
+                        "click",
+                        "box_select",
+                        "select_loop",
+                        "select_band",
+                        "pin",
+                        "simulate",
+                        "cancel",
+                        "scrub",
+                        "step",
+                        "play",
+                        "pause",
+                        "undo",
+                        "redo",
+                        "save",
+                        "camera",
+                        "screenshot",
+                        "window_screenshot",
+                        "frames",
+                        "expect",
+                        "write_state",
+                        "import_garment",
+                        "add_obstacle",
+                        "add_mesh_obstacle",
+                        "panel",
+                        "contact_colours",
+                        "force_arrows",
+                        "set_targets",
+                        "target",
+                        "move_targets",
+                        "drag_targets",
+                        "remove_targets",
+                        "load_target_motion",
+                        "remove_target_motion",
+                        "load_target_mesh",
+                        "set_hemline",
+                        "remove_hemline",
+                        "add_parameter",
+                        "remove_parameter",
+                        "compute_gradient",
+                        "optimize",
+                        "optimize_step",
+                        "optimize_resume",
+                        "optimize_pause",
+                        "optimize_wait",
+                        "optimize_cancel",
+                        "optimize_apply",
+                        "optimize_revert",
+                        "gizmo",
+                        "gizmo_drag",
+                        "make_handle",
+                        "handle_offset",
+                        "set_key",
+                        "delete_key",
+                        "jump_key",
+                        "click_object",
+                        "mouse_move",
+                        "mouse_press",
+                        "mouse_release",
+                        "mouse_click",
+                        "mouse_drag",
+                        "scroll",
+                        "key",
+                        "key_down",
+                        "key_up",
+                        "type",
+                        "close"})
     if (action.contains(k)) return k;
   return action.begin().key();
 }
 
-nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+nlohmann::json vec(const Vec3& v) {
+  return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
 
 nlohmann::json inspectorState(const EditorSession& session) {
   const auto r = session.inspect();
@@ -59,7 +123,8 @@ nlohmann::json inspectorState(const EditorSession& session) {
           {"branch", static_cast<int>(r->branch)},
           {"contact_force", vec(r->contactForce)},
           {"contact_impulse", vec(r->contactImpulse)},
-          {"gradient", [&] {
+          {"gradient",
+           [&] {
              const auto g = session.stateGradient(r->node, r->state);
              return g ? vec(*g) : nlohmann::json(nullptr);
            }()},
@@ -101,7 +166,8 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
              {"rotates", g->rotates()},
              {"dragging", gizmoHandleName(session.draggedHandle())}};
   nlohmann::json keys = nlohmann::json::array();
-  for (const HandleKey& k : session.keys()) keys.push_back({{"time", k.time}, {"offset", vec(k.offset)}});
+  for (const HandleKey& k : session.keys())
+    keys.push_back({{"time", k.time}, {"offset", vec(k.offset)}});
   const auto offset = session.handleOffset();
   const render::Camera& camera = session.camera();
   nlohmann::json dialog = nullptr;
@@ -146,13 +212,15 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"playing", session.playback().playing()},
           {"dialog", dialog},
           {"close_prompt", app.closePromptOpen()},
-          {"unsaved_prompt", app.unsavedPrompt().empty() ? nlohmann::json(nullptr) : nlohmann::json(app.unsavedPrompt())},
+          {"unsaved_prompt", app.unsavedPrompt().empty() ? nlohmann::json(nullptr)
+                                                         : nlohmann::json(app.unsavedPrompt())},
           {"close_confirmed", app.closeConfirmed()},
           {"document", doc.document()}};
 }
 
 Vec3 vec3Of(const nlohmann::json& j, const char* what) {
-  if (!j.is_array() || j.size() != 3) throw std::invalid_argument(std::string(what) + " must be [x, y, z]");
+  if (!j.is_array() || j.size() != 3)
+    throw std::invalid_argument(std::string(what) + " must be [x, y, z]");
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
 }
 
@@ -183,8 +251,8 @@ std::string outputFile(const nlohmann::json& j) {
 }
 
 bool isRawInput(const std::string& kind) {
-  for (const char* k : {"mouse_move", "mouse_press", "mouse_release", "mouse_click", "mouse_drag", "scroll", "key",
-                        "key_down", "key_up", "type"})
+  for (const char* k : {"mouse_move", "mouse_press", "mouse_release", "mouse_click", "mouse_drag",
+                        "scroll", "key", "key_down", "key_up", "type"})
     if (kind == k) return true;
   return false;
 }
@@ -196,7 +264,8 @@ Eigen::Vector2f pointOf(const nlohmann::json& j, const char* what, const EditorA
   const bool inViewport = j.is_object() && j.contains("viewport");
   const nlohmann::json& p = inViewport ? j["viewport"] : j;
   if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
-    throw std::invalid_argument(std::string(what) + " takes [x, y] in window pixels or {\"viewport\": [x, y]}");
+    throw std::invalid_argument(std::string(what) +
+                                " takes [x, y] in window pixels or {\"viewport\": [x, y]}");
   Eigen::Vector2f at(p[0].get<float>(), p[1].get<float>());
   if (inViewport) at += Eigen::Vector2f(float(app.viewportX()), float(app.viewportY()));
   return at;
@@ -215,7 +284,8 @@ KeyChord chordOf(const nlohmann::json& j, bool modifiersOnly) {
     throw std::invalid_argument("unknown key " + j.dump() +
                                 " (keys are named like \"ctrl+shift+z\", \"space\", \"f\")");
   if (modifiersOnly && chord.key >= 0)
-    throw std::invalid_argument("modifiers are ctrl, shift, alt, super joined by +, got " + j.dump());
+    throw std::invalid_argument("modifiers are ctrl, shift, alt, super joined by +, got " +
+                                j.dump());
   return chord;
 }
 
@@ -257,13 +327,15 @@ ScriptRunner::State ScriptRunner::update(EditorSession& session, EditorApp& app)
   return state_;
 }
 
-std::optional<bool> ScriptRunner::checkOutcome(const nlohmann::json& action, const std::string& error,
+std::optional<bool> ScriptRunner::checkOutcome(const nlohmann::json& action,
+                                               const std::string& error,
                                                const std::string& succeeded) {
   // An action that expects an error passes when the error names it; any other error fails the
   // script. Empty: carry on with the action.
   if (action.contains("expect_error")) {
     const std::string expected = action["expect_error"].get<std::string>();
-    if (error.empty()) fail("expected an error containing \"" + expected + "\", but " + succeeded);
+    if (error.empty())
+      fail("expected an error containing \"" + expected + "\", but " + succeeded);
     else if (error.find(expected) == std::string::npos)
       fail("expected an error containing \"" + expected + "\", got: " + error);
     return state_ == State::Running;
@@ -275,10 +347,12 @@ std::optional<bool> ScriptRunner::checkOutcome(const nlohmann::json& action, con
   return std::nullopt;
 }
 
-std::string ScriptRunner::startGizmoDrag(const nlohmann::json& a, EditorSession& session, EditorApp& app) {
+std::string ScriptRunner::startGizmoDrag(const nlohmann::json& a, EditorSession& session,
+                                         EditorApp& app) {
   GizmoHandle handle;
   if (!parseGizmoHandle(a.at("gizmo_drag").get<std::string>(), handle))
-    throw std::invalid_argument("gizmo_drag takes translate_x, translate_y, translate_z, rotate_x, rotate_y or rotate_z");
+    throw std::invalid_argument(
+        "gizmo_drag takes translate_x, translate_y, translate_z, rotate_x, rotate_y or rotate_z");
   const auto by = a.at("by").get<std::vector<float>>();
   if (by.size() != 2) throw std::invalid_argument("by takes [dx, dy] in viewport pixels");
   gizmoBy_ = Eigen::Vector2f(by[0], by[1]);
@@ -288,7 +362,8 @@ std::string ScriptRunner::startGizmoDrag(const nlohmann::json& a, EditorSession&
     return session.activeObject().kind == EditorObject::Kind::None
                ? "nothing to move: choose an object with {\"gizmo\": PATH}"
                : "the gizmo is not shown (the scene does not validate)";
-  if (!g->has(handle)) return std::string("this object has no ") + gizmoHandleName(handle) + " handle";
+  if (!g->has(handle))
+    return std::string("this object has no ") + gizmoHandleName(handle) + " handle";
   // The press: at a given pixel, at an offset from the gizmo's centre on screen, or where the
   // handle can be grabbed.
   bool inView = true;
@@ -310,8 +385,9 @@ std::string ScriptRunner::startGizmoDrag(const nlohmann::json& a, EditorSession&
   if (!inView) return std::string("the ") + gizmoHandleName(handle) + " handle is not in view";
   const GizmoHandle picked = g->pickPixel(gizmoFrom_.x(), gizmoFrom_.y());
   if (picked != handle)
-    return "the press at (" + std::to_string(gizmoFrom_.x()) + ", " + std::to_string(gizmoFrom_.y()) + ") grabs " +
-           gizmoHandleName(picked) + ", not " + gizmoHandleName(handle);
+    return "the press at (" + std::to_string(gizmoFrom_.x()) + ", " +
+           std::to_string(gizmoFrom_.y()) + ") grabs " + gizmoHandleName(picked) + ", not " +
+           gizmoHandleName(handle);
   return session.beginGizmoDrag(handle, gizmoFrom_.x(), gizmoFrom_.y(), w, h);
 }
 
@@ -337,7 +413,8 @@ void ScriptRunner::queueInput(const nlohmann::json& a, const std::string& kind, 
     // editor reads them on the release frame (Shift adds to a box, Ctrl picks an object).
     const int button =
         buttonOf(kind == "mouse_click" ? a.value("button", nlohmann::json("left")) : a.at(kind));
-    const Eigen::Vector2f from = pointOf(kind == "mouse_click" ? a.at(kind) : a.at("from"), "from", app);
+    const Eigen::Vector2f from =
+        pointOf(kind == "mouse_click" ? a.at(kind) : a.at("from"), "from", app);
     steps.push_back([=](ScriptedInput& in) {
       in.setModifiers(held, true);
       in.moveTo(from.x(), from.y());
@@ -347,7 +424,8 @@ void ScriptRunner::queueInput(const nlohmann::json& a, const std::string& kind, 
       const Eigen::Vector2f to = pointOf(a.at("to"), "to", app);
       const int n = a.value("steps", 8);
       if (n < 1) throw std::invalid_argument("steps must be at least 1");
-      for (int i = 1; i <= n; ++i) steps.push_back(move(from + (to - from) * (float(i) / float(n))));
+      for (int i = 1; i <= n; ++i)
+        steps.push_back(move(from + (to - from) * (float(i) / float(n))));
     }
     steps.push_back([=](ScriptedInput& in) { in.setButton(button, false); });
     steps.push_back([=](ScriptedInput& in) { in.setModifiers(held, false); });
@@ -417,11 +495,13 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
   } else if (kind == "set" || kind == "remove") {
     const std::string path = a.at(kind).get<std::string>();
     // As `weft simulate --set`: the parent must exist (no objects are created on the way).
-    std::string error = kind == "set" ? doc.setValue(path, a.at("value"), false, false) : doc.removeValue(path);
+    std::string error =
+        kind == "set" ? doc.setValue(path, a.at("value"), false, false) : doc.removeValue(path);
     if (error.empty() && !doc.valid()) error = doc.validationError();
     if (a.contains("expect_error")) {
       const std::string expected = a["expect_error"].get<std::string>();
-      if (error.empty()) fail("expected an error containing \"" + expected + "\", but the scene is valid");
+      if (error.empty())
+        fail("expected an error containing \"" + expected + "\", but the scene is valid");
       else if (error.find(expected) == std::string::npos)
         fail("expected an error containing \"" + expected + "\", got: " + error);
       return state_ == State::Running;
@@ -431,7 +511,8 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
       return false;
     }
   } else if (kind == "select" || kind == "select_add") {
-    const std::string error = session.selectNodes(a.at(kind).get<std::vector<int>>(), kind == "select_add");
+    const std::string error =
+        session.selectNodes(a.at(kind).get<std::vector<int>>(), kind == "select_add");
     if (!error.empty()) {
       fail(error);
       return false;
@@ -445,9 +526,11 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
       const nlohmann::json& band = a.at(kind);
       const std::string axis = band.at("axis").get<std::string>();
       const int index = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
-      error = session.selectBand(index, band.at("min").get<double>(), band.at("max").get<double>(), add);
+      error = session.selectBand(index, band.at("min").get<double>(), band.at("max").get<double>(),
+                                 add);
     }
-    if (const std::optional<bool> next = checkOutcome(a, error, "the selection changed")) return *next;
+    if (const std::optional<bool> next = checkOutcome(a, error, "the selection changed"))
+      return *next;
   } else if (kind == "clear_selection") {
     session.selection().clear();
   } else if (kind == "click") {
@@ -456,7 +539,8 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     const auto vertex = session.clickSelect(p[0], p[1], app.viewportWidth(), app.viewportHeight(),
                                             a.value("add", false));
     if (!vertex && a.value("must_hit", true)) {
-      fail("the click at (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ") hits no cloth triangle");
+      fail("the click at (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
+           ") hits no cloth triangle");
       return false;
     }
   } else if (kind == "click_object") {
@@ -474,7 +558,8 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
   } else if (kind == "box_select") {
     const auto r = a.at("box_select").get<std::vector<float>>();
-    if (r.size() != 4) throw std::invalid_argument("box_select takes [x0, y0, x1, y1] in viewport pixels");
+    if (r.size() != 4)
+      throw std::invalid_argument("box_select takes [x0, y0, x1, y1] in viewport pixels");
     session.boxSelectPixels(r[0], r[1], r[2], r[3], app.viewportWidth(), app.viewportHeight(),
                             a.value("add", false));
   } else if (kind == "pin") {
@@ -526,7 +611,8 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     }
   } else if (kind == "save") {
     const nlohmann::json& s = a.at("save");
-    const std::string warning = s.is_string() ? session.saveAs(s.get<std::string>()) : session.save();
+    const std::string warning =
+        s.is_string() ? session.saveAs(s.get<std::string>()) : session.save();
     app.report(warning.empty() ? "saved " + session.document().file() : warning, !warning.empty());
   } else if (kind == "camera") {
     const nlohmann::json& c = a.at("camera");
@@ -549,12 +635,14 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
   } else if (kind == "screenshot" && a.value("overlays", false)) {
     // The viewport as the window shows it, with what the editor draws over the picture (the
     // gizmo, the selection, target lines): cut from the last drawn window, so at its size.
-    if (a.contains("size")) throw std::invalid_argument("a screenshot with overlays has the viewport's own size");
+    if (a.contains("size"))
+      throw std::invalid_argument("a screenshot with overlays has the viewport's own size");
     const render::Image window = app.windowImage();
     render::Image image(app.viewportWidth(), app.viewportHeight());
     for (int y = 0; y < image.height; ++y)
       for (int x = 0; x < image.width; ++x) {
-        const int wx = std::min(app.viewportX() + x, window.width - 1), wy = std::min(app.viewportY() + y, window.height - 1);
+        const int wx = std::min(app.viewportX() + x, window.width - 1),
+                  wy = std::min(app.viewportY() + y, window.height - 1);
         std::copy(window.at(wx, wy), window.at(wx, wy) + 3, image.at(x, y));
       }
     render::writePng(outputFile(a.at("screenshot")), image);
@@ -562,7 +650,8 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     int w = app.viewportWidth(), h = app.viewportHeight();
     if (a.contains("size")) {
       const auto s = a["size"].get<std::vector<int>>();
-      if (s.size() != 2 || s[0] <= 0 || s[1] <= 0) throw std::invalid_argument("size must be [width, height]");
+      if (s.size() != 2 || s[0] <= 0 || s[1] <= 0)
+        throw std::invalid_argument("size must be [width, height]");
       w = s[0], h = s[1];
     }
     render::writePng(outputFile(a.at("screenshot")), app.viewportImage(w, h));
@@ -578,7 +667,8 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
         const std::string path = expected.at("path").get<std::string>();
         const nlohmann::json* actual = doc.find(path);
         if (!actual || *actual != expected.at("equals")) {
-          fail(path + " is " + (actual ? actual->dump() : "absent") + ", expected " + expected.at("equals").dump());
+          fail(path + " is " + (actual ? actual->dump() : "absent") + ", expected " +
+               expected.at("equals").dump());
           return false;
         }
       } else if (!state.contains(key)) {
@@ -594,46 +684,69 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     out << stateOf(session, app).dump(2) << "\n";
     if (!out) throw std::runtime_error("cannot write " + a["write_state"].get<std::string>());
   } else if (kind == "import_garment" || kind == "add_mesh_obstacle" || kind == "add_obstacle" ||
-             kind == "set_targets" || kind == "target" || kind == "move_targets" || kind == "drag_targets" ||
-             kind == "remove_targets" || kind == "load_target_motion" || kind == "remove_target_motion" ||
-             kind == "optimize_apply" || kind == "optimize_revert") {
+             kind == "set_targets" || kind == "target" || kind == "move_targets" ||
+             kind == "drag_targets" || kind == "remove_targets" || kind == "load_target_motion" ||
+             kind == "remove_target_motion" || kind == "optimize_apply" ||
+             kind == "optimize_revert") {
     // Edits that may be refused: the refusal is the UI's message, and fails the action unless
     // the script expects it ("expect_error": text it must contain).
     std::string error;
-    if (kind == "import_garment") error = session.importGarment(importOptions(a, kind));
-    else if (kind == "add_mesh_obstacle") error = session.importMeshObstacle(importOptions(a, kind));
-    else if (kind == "add_obstacle") error = session.addObstacle(a.at(kind).get<std::string>());
-    else if (kind == "set_targets") error = session.setTargetsFromSelection();
-    else if (kind == "target") error = session.setTarget(a.at(kind).get<int>(), vec3Of(a.at("position"), "position"));
+    if (kind == "import_garment")
+      error = session.importGarment(importOptions(a, kind));
+    else if (kind == "add_mesh_obstacle")
+      error = session.importMeshObstacle(importOptions(a, kind));
+    else if (kind == "add_obstacle")
+      error = session.addObstacle(a.at(kind).get<std::string>());
+    else if (kind == "set_targets")
+      error = session.setTargetsFromSelection();
+    else if (kind == "target")
+      error = session.setTarget(a.at(kind).get<int>(), vec3Of(a.at("position"), "position"));
     else if (kind == "move_targets")
       error = session.moveTargets(session.selection().nodes(), vec3Of(a.at(kind), "move_targets"));
     else if (kind == "drag_targets") {
       const auto d = a.at(kind).get<std::vector<float>>();
-      if (d.size() != 2) throw std::invalid_argument("drag_targets takes [dx, dy] in viewport pixels");
-      error = session.dragTargets(session.selection().nodes(), d[0], d[1], app.viewportWidth(), app.viewportHeight());
+      if (d.size() != 2)
+        throw std::invalid_argument("drag_targets takes [dx, dy] in viewport pixels");
+      error = session.dragTargets(session.selection().nodes(), d[0], d[1], app.viewportWidth(),
+                                  app.viewportHeight());
     } else if (kind == "remove_targets")
-      error = session.removeTargets(a.at(kind).is_array() ? a[kind].get<std::vector<int>>() : std::vector<int>{});
-    else if (kind == "load_target_motion") error = session.loadTargetMotion(a.at(kind).get<std::string>());
-    else if (kind == "remove_target_motion") error = session.removeTargetMotion();
-    else if (kind == "optimize_apply") error = session.applyOptimizerResult();
-    else if (kind == "optimize_revert") error = session.revertToOptimizerStart();
+      error = session.removeTargets(a.at(kind).is_array() ? a[kind].get<std::vector<int>>()
+                                                          : std::vector<int>{});
+    else if (kind == "load_target_motion")
+      error = session.loadTargetMotion(a.at(kind).get<std::string>());
+    else if (kind == "remove_target_motion")
+      error = session.removeTargetMotion();
+    else if (kind == "optimize_apply")
+      error = session.applyOptimizerResult();
+    else if (kind == "optimize_revert")
+      error = session.revertToOptimizerStart();
     // The message the panel's own button would show.
     std::string done = kind + " done";
-    if (kind == "import_garment") done = "imported " + a[kind].get<std::string>();
-    else if (kind == "add_mesh_obstacle") done = "added mesh obstacle " + a[kind].get<std::string>();
-    else if (kind == "optimize_apply") done = "applied the optimised parameters (Ctrl+Z undoes)";
-    else if (kind == "optimize_revert") done = "reverted to the values the run started from";
+    if (kind == "import_garment")
+      done = "imported " + a[kind].get<std::string>();
+    else if (kind == "add_mesh_obstacle")
+      done = "added mesh obstacle " + a[kind].get<std::string>();
+    else if (kind == "optimize_apply")
+      done = "applied the optimised parameters (Ctrl+Z undoes)";
+    else if (kind == "optimize_revert")
+      done = "reverted to the values the run started from";
     app.report(error.empty() ? done : error, !error.empty());
     if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
-  } else if (kind == "gizmo" || kind == "make_handle" || kind == "handle_offset" || kind == "set_key" ||
-             kind == "delete_key" || kind == "jump_key") {
+  } else if (kind == "gizmo" || kind == "make_handle" || kind == "handle_offset" ||
+             kind == "set_key" || kind == "delete_key" || kind == "jump_key") {
     std::string error;
-    if (kind == "gizmo") error = session.setActiveObject(a.at(kind).is_null() ? "" : a[kind].get<std::string>());
-    else if (kind == "make_handle") error = session.makeHandle();
-    else if (kind == "handle_offset") error = session.setHandleOffset(vec3Of(a.at(kind), "handle_offset"));
-    else if (kind == "set_key") error = session.setKey();
-    else if (kind == "delete_key") error = session.deleteKey();
-    else error = session.jumpToKey(a.at(kind).get<int>());
+    if (kind == "gizmo")
+      error = session.setActiveObject(a.at(kind).is_null() ? "" : a[kind].get<std::string>());
+    else if (kind == "make_handle")
+      error = session.makeHandle();
+    else if (kind == "handle_offset")
+      error = session.setHandleOffset(vec3Of(a.at(kind), "handle_offset"));
+    else if (kind == "set_key")
+      error = session.setKey();
+    else if (kind == "delete_key")
+      error = session.deleteKey();
+    else
+      error = session.jumpToKey(a.at(kind).get<int>());
     app.report(error.empty() ? kind + " done" : error, !error.empty());
     if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
   } else if (kind == "gizmo_drag") {
@@ -671,9 +784,10 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
   } else if (kind == "force_arrows") {
     session.forceArrows = a.at(kind).get<bool>();
   } else if (kind == "load_target_mesh" || kind == "set_hemline" || kind == "remove_hemline") {
-    const std::string error = kind == "load_target_mesh" ? session.loadTargetMesh(a.at(kind).get<std::string>())
-                              : kind == "set_hemline"    ? session.setHemline(a.at(kind).get<double>())
-                                                         : session.removeHemline();
+    const std::string error = kind == "load_target_mesh"
+                                  ? session.loadTargetMesh(a.at(kind).get<std::string>())
+                              : kind == "set_hemline" ? session.setHemline(a.at(kind).get<double>())
+                                                      : session.removeHemline();
     app.report(error.empty() ? kind + " done" : error, !error.empty());
     if (const std::optional<bool> next = checkOutcome(a, error, "it succeeded")) return *next;
   } else if (kind == "compute_gradient") {
@@ -704,10 +818,12 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     app.report("loss gradient computed", false);
   } else if (kind == "add_parameter" || kind == "remove_parameter") {
     const std::string path = a.at(kind).get<std::string>();
-    const std::string error =
-        kind == "add_parameter" ? session.addTaskParameter(path) : session.removeTaskParameter(path);
-    app.report(error.empty() ? (kind == "add_parameter" ? "added " : "removed ") + path : error, !error.empty());
-    if (const std::optional<bool> next = checkOutcome(a, error, "the parameter changed")) return *next;
+    const std::string error = kind == "add_parameter" ? session.addTaskParameter(path)
+                                                      : session.removeTaskParameter(path);
+    app.report(error.empty() ? (kind == "add_parameter" ? "added " : "removed ") + path : error,
+               !error.empty());
+    if (const std::optional<bool> next = checkOutcome(a, error, "the parameter changed"))
+      return *next;
   } else if (kind == "optimize") {
     const nlohmann::json& o = a.at(kind);
     OptimizerRun::Setup setup;
@@ -722,7 +838,8 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
     setup.settings.seed = o.value("seed", 0u);
     const std::string error = session.startOptimizer(setup, o.value("paused", true));
     app.report(error.empty() ? "optimiser started" : error, !error.empty());
-    if (const std::optional<bool> next = checkOutcome(o, error, "the optimiser started")) return *next;
+    if (const std::optional<bool> next = checkOutcome(o, error, "the optimiser started"))
+      return *next;
   } else if (kind == "optimize_step" || kind == "optimize_wait") {
     // Waits, one UI frame at a time, until N more evaluations are logged (step) or the run has
     // ended (wait), so the optimiser runs off the UI thread exactly as when clicked.
@@ -732,9 +849,12 @@ bool ScriptRunner::run(const nlohmann::json& a, EditorSession& session, EditorAp
         fail("no optimiser run: start one with {\"optimize\": {...}}");
         return false;
       }
-      optimizerTarget_ = run.evaluations() + (kind == "optimize_step" ? std::max(1, a.at(kind).get<int>()) : 0);
-      if (kind == "optimize_step") run.step(optimizerTarget_ - run.evaluations());
-      else run.resume();
+      optimizerTarget_ =
+          run.evaluations() + (kind == "optimize_step" ? std::max(1, a.at(kind).get<int>()) : 0);
+      if (kind == "optimize_step")
+        run.step(optimizerTarget_ - run.evaluations());
+      else
+        run.resume();
       waitingForOptimizer_ = true;
       waitStarted_ = now();
       timeout_ = a.value("timeout_seconds", 300.0);

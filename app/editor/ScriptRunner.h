@@ -36,7 +36,7 @@ class ScriptRunner {
   State update(EditorSession& session, EditorApp& app);
 
   const std::string& error() const { return error_; }  // "<script>: actions.N (kind): what"
-  int exitCode() const { return exitCode_; }  // 0, 2 (failing action), 3 (simulation failed)
+  int exitCode() const { return exitCode_; }        // 0, 2 (failing action), 3 (simulation failed)
   std::size_t nextAction() const { return next_; }  // index of the action running or next
 
   // The mouse and keyboard the raw-input actions (mouse_move, mouse_drag, key...) set: the

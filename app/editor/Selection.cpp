@@ -19,13 +19,14 @@ Ray pixelRay(const render::Camera& camera, float x, float y, int width, int heig
   return Ray{nearPoint, (farPoint - nearPoint).normalized()};
 }
 
-std::optional<Eigen::Vector2f> projectToPixel(const render::Camera& camera, const Eigen::Vector3f& p,
-                                              int width, int height) {
+std::optional<Eigen::Vector2f> projectToPixel(const render::Camera& camera,
+                                              const Eigen::Vector3f& p, int width, int height) {
   const float aspect = float(width) / float(std::max(height, 1));
   const Eigen::Vector4f clip = camera.projection(aspect) * camera.view() * p.homogeneous();
   if (clip.w() <= 1e-8f) return std::nullopt;
   const Eigen::Vector3f ndc = clip.head<3>() / clip.w();
-  return Eigen::Vector2f((ndc.x() + 1.0f) * 0.5f * float(width), (1.0f - ndc.y()) * 0.5f * float(height));
+  return Eigen::Vector2f((ndc.x() + 1.0f) * 0.5f * float(width),
+                         (1.0f - ndc.y()) * 0.5f * float(height));
 }
 
 std::optional<TriangleHit> nearestTriangleHit(const render::SurfaceMesh& mesh, const Ray& ray) {
@@ -72,7 +73,8 @@ std::optional<int> pickVertex(const render::SurfaceMesh& mesh, const Ray& ray) {
 }
 
 std::vector<int> boxSelect(const render::SurfaceMesh& mesh, const render::Camera& camera,
-                           Eigen::Vector2f corner0, Eigen::Vector2f corner1, int width, int height) {
+                           Eigen::Vector2f corner0, Eigen::Vector2f corner1, int width,
+                           int height) {
   const Eigen::Vector2f low = corner0.cwiseMin(corner1), high = corner0.cwiseMax(corner1);
   std::vector<int> inside;
   for (int v = 0; v < mesh.positions.rows(); ++v) {
@@ -120,9 +122,11 @@ void addFixedAttachments(nlohmann::json& document, const std::vector<int>& nodes
   for (int node : nodes) {
     if (cloths <= 0 || node < 0 || node >= vertexOffset.back())
       throw std::invalid_argument("vertex " + std::to_string(node) + " is not a cloth vertex");
-    const int cloth = static_cast<int>(
-        std::upper_bound(vertexOffset.begin(), vertexOffset.end(), node) - vertexOffset.begin() - 1);
-    perCloth[static_cast<std::size_t>(cloth)].push_back(node - vertexOffset[static_cast<std::size_t>(cloth)]);
+    const int cloth =
+        static_cast<int>(std::upper_bound(vertexOffset.begin(), vertexOffset.end(), node) -
+                         vertexOffset.begin() - 1);
+    perCloth[static_cast<std::size_t>(cloth)].push_back(
+        node - vertexOffset[static_cast<std::size_t>(cloth)]);
   }
   for (int c = 0; c < cloths; ++c) {
     auto& local = perCloth[static_cast<std::size_t>(c)];

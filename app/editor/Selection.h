@@ -25,8 +25,8 @@ struct Ray {
 Ray pixelRay(const render::Camera& camera, float x, float y, int width, int height);
 
 // Where world point p lands in the image (x right, y down); nullopt behind the camera.
-std::optional<Eigen::Vector2f> projectToPixel(const render::Camera& camera, const Eigen::Vector3f& p,
-                                              int width, int height);
+std::optional<Eigen::Vector2f> projectToPixel(const render::Camera& camera,
+                                              const Eigen::Vector3f& p, int width, int height);
 
 // The nearest triangle a ray hits (from either side) and the distance along the ray to the hit.
 struct TriangleHit {

@@ -79,7 +79,9 @@ void SimulationCache::cancel() {
   join();
 }
 
-void SimulationCache::wait() { join(); }
+void SimulationCache::wait() {
+  join();
+}
 
 void SimulationCache::clear() {
   cancel();
@@ -142,11 +144,16 @@ nlohmann::json simulatedPart(const nlohmann::json& document) {
 
 const char* SimulationCache::statusName(Status status) {
   switch (status) {
-    case Status::Empty: return "empty";
-    case Status::Running: return "running";
-    case Status::Done: return "done";
-    case Status::Cancelled: return "cancelled";
-    case Status::Failed: return "failed";
+    case Status::Empty:
+      return "empty";
+    case Status::Running:
+      return "running";
+    case Status::Done:
+      return "done";
+    case Status::Cancelled:
+      return "cancelled";
+    case Status::Failed:
+      return "failed";
   }
   return "?";
 }

@@ -21,8 +21,8 @@
 namespace weft::editor {
 
 struct CachedFrame {
-  int state = 0;       // 0 = the initial state
-  NodeMatrix positions;  // all cloth nodes, scene order
+  int state = 0;          // 0 = the initial state
+  NodeMatrix positions;   // all cloth nodes, scene order
   NodeMatrix velocities;  // m/s, same layout (the vertex inspector shows them)
   // Per node: the Signorini-Coulomb branch of the step that produced this state (0 none,
   // 1 take-off, 2 stick, 3 slip), chosen as `weft simulate` writes contact_branches.npy: an
@@ -50,15 +50,15 @@ class SimulationCache {
   // Asks the worker to stop after its current step and waits for it. The frames computed so
   // far stay available (status Cancelled).
   void cancel();
-  void wait();  // until the worker has finished (any status)
+  void wait();   // until the worker has finished (any status)
   void clear();  // cancels and drops every frame (status Empty)
 
   Status status() const { return status_.load(); }
   bool running() const { return status() == Status::Running; }
-  int frameCount() const;        // states available so far
+  int frameCount() const;                                    // states available so far
   int requestedFrames() const { return requested_.load(); }  // steps + 1 of the last start
-  double progress() const;       // frameCount / requestedFrames, in [0, 1]
-  std::string error() const;     // the failure message (status Failed)
+  double progress() const;    // frameCount / requestedFrames, in [0, 1]
+  std::string error() const;  // the failure message (status Failed)
   // The frame of state k (0 <= k < frameCount()), or null. Safe while the worker appends.
   std::shared_ptr<const CachedFrame> frame(int k) const;
   // The scene the cache was computed from (null when empty).

@@ -30,7 +30,9 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   ImGui::BeginDisabled(selected.empty());
   if (ImGui::Button("Set at selected vertices")) {
     const std::string error = session.setTargetsFromSelection();
-    app.report(error.empty() ? "targets set at " + std::to_string(selected.size()) + " vertices" : error, !error.empty());
+    app.report(
+        error.empty() ? "targets set at " + std::to_string(selected.size()) + " vertices" : error,
+        !error.empty());
   }
   ImGui::SameLine();
   if (ImGui::Button("Remove selected")) {
@@ -52,7 +54,8 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
     if (doc.find("task.loss.final")) {
       const nlohmann::json* w = doc.find("task.loss.final.weight");
       double weight = w && w->is_number() ? w->get<double>() : 1.0;
-      if (ImGui::InputDouble("weight", &weight, 0.0, 0.0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue)) {
+      if (ImGui::InputDouble("weight", &weight, 0.0, 0.0, "%.6g",
+                             ImGuiInputTextFlags_EnterReturnsTrue)) {
         const std::string error = doc.setValue("task.loss.final.weight", weight);
         if (!error.empty()) app.report(error, true);
       }
@@ -60,12 +63,14 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
     ImGui::InputScalarN("offset (m)", ImGuiDataType_Double, offset_, 3, nullptr, nullptr, "%.4g");
     ImGui::BeginDisabled(selected.empty());
     if (ImGui::Button("Move selected targets by the offset")) {
-      const std::string error = session.moveTargets(selected, Vec3(offset_[0], offset_[1], offset_[2]));
+      const std::string error =
+          session.moveTargets(selected, Vec3(offset_[0], offset_[1], offset_[2]));
       if (!error.empty()) app.report(error, true);
     }
     ImGui::EndDisabled();
     // One row per target (the first 64: more are edited by selection and offset).
-    if (ImGui::BeginChild("target-list", ImVec2(0, std::min(220.0f, 26.0f * float(list.size()) + 8.0f)), true)) {
+    if (ImGui::BeginChild("target-list",
+                          ImVec2(0, std::min(220.0f, 26.0f * float(list.size()) + 8.0f)), true)) {
       for (std::size_t i = 0; i < list.size() && i < 64; ++i) {
         const FinalTarget& t = list[i];
         ImGui::PushID(t.node);
@@ -73,11 +78,12 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
         char label[32];
         std::snprintf(label, sizeof label, "vertex %d", t.node);
         ImGui::SetNextItemWidth(210.0f);
-        const bool changed = ImGui::InputScalarN(label, ImGuiDataType_Double, p, 3, nullptr, nullptr, "%.4f");
+        const bool changed =
+            ImGui::InputScalarN(label, ImGuiDataType_Double, p, 3, nullptr, nullptr, "%.4f");
         if (ImGui::IsItemActivated()) ++editSerial_;
         if (changed) {
-          const std::string error = session.setTarget(t.node, Vec3(p[0], p[1], p[2]),
-                                                      "target field " + std::to_string(editSerial_));
+          const std::string error = session.setTarget(
+              t.node, Vec3(p[0], p[1], p[2]), "target field " + std::to_string(editSerial_));
           if (!error.empty()) app.report(error, true);
         }
         ImGui::SameLine();
@@ -88,7 +94,8 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
     }
     ImGui::EndChild();
     const nlohmann::json* file = doc.find("task.loss.final.target");
-    ImGui::TextDisabled("Written on save to %s", file && file->is_string() ? file->get<std::string>().c_str() : "?");
+    ImGui::TextDisabled("Written on save to %s",
+                        file && file->is_string() ? file->get<std::string>().c_str() : "?");
   }
   ImGui::Separator();
 
@@ -105,7 +112,8 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   }
   ImGui::SetNextItemWidth(250.0f);
   ImGui::InputText("##motion", motionPath_, sizeof motionPath_);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A positions.npy for Load motion, or a mesh file for Load shape");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("A positions.npy for Load motion, or a mesh file for Load shape");
   ImGui::SameLine();
   ImGui::BeginDisabled(motionPath_[0] == '\0');
   if (ImGui::Button("Load motion")) {
@@ -125,8 +133,9 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   const nlohmann::json* hemline = doc.find("task.loss.hemline");
   if (hemline && hemline->is_object()) {
     const std::size_t count = hemline->contains("vertices") ? hemline->at("vertices").size() : 0;
-    ImGui::TextWrapped("Hemline: %zu vertices at %s m", count,
-                       hemline->contains("height") ? hemline->at("height").dump().c_str() : "(a cone's height)");
+    ImGui::TextWrapped(
+        "Hemline: %zu vertices at %s m", count,
+        hemline->contains("height") ? hemline->at("height").dump().c_str() : "(a cone's height)");
     if (ImGui::Button("Remove hemline")) {
       const std::string error = session.removeHemline();
       if (!error.empty()) app.report(error, true);

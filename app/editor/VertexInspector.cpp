@@ -16,7 +16,8 @@ std::optional<VertexReport> inspectVertex(const CachedFrame& frame, int node, do
     r.localVertex = node - vertexOffset[static_cast<std::size_t>(r.cloth)];
   }
   r.position = frame.positions.row(node).transpose();
-  if (frame.velocities.rows() == frame.positions.rows()) r.velocity = frame.velocities.row(node).transpose();
+  if (frame.velocities.rows() == frame.positions.rows())
+    r.velocity = frame.velocities.row(node).transpose();
   if (static_cast<std::size_t>(node) < frame.branches.size())
     r.branch = static_cast<ContactBranch>(frame.branches[static_cast<std::size_t>(node)]);
   for (const ContactPoint& p : frame.contacts.points) {
@@ -43,7 +44,8 @@ std::vector<Vec3> nodeContactForces(const StepContacts& contacts, int nodes, dou
   if (dt <= 0.0) return forces;
   for (const ContactPoint& p : contacts.points) {
     if (p.node >= 0 && p.node < nodes) forces[static_cast<std::size_t>(p.node)] += p.impulse / dt;
-    if (p.partner >= 0 && p.partner < nodes) forces[static_cast<std::size_t>(p.partner)] -= p.impulse / dt;
+    if (p.partner >= 0 && p.partner < nodes)
+      forces[static_cast<std::size_t>(p.partner)] -= p.impulse / dt;
   }
   return forces;
 }

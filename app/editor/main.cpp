@@ -9,26 +9,26 @@
 // Exit codes follow the `weft` contract: 0 success, 2 bad input or a failing script action,
 // 3 a simulation that failed numerically.
 
+#include "../process/PassiveOpenMpWait.h"
 #include "EditorApp.h"
 #include "EditorBenchmark.h"
 #include "EditorSession.h"
 #include "ScriptRunner.h"
-#include "../process/PassiveOpenMpWait.h"
 
 #include <weft/core/Error.h>
 #include <weft/render/GlfwContext.h>
 #include <weft/render/HeadlessContext.h>
 
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
+#include <imgui.h>
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <cfloat>
-#include <cstdlib>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -51,7 +51,8 @@ struct Options {
 void usage(std::ostream& out) {
   out << "usage: weft-editor [SCENE] [--headless] [--script FILE] [--size WxH]\n"
          "                   [--backend auto|osmesa|egl] [--recent-files FILE]\n"
-         "       weft-editor [SCENE] --bench [--bench-frames N] [--bench-grid Q] [--bench-steps S]\n"
+         "       weft-editor [SCENE] --bench [--bench-frames N] [--bench-grid Q] [--bench-steps "
+         "S]\n"
          "                   [--bench-out DIR] [--size WxH] [--backend auto|osmesa|egl]\n";
 }
 
@@ -69,7 +70,8 @@ Options parse(int argc, char** argv) {
       o.script = value();
     } else if (a == "--size") {
       const std::string v = value();
-      if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 320 || o.height < 240)
+      if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 320 ||
+          o.height < 240)
         throw InputError("-", "--size", "expects WxH of at least 320x240, got " + v);
     } else if (a == "--backend") {
       const std::string v = value();
@@ -81,9 +83,11 @@ Options parse(int argc, char** argv) {
       const std::string v = value();
       char* end = nullptr;
       const long n = std::strtol(v.c_str(), &end, 10);
-      if (v.empty() || *end != '\0' || n < 1 || n > 100000) throw InputError("-", a, "expects a positive whole number, got " + v);
-      (a == "--bench-frames" ? o.benchOptions.frames : a == "--bench-grid" ? o.benchOptions.grid : o.benchOptions.steps) =
-          static_cast<int>(n);
+      if (v.empty() || *end != '\0' || n < 1 || n > 100000)
+        throw InputError("-", a, "expects a positive whole number, got " + v);
+      (a == "--bench-frames" ? o.benchOptions.frames
+       : a == "--bench-grid" ? o.benchOptions.grid
+                             : o.benchOptions.steps) = static_cast<int>(n);
     } else if (a == "--bench-out") {
       o.benchOptions.out = value();
     } else if (a == "--recent-files") {
@@ -100,7 +104,8 @@ Options parse(int argc, char** argv) {
       throw InputError("-", a, "only one scene file may be given");
     }
   }
-  if (o.bench && !o.script.empty()) throw InputError("-", "--bench", "cannot be combined with --script");
+  if (o.bench && !o.script.empty())
+    throw InputError("-", "--bench", "cannot be combined with --script");
   if (o.headless && o.script.empty() && !o.bench)
     throw InputError("-", "--headless", "needs --script FILE (there is nobody to click)");
   return o;
@@ -208,8 +213,8 @@ int main(int argc, char** argv) {
     // Scripted runs keep the recent-files list in memory unless told where it lives, so tests
     // never touch the user's list.
     const std::string store = o.recentGiven ? o.recentStore
-                              : script     ? std::string()
-                                           : RecentFiles::defaultStoreFile();
+                              : script      ? std::string()
+                                            : RecentFiles::defaultStoreFile();
     EditorSession session(store);
     if (!o.scene.empty()) session.open(o.scene);
     return o.headless ? runHeadless(o, session, script) : runWindow(o, session, script);

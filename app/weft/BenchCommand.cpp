@@ -39,7 +39,8 @@ int benchCommand(const std::vector<std::string>& arguments) {
   for (const char* option : {"--subdivisions", "--resolution"})
     if (cl.has(option) && name != "continuity")
       cl.fail(option, "applies to the continuity benchmark only");
-  if (cl.has("--calibrate") && name != "backward") cl.fail("--calibrate", "applies to the backward benchmark only");
+  if (cl.has("--calibrate") && name != "backward")
+    cl.fail("--calibrate", "applies to the backward benchmark only");
   if (name == "applications") {
     if (cl.has("--resolutions"))
       cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");

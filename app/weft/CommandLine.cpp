@@ -8,7 +8,8 @@
 
 namespace weft::cli {
 
-CommandLine::CommandLine(const std::vector<std::string>& args, const std::vector<std::string>& valued,
+CommandLine::CommandLine(const std::vector<std::string>& args,
+                         const std::vector<std::string>& valued,
                          const std::vector<std::string>& flags) {
   auto contains = [](const std::vector<std::string>& list, const std::string& s) {
     return std::find(list.begin(), list.end(), s) != list.end();
@@ -68,7 +69,8 @@ int CommandLine::integer(const std::string& option, int fallback, int min, int m
   char* end = nullptr;
   const long v = std::strtol(s.c_str(), &end, 10);
   if (s.empty() || *end != '\0' || v < min || v > max)
-    fail(option, "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" + s + "'");
+    fail(option, "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                     "], got '" + s + "'");
   return static_cast<int>(v);
 }
 
@@ -77,7 +79,8 @@ double CommandLine::number(const std::string& option, double fallback) const {
   const std::string s = value(option, "");
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || !std::isfinite(v)) fail(option, "must be a number, got '" + s + "'");
+  if (s.empty() || *end != '\0' || !std::isfinite(v))
+    fail(option, "must be a number, got '" + s + "'");
   return v;
 }
 

@@ -16,7 +16,7 @@ class CommandLine {
   const std::vector<std::string>& positional() const { return positional_; }
   bool has(const std::string& option) const;
   std::string value(const std::string& option, const std::string& fallback) const;  // last given
-  std::vector<std::string> values(const std::string& option) const;                // all given
+  std::vector<std::string> values(const std::string& option) const;                 // all given
   int integer(const std::string& option, int fallback, int min, int max) const;
   double number(const std::string& option, double fallback) const;
   // The file errors are reported against (the scene, when known).

@@ -79,7 +79,8 @@ render::PointMatrix toRenderPoints(const NodeMatrix& positions) {
   return positions.cast<float>();
 }
 
-render::ObstacleShape movedShape(const render::ObstacleShape& shape, const HandleTrajectory& motion, double t) {
+render::ObstacleShape movedShape(const render::ObstacleShape& shape, const HandleTrajectory& motion,
+                                 double t) {
   auto move = [&](const render::Vec3f& p) { return f(motion.target(p.cast<double>(), t)); };
   // The rotation part, read off the motion itself: where it takes the ends of unit axes.
   const Vec3 origin = motion.target(Vec3::Zero(), t);
@@ -184,7 +185,8 @@ FrameBuilder::FrameBuilder(const Scene& scene, const ClothModel& model,
 render::RenderScene FrameBuilder::frame(const NodeMatrix& x, int state) const {
   render::RenderScene frame = static_;
   for (std::size_t k = 0; k < motions_.size(); ++k)
-    if (motions_[k]) frame.obstacles[k] = movedShape(static_.obstacles[k], *motions_[k], state * dt_);
+    if (motions_[k])
+      frame.obstacles[k] = movedShape(static_.obstacles[k], *motions_[k], state * dt_);
   frame.cloth.positions = toRenderPoints(x);
   frame.cloth.triangles = triangles_;
   for (int v : fixed_) frame.fixedPoints.push_back(f(x.row(v).transpose()));

@@ -16,7 +16,8 @@ namespace weft {
 
 render::ObstacleShape toRenderShape(const Obstacle& obstacle);
 // The shape of a moving obstacle at time t (its "motion" is rigid: a rotation, then a translation).
-render::ObstacleShape movedShape(const render::ObstacleShape& shape, const HandleTrajectory& motion, double t);
+render::ObstacleShape movedShape(const render::ObstacleShape& shape, const HandleTrajectory& motion,
+                                 double t);
 render::PointMatrix toRenderPoints(const NodeMatrix& positions);
 
 class FrameBuilder {
@@ -30,7 +31,7 @@ class FrameBuilder {
   render::RenderScene frame(const NodeMatrix& x, int state) const;
 
  private:
-  render::RenderScene static_;  // obstacles at rest and handle curves
+  render::RenderScene static_;                            // obstacles at rest and handle curves
   std::vector<std::optional<HandleTrajectory>> motions_;  // per obstacle
   double dt_ = 0.0;
   render::TriangleList triangles_;

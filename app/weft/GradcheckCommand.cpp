@@ -28,7 +28,9 @@ namespace weft::cli {
 int applyThreads(const CommandLine& cl);  // SimulateCommand.cpp
 
 int gradcheckCommand(const std::vector<std::string>& args) {
-  CommandLine cl(args, {"--param", "--eps", "--set", "--backward", "--forward-tolerance", "--backward-tolerance", "--threads"},
+  CommandLine cl(args,
+                 {"--param", "--eps", "--set", "--backward", "--forward-tolerance",
+                  "--backward-tolerance", "--threads"},
                  {"--json", "--quiet"});
   if (cl.positional().size() != 1) cl.fail("SCENE", "gradcheck takes exactly one scene file");
   const std::string file = cl.positional()[0];
@@ -36,11 +38,13 @@ int gradcheckCommand(const std::vector<std::string>& args) {
   applyThreads(cl);
   GradientCheckOptions options;
   options.eps = cl.number("--eps", options.eps);
-  if (!(options.eps > 0.0 && options.eps < 1.0)) cl.fail("--eps", "must be in (0, 1) (a relative step)");
+  if (!(options.eps > 0.0 && options.eps < 1.0))
+    cl.fail("--eps", "must be in (0, 1) (a relative step)");
   options.forwardTolerance = cl.number("--forward-tolerance", options.forwardTolerance);
   if (!(options.forwardTolerance > 0.0)) cl.fail("--forward-tolerance", "must be > 0 (m/s^2)");
   options.backwardTolerance = cl.number("--backward-tolerance", options.backwardTolerance);
-  if (!(options.backwardTolerance > 0.0)) cl.fail("--backward-tolerance", "must be > 0 (a relative residual)");
+  if (!(options.backwardTolerance > 0.0))
+    cl.fail("--backward-tolerance", "must be > 0 (a relative residual)");
   if (cl.has("--backward")) {
     const std::string m = cl.value("--backward", "");
     if (m != "gmres" && m != "fixed_point" && m != "direct")
@@ -50,11 +54,15 @@ int gradcheckCommand(const std::vector<std::string>& args) {
 
   const Scene scene = loadScene(file, parseOverrides(cl));
   printSceneWarnings(scene);
-  if (!scene.task) throw InputError(file, "task", "the scene has no task; gradcheck needs task.loss and parameters");
+  if (!scene.task)
+    throw InputError(file, "task",
+                     "the scene has no task; gradcheck needs task.loss and parameters");
   const std::vector<std::string> paths = cl.values("--param");
-  const ParameterSet parameters = paths.empty() ? ParameterSet::fromTask(scene) : ParameterSet::fromPaths(scene, paths);
+  const ParameterSet parameters =
+      paths.empty() ? ParameterSet::fromTask(scene) : ParameterSet::fromPaths(scene, paths);
   if (parameters.empty())
-    throw InputError(file, "task.parameters", "no parameters to check: list them in task.parameters or give --param PATH");
+    throw InputError(file, "task.parameters",
+                     "no parameters to check: list them in task.parameters or give --param PATH");
 
   const GradientCheckReport report = checkGradient(scene, parameters, options);
 
@@ -68,20 +76,22 @@ int gradcheckCommand(const std::vector<std::string>& args) {
     std::printf("%s\n", list.dump(2).c_str());
   } else {
     for (const auto& e : report.entries)
-      std::printf("%s  adjoint %.10e  finite_difference %.10e  relative_error %.3e\n", e.param.c_str(), e.adjoint,
-                  e.finiteDifference, e.relativeError);
+      std::printf("%s  adjoint %.10e  finite_difference %.10e  relative_error %.3e\n",
+                  e.param.c_str(), e.adjoint, e.finiteDifference, e.relativeError);
   }
   const AdjointSolverStats& b = report.backward;
   char summary[512];
-  std::snprintf(summary, sizeof summary,
-                "gradcheck: %s: %zu parameters, loss %.6e, max relative error %.3e; backward %s: %d steps, "
-                "%lld iterations (max %d per step), %d not converged, %d fallbacks, adjoint growth %.2g; "
-                "%d forward runs (%d unconverged steps), %.2f s",
-                scene.name.c_str(), report.entries.size(), report.loss, report.maxRelativeError(),
-                report.backwardMethod.c_str(), b.solves, b.iterations, b.maxIterations, b.notConverged, b.fallbacks,
-                b.adjointGrowth, report.forwardRuns, report.unconvergedSteps, report.seconds);
+  std::snprintf(
+      summary, sizeof summary,
+      "gradcheck: %s: %zu parameters, loss %.6e, max relative error %.3e; backward %s: %d steps, "
+      "%lld iterations (max %d per step), %d not converged, %d fallbacks, adjoint growth %.2g; "
+      "%d forward runs (%d unconverged steps), %.2f s",
+      scene.name.c_str(), report.entries.size(), report.loss, report.maxRelativeError(),
+      report.backwardMethod.c_str(), b.solves, b.iterations, b.maxIterations, b.notConverged,
+      b.fallbacks, b.adjointGrowth, report.forwardRuns, report.unconvergedSteps, report.seconds);
   std::fprintf(cl.has("--json") ? stderr : stdout, "%s\n", summary);
-  const std::string growth = adjointGrowthWarning(b, report.backwardMethod, report.backwardTolerance);
+  const std::string growth =
+      adjointGrowthWarning(b, report.backwardMethod, report.backwardTolerance);
   if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
   return 0;
 }

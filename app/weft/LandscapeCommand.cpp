@@ -46,7 +46,8 @@ struct Range {
 };
 
 // Parses "PATH=LO:HI" into the map; every problem names the option and its value.
-void parseRange(const std::string& file, const std::string& text, std::map<std::string, Range>& ranges) {
+void parseRange(const std::string& file, const std::string& text,
+                std::map<std::string, Range>& ranges) {
   const std::string where = "--range " + text;
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0) throw InputError(file, where, "expected PATH=LO:HI");
@@ -116,7 +117,8 @@ bool plotLandscape(const std::string& png, const std::string& title, const Param
       if (logScale) gp << "set logscale y\nset format y '%.0e'\n";
       gp << "set arrow from " << scenePoint[0] << ", graph 0 to " << scenePoint[0]
          << ", graph 1 nohead dashtype 2 lc rgb 'red'\n";
-      gp << "plot '-' using 1:2 with linespoints title 'task loss', '-' using 1:2 with points pt 7 ps 1.5 "
+      gp << "plot '-' using 1:2 with linespoints title 'task loss', '-' using 1:2 with points pt 7 "
+            "ps 1.5 "
             "lc rgb 'red' title 'scene value'\n";
       for (std::size_t i = 0; i < losses.size(); ++i) gp << axes[0][i] << " " << losses[i] << "\n";
       gp << "e\n";
@@ -138,8 +140,10 @@ bool plotLandscape(const std::string& png, const std::string& title, const Param
         // A loss of ~0 at an exact match (1e-18) would squash the rest of the map: the colour
         // scale spans at most ten decades below the largest loss.
         const double top = *std::max_element(losses.begin(), losses.end());
-        const double bottom = std::max(*std::min_element(losses.begin(), losses.end()), 1e-10 * top);
-        gp << "set logscale cb\nset format cb '%.0e'\nset cbrange [" << bottom << ":" << top << "]\n";
+        const double bottom =
+            std::max(*std::min_element(losses.begin(), losses.end()), 1e-10 * top);
+        gp << "set logscale cb\nset format cb '%.0e'\nset cbrange [" << bottom << ":" << top
+           << "]\n";
       }
       char label[160];
       std::snprintf(label, sizeof label, "scene value (%.6g, %.6g)", scenePoint[0], scenePoint[1]);
@@ -147,7 +151,8 @@ bool plotLandscape(const std::string& png, const std::string& title, const Param
             "lc rgb 'black' title "
          << quoted(label) << "\n";
       for (std::size_t j = 0; j < n1; ++j) {
-        for (std::size_t i = 0; i < n0; ++i) gp << axes[0][i] << " " << axes[1][j] << " " << losses[i * n1 + j] << "\n";
+        for (std::size_t i = 0; i < n0; ++i)
+          gp << axes[0][i] << " " << axes[1][j] << " " << losses[i * n1 + j] << "\n";
         gp << "\n";
       }
       gp << "e\n" << scenePoint[0] << " " << scenePoint[1] << "\ne\n";
@@ -165,20 +170,24 @@ bool plotLandscape(const std::string& png, const std::string& title, const Param
 }  // namespace
 
 int landscapeCommand(const std::vector<std::string>& args) {
-  CommandLine cl(args, {"--param", "--grid", "--range", "--out", "--set", "--threads"}, {"--quiet"});
+  CommandLine cl(args, {"--param", "--grid", "--range", "--out", "--set", "--threads"},
+                 {"--quiet"});
   if (cl.positional().size() != 1) cl.fail("SCENE", "landscape takes exactly one scene file");
   const std::string file = cl.positional()[0];
   cl.setContext(file);
   applyThreads(cl);
   const std::vector<std::string> paths = cl.values("--param");
-  if (paths.empty() || paths.size() > 2) cl.fail("--param", "give one or two parameters (--param A --param B)");
-  if (paths.size() == 2 && paths[0] == paths[1]) cl.fail("--param", "the two parameters must differ");
+  if (paths.empty() || paths.size() > 2)
+    cl.fail("--param", "give one or two parameters (--param A --param B)");
+  if (paths.size() == 2 && paths[0] == paths[1])
+    cl.fail("--param", "the two parameters must differ");
   if (cl.has("--grid")) {
     const std::string g = cl.value("--grid", "");
     char* end = nullptr;
     const long v = std::strtol(g.c_str(), &end, 10);
     if (g.empty() || *end != '\0' || v < 2 || v > kMaxGrid)
-      cl.fail("--grid", "must be a whole number in [2, " + std::to_string(kMaxGrid) + "], got '" + g + "'");
+      cl.fail("--grid",
+              "must be a whole number in [2, " + std::to_string(kMaxGrid) + "], got '" + g + "'");
   }
   const int grid = cl.integer("--grid", kDefaultGrid, 2, kMaxGrid);
   std::map<std::string, Range> ranges;
@@ -189,7 +198,8 @@ int landscapeCommand(const std::vector<std::string>& args) {
 
   const Scene scene = loadScene(file, parseOverrides(cl));
   printSceneWarnings(scene);
-  if (!scene.task) throw InputError(file, "task", "the scene has no task; landscape needs task.loss");
+  if (!scene.task)
+    throw InputError(file, "task", "the scene has no task; landscape needs task.loss");
   const ParameterSet parameters = ParameterSet::fromPaths(scene, paths);
   const TaskLoss loss(scene);
   const Eigen::VectorXd sceneValues = parameters.values(scene);
@@ -202,7 +212,8 @@ int landscapeCommand(const std::vector<std::string>& args) {
       r = ranges[path];
     } else {
       const double v = sceneValues[p];
-      r = v == 0.0 ? Range{-1.0, 1.0} : Range{std::min(0.5 * v, 1.5 * v), std::max(0.5 * v, 1.5 * v)};
+      r = v == 0.0 ? Range{-1.0, 1.0}
+                   : Range{std::min(0.5 * v, 1.5 * v), std::max(0.5 * v, 1.5 * v)};
     }
     axes.push_back(gridValues(r, grid));
   }
@@ -224,12 +235,15 @@ int landscapeCommand(const std::vector<std::string>& args) {
   const auto start = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < total; ++k) {
     std::vector<double> point;
-    if (parameters.size() == 1) point = {axes[0][k]};
-    else point = {axes[0][k / grid], axes[1][k % grid]};
+    if (parameters.size() == 1)
+      point = {axes[0][k]};
+    else
+      point = {axes[0][k / grid], axes[1][k % grid]};
     const std::string name = pointName(parameters, point);
     double value = 0.0;
     try {
-      const Scene at = parameters.withValues(scene, Eigen::Map<const Eigen::VectorXd>(point.data(), point.size()));
+      const Scene at = parameters.withValues(
+          scene, Eigen::Map<const Eigen::VectorXd>(point.data(), point.size()));
       const ForwardPass pass = runForwardPass(at);
       unconverged += pass.unconvergedSteps;
       value = loss.value(pass.trajectory);
@@ -238,30 +252,35 @@ int landscapeCommand(const std::vector<std::string>& args) {
     } catch (const NumericalError& e) {
       throw NumericalError(e.step(), e.module(), e.quantity() + " (at grid point " + name + ")");
     }
-    if (!std::isfinite(value)) throw NumericalError(0, "landscape", "loss is not finite at grid point " + name);
+    if (!std::isfinite(value))
+      throw NumericalError(0, "landscape", "loss is not finite at grid point " + name);
     losses.push_back(value);
     if (value < best) best = value, bestPoint = point;
     for (double v : point) csv << v << ",";
     csv << value << "\n";
     if (!quiet) std::fprintf(stderr, "\rpoint %zu/%zu, loss %.6e   ", k + 1, total, value);
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) std::fprintf(stderr, "\n");
   csv.close();
   if (!csv) throw InputError(outDir, "landscape.csv", "cannot write");
 
   std::string plotNote;
   const std::vector<double> scenePoint(sceneValues.data(), sceneValues.data() + sceneValues.size());
-  if (!plotLandscape(out.file("landscape.png"), scene.name + ": task loss landscape", parameters, axes, losses,
-                     scenePoint, plotNote))
+  if (!plotLandscape(out.file("landscape.png"), scene.name + ": task loss landscape", parameters,
+                     axes, losses, scenePoint, plotNote))
     std::fprintf(stderr, "warning: %s\n", plotNote.c_str());
   out.commit();
 
   if (unconverged > 0)
-    std::fprintf(stderr, "warning: %d forward steps stopped above solver.pd_tolerance over the grid\n", unconverged);
-  std::printf("landscape: %s: %zu points, %lld simulated steps, min loss %.6e at %s, %.2f s -> %s\n", scene.name.c_str(),
-              total, static_cast<long long>(total) * scene.time.steps, best, pointName(parameters, bestPoint).c_str(),
-              seconds, outDir.c_str());
+    std::fprintf(stderr,
+                 "warning: %d forward steps stopped above solver.pd_tolerance over the grid\n",
+                 unconverged);
+  std::printf(
+      "landscape: %s: %zu points, %lld simulated steps, min loss %.6e at %s, %.2f s -> %s\n",
+      scene.name.c_str(), total, static_cast<long long>(total) * scene.time.steps, best,
+      pointName(parameters, bestPoint).c_str(), seconds, outDir.c_str());
   return 0;
 }
 

@@ -55,7 +55,8 @@ nlohmann::json parameterObject(const ParameterSpace& space, const Eigen::VectorX
 
 int optimizeCommand(const std::vector<std::string>& args) {
   CommandLine cl(args,
-                 {"--method", "--seed", "--budget", "--out", "--max-evaluations", "--learning-rate", "--set", "--threads"},
+                 {"--method", "--seed", "--budget", "--out", "--max-evaluations", "--learning-rate",
+                  "--set", "--threads"},
                  {"--quiet"});
   if (cl.positional().size() != 1) cl.fail("SCENE", "optimize takes exactly one scene file");
   const std::string file = cl.positional()[0];
@@ -70,23 +71,28 @@ int optimizeCommand(const std::vector<std::string>& args) {
   settings.learningRate = cl.number("--learning-rate", settings.learningRate);
   if (!(settings.learningRate > 0.0)) cl.fail("--learning-rate", "must be > 0");
   const double budgetOption = cl.number("--budget", 0.0);
-  if (cl.has("--budget") && !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
+  if (cl.has("--budget") &&
+      !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
     cl.fail("--budget", "must be a positive whole number of simulated steps");
 
   const Scene scene = loadScene(file, parseOverrides(cl));
   printSceneWarnings(scene);
-  if (!scene.task) throw InputError(file, "task", "the scene has no task; optimize needs task.loss and parameters");
+  if (!scene.task)
+    throw InputError(file, "task",
+                     "the scene has no task; optimize needs task.loss and parameters");
   const ParameterSet parameters = ParameterSet::fromTask(scene);
   if (parameters.empty()) throw InputError(file, "task.parameters", "no parameters to optimise");
   SimulationObjective objective(scene, parameters);
   const bool usesGradient = makeOptimizer(method, OptimizerSettings{})->usesGradient();
-  const long long perEvaluation = usesGradient ? objective.stepsPerEvaluation() : objective.stepsPerValue();
-  settings.budget =
-      cl.has("--budget") ? static_cast<long long>(budgetOption) : kDefaultEvaluations * objective.stepsPerEvaluation();
+  const long long perEvaluation =
+      usesGradient ? objective.stepsPerEvaluation() : objective.stepsPerValue();
+  settings.budget = cl.has("--budget") ? static_cast<long long>(budgetOption)
+                                       : kDefaultEvaluations * objective.stepsPerEvaluation();
   if (settings.budget < perEvaluation)
     cl.fail("--budget", "must allow at least one evaluation (" + std::to_string(perEvaluation) +
                             " simulated steps: " + std::to_string(scene.time.steps) + " forward" +
-                            (usesGradient ? " + " + std::to_string(scene.time.steps) + " backward)" : ", no backward)"));
+                            (usesGradient ? " + " + std::to_string(scene.time.steps) + " backward)"
+                                          : ", no backward)"));
 
   const std::string outDir = cl.value("--out", "out/optimize-" + scene.name);
   StagedDirectory out(outDir);  // fails early on an unusable --out, before optimising
@@ -101,21 +107,26 @@ int optimizeCommand(const std::vector<std::string>& args) {
   std::unique_ptr<Optimizer> optimizer = makeOptimizer(method, settings);
   optimizer->log().setObserver([&](const LogEntry& e) {
     if (!std::isfinite(e.loss) || !e.gradient.allFinite())
-      throw NumericalError(0, "optimize", "loss or gradient is not finite at evaluation " + std::to_string(e.evaluation));
+      throw NumericalError(
+          0, "optimize",
+          "loss or gradient is not finite at evaluation " + std::to_string(e.evaluation));
     const Eigen::VectorXd v = space.toValues(e.x);
     char wall[32];
     std::snprintf(wall, sizeof wall, "%.6f", e.seconds);
     csv << e.evaluation << "," << e.steps << "," << wall << "," << e.loss;
     for (int i = 0; i < v.size(); ++i) csv << "," << v[i];
     csv << "\n";
-    if (!quiet) std::fprintf(stderr, "\revaluation %d, %lld steps, loss %.6e   ", e.evaluation, e.steps, e.loss);
+    if (!quiet)
+      std::fprintf(stderr, "\revaluation %d, %lld steps, loss %.6e   ", e.evaluation, e.steps,
+                   e.loss);
   });
 
   const auto start = std::chrono::steady_clock::now();
   const Eigen::VectorXd z0 = space.toCoordinates(space.initialValues());
   const OptimizationResult result =
       optimizer->minimize(objective, z0, space.lowerCoordinates(), space.upperCoordinates());
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) std::fprintf(stderr, "\n");
   csv.close();
   if (!csv) throw InputError(outDir, "loss.csv", "cannot write");
@@ -130,9 +141,10 @@ int optimizeCommand(const std::vector<std::string>& args) {
   if (result.hasGradient) dLdtheta = space.gradientToValues(result.x, result.gradient);
   nlohmann::json bounds = nlohmann::json::object();
   for (const SceneParameter& p : space.parameters())
-    bounds[p.path] = {{"lower", std::isfinite(p.lower) ? nlohmann::json(p.lower) : nlohmann::json(nullptr)},
-                      {"upper", std::isfinite(p.upper) ? nlohmann::json(p.upper) : nlohmann::json(nullptr)},
-                      {"log_scale", p.logScale}};
+    bounds[p.path] = {
+        {"lower", std::isfinite(p.lower) ? nlohmann::json(p.lower) : nlohmann::json(nullptr)},
+        {"upper", std::isfinite(p.upper) ? nlohmann::json(p.upper) : nlohmann::json(nullptr)},
+        {"log_scale", p.logScale}};
   const AdjointSolverStats& b = objective.backwardStats();
   nlohmann::json report = {
       {"scene", file},
@@ -151,18 +163,20 @@ int optimizeCommand(const std::vector<std::string>& args) {
       {"uses_gradient", usesGradient},
       {"gradient", result.hasGradient ? parameterObject(space, dLdtheta) : null},
       {"gradient_norm", result.hasGradient ? nlohmann::json(dLdtheta.norm()) : null},
-      {"projected_gradient_norm", result.hasGradient ? nlohmann::json(result.projectedGradientNorm) : null},
+      {"projected_gradient_norm",
+       result.hasGradient ? nlohmann::json(result.projectedGradientNorm) : null},
       {"stop_reason", result.stopReason},
       {"bounds", bounds},
       {"seconds", seconds},
-      {"backward", {{"method", scene.solver.backward.method},
-                    {"solves", b.solves},
-                    {"iterations", b.iterations},
-                    {"hessian_iterations", b.hessianIterations},
-                    {"hessian_factorizations", b.hessianFactorizations},
-                    {"not_converged", b.notConverged},
-                    {"fallbacks", b.fallbacks},
-                    {"adjoint_growth", b.adjointGrowth}}},
+      {"backward",
+       {{"method", scene.solver.backward.method},
+        {"solves", b.solves},
+        {"iterations", b.iterations},
+        {"hessian_iterations", b.hessianIterations},
+        {"hessian_factorizations", b.hessianFactorizations},
+        {"not_converged", b.notConverged},
+        {"fallbacks", b.fallbacks},
+        {"adjoint_growth", b.adjointGrowth}}},
       {"unconverged_forward_steps", objective.unconvergedForwardSteps()},
   };
   if (usesGradient) {
@@ -172,10 +186,12 @@ int optimizeCommand(const std::vector<std::string>& args) {
   }
   std::string plotNote;
   PlotSeries series{"loss", {}, {}};
-  for (const LogEntry& e : log.entries()) series.x.push_back(static_cast<double>(e.steps)), series.y.push_back(e.loss);
-  const bool plotted = plotSeries(out.file("loss.png"), scene.name + ": " + method,
-                                  usesGradient ? "simulated steps (forward + backward)" : "simulated steps (forward only)",
-                                  "loss", {series}, false, log.best().loss > 0.0, plotNote);
+  for (const LogEntry& e : log.entries())
+    series.x.push_back(static_cast<double>(e.steps)), series.y.push_back(e.loss);
+  const bool plotted = plotSeries(
+      out.file("loss.png"), scene.name + ": " + method,
+      usesGradient ? "simulated steps (forward + backward)" : "simulated steps (forward only)",
+      "loss", {series}, false, log.best().loss > 0.0, plotNote);
   report["plot"] = plotted ? nlohmann::json("loss.png") : nlohmann::json(nullptr);
   if (!plotted) std::fprintf(stderr, "warning: %s\n", plotNote.c_str());
   {
@@ -185,9 +201,11 @@ int optimizeCommand(const std::vector<std::string>& args) {
   }
   out.commit();
 
-  std::printf("optimize: %s: %s, %d evaluations, %lld simulated steps, loss %.6e -> %.6e, stop: %s, %.2f s -> %s\n",
-              scene.name.c_str(), method.c_str(), result.evaluations, result.steps, log.entries().front().loss,
-              result.loss, result.stopReason.c_str(), seconds, outDir.c_str());
+  std::printf(
+      "optimize: %s: %s, %d evaluations, %lld simulated steps, loss %.6e -> %.6e, stop: %s, %.2f s "
+      "-> %s\n",
+      scene.name.c_str(), method.c_str(), result.evaluations, result.steps,
+      log.entries().front().loss, result.loss, result.stopReason.c_str(), seconds, outDir.c_str());
   return 0;
 }
 

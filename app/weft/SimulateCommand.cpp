@@ -41,7 +41,8 @@ int simulateCommand(const std::vector<std::string>& args) {
   const int every = std::max(1, steps / 10);
   sim.run(steps, trajectory, [&](const StepStats& s) {
     if (!quiet && (s.step % every == 0))
-      std::fprintf(stderr, "\rstep %d/%d  pd %d  residual %.2e", s.step, steps, s.pdIterations, s.residual);
+      std::fprintf(stderr, "\rstep %d/%d  pd %d  residual %.2e", s.step, steps, s.pdIterations,
+                   s.residual);
   });
   if (!quiet && steps > 0) std::fprintf(stderr, "\n");
   RunSummary run;
@@ -54,10 +55,11 @@ int simulateCommand(const std::vector<std::string>& args) {
 
   long long iterations = 0;
   for (const StepStats& s : trajectory.steps) iterations += s.pdIterations;
-  std::printf("simulate: %s: %d steps, %d vertices, %.3f s (%.2f ms/step, %.1f PD iterations/step) -> %s\n",
-              scene.name.c_str(), steps, sim.model().nodeCount(), run.seconds,
-              steps ? 1e3 * run.seconds / steps : 0.0, steps ? double(iterations) / steps : 0.0,
-              outDir.c_str());
+  std::printf(
+      "simulate: %s: %d steps, %d vertices, %.3f s (%.2f ms/step, %.1f PD iterations/step) -> %s\n",
+      scene.name.c_str(), steps, sim.model().nodeCount(), run.seconds,
+      steps ? 1e3 * run.seconds / steps : 0.0, steps ? double(iterations) / steps : 0.0,
+      outDir.c_str());
   return 0;
 }
 

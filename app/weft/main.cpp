@@ -1,8 +1,8 @@
 // `weft`: the command-line face of the engine. Exit codes: 0 success, 2 bad input or usage,
 // 3 numerical failure (the contract of the product spec).
 
-#include "Commands.h"
 #include "../process/PassiveOpenMpWait.h"
+#include "Commands.h"
 
 #include <weft/core/Error.h>
 
@@ -19,9 +19,11 @@ const char* kUsage =
     "  render SCENE|RUNDIR [--frames A:B:S] [--size WxH] [--camera front|side|top|auto]\n"
     "         [--overlay contacts|strain|speed|none] [--wireframe] [--out DIR] [--video FILE.mp4]\n"
     "         [--backend auto|osmesa|egl] [--set PATH=VALUE ...] [--quiet]\n"
-    "  bench NAME [--out DIR] [--quick]        (NAME: forward, backward, continuity, contact, render)\n"
+    "  bench NAME [--out DIR] [--quick]        (NAME: forward, backward, continuity, contact, "
+    "render)\n"
     "  gradcheck SCENE [--param PATH ...] [--eps E] [--json] [--set PATH=VALUE ...]\n"
-    "         [--backward gmres|fixed_point|direct] [--forward-tolerance T] [--backward-tolerance T]\n"
+    "         [--backward gmres|fixed_point|direct] [--forward-tolerance T] [--backward-tolerance "
+    "T]\n"
     "  optimize SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]\n"
     "         [--max-evaluations N] [--learning-rate R] [--set PATH=VALUE ...]\n"
     "  landscape SCENE --param A [--param B] [--grid N] [--range PATH=LO:HI ...] [--out DIR]\n"

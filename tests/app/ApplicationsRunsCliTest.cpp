@@ -63,10 +63,9 @@ void editLastLoss(const std::string& file, const std::string& loss) {
 TEST(ApplicationsRunsCli, EveryRunIsStoredAndResumeReadsItBack) {
   TempDir dir;
   const std::string out = dir.file("bench");
-  const std::vector<std::string> args = {"bench",     "applications", "--quick", "--tasks",
-                                         "napkin_4x4", "--seeds",     "1",       "--budget",
-                                         "450",        "--out",       out,       "--threads",
-                                         "1"};
+  const std::vector<std::string> args = {
+      "bench",    "applications", "--quick", "--tasks", "napkin_4x4", "--seeds", "1",
+      "--budget", "450",          "--out",   out,       "--threads",  "1"};
   const auto first = runWeft(args);
   ASSERT_EQ(first.exitCode, 0) << describe(first);
   EXPECT_FALSE(fs::exists(out + ".partial")) << "the run store is folded into DIR/runs";
@@ -123,9 +122,9 @@ TEST(ApplicationsRunsCli, AKilledComparisonKeepsItsFinishedRunsAndResumeContinue
   TempDir dir;
   const std::string out = dir.file("bench");
   const std::string store = out + ".partial";
-  std::vector<std::string> args = {WEFT_BINARY, "bench",   "applications", "--quick", "--tasks",
-                                   "napkin_4x4", "--seeds", "3",            "--out",   out,
-                                   "--threads",  "1"};
+  std::vector<std::string> args = {WEFT_BINARY, "bench",      "applications", "--quick",
+                                   "--tasks",   "napkin_4x4", "--seeds",      "3",
+                                   "--out",     out,          "--threads",    "1"};
   const pid_t child = fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
@@ -181,26 +180,26 @@ TEST(ApplicationsRunsCli, AKilledComparisonKeepsItsFinishedRunsAndResumeContinue
   EXPECT_EQ(r.err.find("napkin_4x4, lbfgsb, seed 1..."), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("napkin_4x4, es1p1, seed 3..."), std::string::npos) << r.err;
   int runs = 0;
-  for (const auto& e : fs::directory_iterator(out + "/runs")) runs += e.path().extension() == ".csv";
+  for (const auto& e : fs::directory_iterator(out + "/runs"))
+    runs += e.path().extension() == ".csv";
   EXPECT_EQ(runs, 9);
 }
 
 TEST(ApplicationsRunsCli, PaperMeshesNeedTheirFolder) {
   TempDir dir;
   const std::string out = dir.file("kept");
-  test::expectBadInput("bench",
-                       {"applications", "--tasks", "hat", "--paper-meshes", dir.file("none"),
-                        "--out", out},
-                       dir.file("none") + ": --paper-meshes: ", "no such folder");
+  test::expectBadInput(
+      "bench", {"applications", "--tasks", "hat", "--paper-meshes", dir.file("none"), "--out", out},
+      dir.file("none") + ": --paper-meshes: ", "no such folder");
   fs::create_directories(dir.file("empty"));
-  test::expectBadInput("bench",
-                       {"applications", "--tasks", "hat", "--paper-meshes", dir.file("empty"),
-                        "--out", out},
-                       "--paper-meshes: ", "missing tshirt1000-tri.obj");
-  test::expectBadInput("bench", {"forward", "--paper-meshes", "--out", out}, "--paper-meshes: ",
-                       "applications benchmark only");
-  test::expectBadInput("bench", {"forward", "--resume", "--out", out}, "--resume: ",
-                       "applications benchmark only");
+  test::expectBadInput(
+      "bench",
+      {"applications", "--tasks", "hat", "--paper-meshes", dir.file("empty"), "--out", out},
+      "--paper-meshes: ", "missing tshirt1000-tri.obj");
+  test::expectBadInput("bench", {"forward", "--paper-meshes", "--out", out},
+                       "--paper-meshes: ", "applications benchmark only");
+  test::expectBadInput("bench", {"forward", "--resume", "--out", out},
+                       "--resume: ", "applications benchmark only");
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(out + ".partial"));
 }
@@ -211,10 +210,10 @@ std::string paperDir() {
   return cli::paper::defaultPaperMeshDirectory(fs::path(WEFT_ASSET_DIR).parent_path().string());
 }
 
-#define REQUIRE_PAPER_MESHES()                                                              \
-  if (!cli::paper::missingPaperMeshes(paperDir()).empty())                                  \
-  GTEST_SKIP() << "the DiffCloth garment meshes are not in " << paperDir() << " ("          \
-               << cli::paper::missingPaperMeshes(paperDir())                                \
+#define REQUIRE_PAPER_MESHES()                                                     \
+  if (!cli::paper::missingPaperMeshes(paperDir()).empty())                         \
+  GTEST_SKIP() << "the DiffCloth garment meshes are not in " << paperDir() << " (" \
+               << cli::paper::missingPaperMeshes(paperDir())                       \
                << "); see ../shared/meshes/README.md"
 
 // The task scene shortened to `steps` steps, its relative files made absolute, in `dir`.
@@ -248,7 +247,8 @@ Built build(const TempDir& dir, const std::string& task, int steps) {
   const cli::paper::PaperMesh* mesh = cli::paper::paperMeshFor(task);
   EXPECT_NE(mesh, nullptr);
   Built b{cli::paper::makePaperScene(file, *mesh, paperDir(), dir.file("targets")),
-          loadScene(file), {}};
+          loadScene(file),
+          {}};
   b.scene = parseScene(b.paper.document, file, dir.path());
   return b;
 }
@@ -319,9 +319,13 @@ TEST(PaperMeshScenes, TShirtRecordsItsTargetFromTheHiddenValues) {
   const NpyArray target = readNpy(b.paper.target);
   ASSERT_EQ(target.shape, (std::vector<std::size_t>{steps + 1u, 1426u, 3u}));
   nlohmann::json hidden = b.paper.document;
-  for (const auto& [path, value] : std::vector<std::pair<std::string, double>>{
-           {"cloths.0.material.stretch", 300.0}, {"wind.phase", 1.0}, {"wind.frequency", 1.5},
-           {"wind.direction.0", 0.4}, {"wind.direction.1", 0.6}, {"wind.direction.2", 0.5}})
+  for (const auto& [path, value] :
+       std::vector<std::pair<std::string, double>>{{"cloths.0.material.stretch", 300.0},
+                                                   {"wind.phase", 1.0},
+                                                   {"wind.frequency", 1.5},
+                                                   {"wind.direction.0", 0.4},
+                                                   {"wind.direction.1", 0.6},
+                                                   {"wind.direction.2", 0.5}})
     ASSERT_EQ(setJsonPath(hidden, path, value), "");
   const Scene hiddenScene = parseScene(hidden, "tshirt", dir.path());
   Simulator sim(hiddenScene);
@@ -329,7 +333,8 @@ TEST(PaperMeshScenes, TShirtRecordsItsTargetFromTheHiddenValues) {
   sim.run(steps, t);
   const std::vector<double> flat = t.flattenedPositions();
   double gap = 0.0;
-  for (std::size_t i = 0; i < flat.size(); ++i) gap = std::max(gap, std::abs(flat[i] - target.data[i]));
+  for (std::size_t i = 0; i < flat.size(); ++i)
+    gap = std::max(gap, std::abs(flat[i] - target.data[i]));
   EXPECT_LT(gap, 1e-12);
   Simulator start(b.scene);
   Trajectory s;
@@ -401,7 +406,8 @@ TEST(PaperMeshScenes, FlagHangsFromItsPole) {
   // The pole side is at -X: the fixed vertices lie along the flag's left edge.
   const NodeMatrix& x = b.scene.cloths[0].mesh.vertices;
   const double xmin = x.col(0).minCoeff(), width = extent(x).x();
-  for (int v : b.scene.cloths[0].attachments[0].vertices) EXPECT_LT(x(v, 0), xmin + 0.15 * width) << v;
+  for (int v : b.scene.cloths[0].attachments[0].vertices)
+    EXPECT_LT(x(v, 0), xmin + 0.15 * width) << v;
   const NpyArray target = readNpy(b.paper.target);
   EXPECT_EQ(target.shape, (std::vector<std::size_t>{steps + 1u, 540u, 3u}));
   // The wind's falloff coefficients are those of the new vertices (inverse distance to the centre).

@@ -1,6 +1,7 @@
 // The shipped scenes and the contact benchmarks, through the real binary: every
 // assets/scenes/*.json loads and simulates a couple of steps, and `weft bench continuity` and
-// `weft bench contact` (and `weft bench backward`) produce their CSV in quick mode (what the README documents must run).
+// `weft bench contact` (and `weft bench backward`) produce their CSV in quick mode (what the README
+// documents must run).
 
 #include "CliSupport.h"
 
@@ -82,16 +83,18 @@ TEST(SceneAssets, BowlKeepsTheNapkinsArea) {
   TempDir dir;
   const std::string out = dir.file("bowl");
   const auto r = runWeft({"simulate", std::string(WEFT_ASSET_DIR) + "/scenes/bowl.json", "--set",
-                          "cloths.0.mesh.grid.resolution=[16,16]", "--steps", "200", "--out", out, "--quiet",
-                          "--threads", "1"});
+                          "cloths.0.mesh.grid.resolution=[16,16]", "--steps", "200", "--out", out,
+                          "--quiet", "--threads", "1"});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   const auto rows = readCsv(out + "/stats.csv");
   ASSERT_EQ(rows.size(), 201u);
-  const auto column = static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), "area_ratio") - rows[0].begin());
+  const auto column = static_cast<std::size_t>(
+      std::find(rows[0].begin(), rows[0].end(), "area_ratio") - rows[0].begin());
   ASSERT_LT(column, rows[0].size());
   double previous = 1.0, largestJump = 0.0;
   int landed = 0;
-  const auto slip = static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), "contacts_slip") - rows[0].begin());
+  const auto slip = static_cast<std::size_t>(
+      std::find(rows[0].begin(), rows[0].end(), "contacts_slip") - rows[0].begin());
   for (std::size_t k = 1; k < rows.size(); ++k) {
     const double area = std::stod(rows[k][column]);
     EXPECT_NEAR(area, 1.0, 5e-3) << "step " << k;
@@ -100,7 +103,8 @@ TEST(SceneAssets, BowlKeepsTheNapkinsArea) {
     landed += std::stoi(rows[k][slip]) > 0;
   }
   EXPECT_LT(largestJump, 3e-3);
-  EXPECT_GT(landed, 100) << "steps with slipping contacts: the napkin should land and slide in the bowl";
+  EXPECT_GT(landed, 100)
+      << "steps with slipping contacts: the napkin should land and slide in the bowl";
   const nlohmann::json summary = nlohmann::json::parse(readFile(out + "/summary.json"));
   EXPECT_NEAR(summary["area_ratio"]["final"].get<double>(), previous, 1e-8);
 }
@@ -143,7 +147,8 @@ TEST(SceneAssets, ContactBenchQuickWritesCsv) {
   ASSERT_EQ(rows.size(), 1u + 3 * 2);  // three scenes at two resolutions
   EXPECT_EQ(rows[0][0], "scene");
   const auto column = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) -
+                                    rows[0].begin());
   };
   const std::size_t mean = column("ms_per_step"), median = column("ms_median_step");
   ASSERT_LT(mean, rows[0].size());
@@ -164,14 +169,34 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
   // Wind and Slope: direct, then fixed point and GMRES preconditioned by P, by the clamped Hessian
   // and automatically, each at 1e-4 and 1e-6.
   ASSERT_EQ(rows.size(), 1u + 2 * 9);
-  const std::vector<std::string> columns = {"scene", "quads", "vertices", "steps", "method", "tolerance",
-                                            "backward_s", "ms_per_step", "solve_ms_per_step", "rest_ms_per_step",
-                                            "iterations_per_step", "max_iterations", "not_converged", "fallbacks",
-                                            "fail_percent", "speedup_vs_direct", "gradient_rel_error",
-                                            "forward_ms_per_step", "forward_unconverged", "peak_rss_mb",
-                                            "delta_p_ms_per_step", "delta_r_ms_per_step", "fallback_ms_per_step",
-                                            "cpu_ms_per_step", "cpu_speedup_vs_direct", "adjoint_growth",
-                                            "hessian_iterations_per_step", "hessian_factorizations"};
+  const std::vector<std::string> columns = {"scene",
+                                            "quads",
+                                            "vertices",
+                                            "steps",
+                                            "method",
+                                            "tolerance",
+                                            "backward_s",
+                                            "ms_per_step",
+                                            "solve_ms_per_step",
+                                            "rest_ms_per_step",
+                                            "iterations_per_step",
+                                            "max_iterations",
+                                            "not_converged",
+                                            "fallbacks",
+                                            "fail_percent",
+                                            "speedup_vs_direct",
+                                            "gradient_rel_error",
+                                            "forward_ms_per_step",
+                                            "forward_unconverged",
+                                            "peak_rss_mb",
+                                            "delta_p_ms_per_step",
+                                            "delta_r_ms_per_step",
+                                            "fallback_ms_per_step",
+                                            "cpu_ms_per_step",
+                                            "cpu_speedup_vs_direct",
+                                            "adjoint_growth",
+                                            "hessian_iterations_per_step",
+                                            "hessian_factorizations"};
   EXPECT_EQ(rows[0], columns);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     // The adjoint's growth over each pass (diff/AdjointGrowth.h): at least 1 by definition.
@@ -196,7 +221,8 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
   for (std::size_t i = 1; i < rows.size(); ++i)
     if (rows[i][4].rfind("gmres", 0) == 0 && rows[i][5] == "1e-06") {
       ++gmres;
-      EXPECT_LT(std::stod(rows[i][16]), 1e-5) << rows[i][0] << ": GMRES gradient vs direct, row " << i;
+      EXPECT_LT(std::stod(rows[i][16]), 1e-5)
+          << rows[i][0] << ": GMRES gradient vs direct, row " << i;
     }
   EXPECT_EQ(gmres, 6);
   EXPECT_TRUE(fs::exists(out + "/backward.md"));
@@ -209,14 +235,23 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
 TEST(SceneAssets, BackwardBenchCalibrateWritesTheEstimateBesideTheTimings) {
   TempDir dir;
   const std::string out = dir.file("calibrate");
-  const auto r = runWeft({"bench", "backward", "--calibrate", "--scenes", "wind", "--resolutions", "8", "--out", out});
+  const auto r = runWeft(
+      {"bench", "backward", "--calibrate", "--scenes", "wind", "--resolutions", "8", "--out", out});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   const auto rows = readCsv(out + "/calibrate.csv");
   ASSERT_EQ(rows.size(), 2u);
-  const std::vector<std::string> columns = {"scene", "quads", "vertices", "first_factor_ms", "factor_ms",
-                                            "iteration_ms", "measured_iterations", "flop_ratio",
-                                            "estimated_iterations", "estimate_over_measured",
-                                            "hessian_iteration_ms", "measured_hessian_iteration_cost",
+  const std::vector<std::string> columns = {"scene",
+                                            "quads",
+                                            "vertices",
+                                            "first_factor_ms",
+                                            "factor_ms",
+                                            "iteration_ms",
+                                            "measured_iterations",
+                                            "flop_ratio",
+                                            "estimated_iterations",
+                                            "estimate_over_measured",
+                                            "hessian_iteration_ms",
+                                            "measured_hessian_iteration_cost",
                                             "estimated_hessian_iteration_cost"};
   ASSERT_EQ(rows[0], columns);
   const auto& row = rows[1];
@@ -224,7 +259,8 @@ TEST(SceneAssets, BackwardBenchCalibrateWritesTheEstimateBesideTheTimings) {
   for (std::size_t c = 3; c <= 6; ++c) EXPECT_GT(std::stod(row[c]), 0.0) << columns[c];
   const double flopRatio = std::stod(row[7]);
   EXPECT_GT(flopRatio, 1.0);
-  EXPECT_NEAR(std::stod(row[8]), AdjointSystem::kFactorCostScale * std::sqrt(flopRatio), 1e-2 * std::stod(row[8]));
+  EXPECT_NEAR(std::stod(row[8]), AdjointSystem::kFactorCostScale * std::sqrt(flopRatio),
+              1e-2 * std::stod(row[8]));
   // An iteration with H's factor (3m unknowns, one column) does more work than one with P's
   // (m unknowns, three columns): H's L has about 9 times P's entries.
   EXPECT_GT(std::stod(row[10]), 0.0);
@@ -232,7 +268,9 @@ TEST(SceneAssets, BackwardBenchCalibrateWritesTheEstimateBesideTheTimings) {
   EXPECT_TRUE(fs::exists(out + "/calibrate.md"));
   const auto wrong = runWeft({"bench", "contact", "--calibrate", "--out", dir.file("wrong")});
   EXPECT_EQ(wrong.exitCode, 2) << describe(wrong);
-  EXPECT_NE(wrong.err.find("--calibrate: applies to the backward benchmark only"), std::string::npos) << describe(wrong);
+  EXPECT_NE(wrong.err.find("--calibrate: applies to the backward benchmark only"),
+            std::string::npos)
+      << describe(wrong);
 }
 
 }  // namespace

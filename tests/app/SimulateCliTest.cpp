@@ -342,12 +342,15 @@ TEST(SimulateCli, NonFiniteContactExitsThreeNamingTheContactSolve) {
   doc["cloths"][0]["mesh"]["transform"] = {{"translate", {0.0, 0.001, 0.0}}};
   doc["obstacles"] = {{{"plane", {{"point", {0.0, 0.0, 0.0}}, {"normal", {0.0, 1.0, 0.0}}}},
                        {"friction", 0.3},
-                       {"motion", {{"keyframes", {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}},
-                                                  {{"time", 0.01}, {"offset", {1e308, 0.0, 0.0}}}}}}}}};
+                       {"motion",
+                        {{"keyframes",
+                          {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}},
+                           {{"time", 0.01}, {"offset", {1e308, 0.0, 0.0}}}}}}}}};
   const std::string scene = test::writeScene(dir.file("scene.json"), doc);
   const test::ProcessResult r = runWeft({"simulate", scene, "--out", dir.file("run"), "--quiet"});
   EXPECT_EQ(r.exitCode, 3) << describe(r);
-  EXPECT_THAT(r.err, StartsWith("error: numerical failure: step 1: contact_solve: non-finite contact impulse or velocity"))
+  EXPECT_THAT(r.err, StartsWith("error: numerical failure: step 1: contact_solve: non-finite "
+                                "contact impulse or velocity"))
       << r.err;
   EXPECT_FALSE(fs::exists(dir.file("run")));
 }

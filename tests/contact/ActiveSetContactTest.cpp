@@ -18,7 +18,8 @@ constexpr double kRadius = 0.4, kSkin = 1e-3;
 constexpr double kPenetrationTolerance = 1e-3;
 
 TEST(ActiveSetContact, SphereDropNeverPenetratesAndConvergedStepsObeyTheLaw) {
-  nlohmann::json doc = test::clothScene(0.8, 12, Vec3(0.0, kRadius + 0.05, 0.0), 0.01, 500.0, 1e-3, 0.2);
+  nlohmann::json doc =
+      test::clothScene(0.8, 12, Vec3(0.0, kRadius + 0.05, 0.0), 0.01, 500.0, 1e-3, 0.2);
   test::addObstacle(doc, "sphere", {{"center", {0, 0, 0}}, {"radius", kRadius}}, 0.5);
   doc["obstacles"][0]["thickness"] = kSkin;
   doc["solver"]["contact"] = "active_set";
@@ -28,13 +29,15 @@ TEST(ActiveSetContact, SphereDropNeverPenetratesAndConvergedStepsObeyTheLaw) {
   for (int n = 1; n <= t.stepCount(); ++n) {
     ASSERT_TRUE(t.positions[n].allFinite());
     const double deepest = t.positions[n].rowwise().norm().minCoeff() - kRadius - kSkin;
-    ASSERT_GT(deepest, -kPenetrationTolerance) << "step " << n << ", converged " << t.steps[n - 1].converged;
+    ASSERT_GT(deepest, -kPenetrationTolerance)
+        << "step " << n << ", converged " << t.steps[n - 1].converged;
     if (!t.steps[n - 1].converged) continue;
     ++converged;
     for (const ContactPoint& p : t.contacts[n - 1].points) {
       // The law holds to the solver's own tolerance: pd_tolerance * h as a velocity, relative
       // to the contact's momentum scale.
-      ASSERT_EQ(test::branchViolation(p, 1e-3), "") << "step " << n << " node " << p.node << " " << branchName(p.branch);
+      ASSERT_EQ(test::branchViolation(p, 1e-3), "")
+          << "step " << n << " node " << p.node << " " << branchName(p.branch);
       ++checked;
       activeContacts += p.branch != ContactBranch::TakeOff;
     }

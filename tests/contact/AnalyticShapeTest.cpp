@@ -33,15 +33,19 @@ struct ShapeCase {
   Vec3 lower, upper;  // where to sample
 };
 
-void PrintTo(const ShapeCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const ShapeCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 const Vec3 kPlanePoint(0.1, -0.2, 0.3);
 const Vec3 kPlaneNormal = Vec3(0.3, 1.0, -0.2).normalized();
 const Vec3 kCentre(0.2, 0.1, -0.1);
 const Vec3 kA(-0.3, 0.0, 0.1), kB(0.4, 0.2, -0.1);
 const Vec3 kHalf(0.3, 0.1, 0.2);
-const Mat3 kRotation = (Eigen::AngleAxisd(0.4, Vec3::UnitZ()) * Eigen::AngleAxisd(-0.7, Vec3::UnitY()) *
-                        Eigen::AngleAxisd(0.2, Vec3::UnitX())).toRotationMatrix();
+const Mat3 kRotation =
+    (Eigen::AngleAxisd(0.4, Vec3::UnitZ()) * Eigen::AngleAxisd(-0.7, Vec3::UnitY()) *
+     Eigen::AngleAxisd(0.2, Vec3::UnitX()))
+        .toRotationMatrix();
 
 double segmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
   const double s = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
@@ -135,8 +139,9 @@ TEST_P(AnalyticShape, SignedDistanceNormalAndClosestPointMatchClosedForm) {
       const Vec3 step = eps * Vec3::Unit(d);
       gradient[d] = (c.distance(p + step, unused) - c.distance(p - step, unused)) / (2 * eps);
     }
-    ASSERT_LT((gradient - s.normal).norm(), 1e-6) << "at " << p.transpose() << ": normal " << s.normal.transpose()
-                                                  << ", gradient " << gradient.transpose();
+    ASSERT_LT((gradient - s.normal).norm(), 1e-6)
+        << "at " << p.transpose() << ": normal " << s.normal.transpose() << ", gradient "
+        << gradient.transpose();
     ++checkedNormals;
   }
   // The sample covered both sides of the surface.
@@ -165,7 +170,9 @@ TEST_P(AnalyticShape, ReachOnlySkipsPointsFartherThanReach) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, AnalyticShape, ::testing::ValuesIn(kShapes),
-                         [](const ::testing::TestParamInfo<ShapeCase>& info) { return std::string(info.param.name); });
+                         [](const ::testing::TestParamInfo<ShapeCase>& info) {
+                           return std::string(info.param.name);
+                         });
 
 // A node exactly at a round shape's centre still gets a unit normal and the right depth.
 TEST(AnalyticShapeDegenerate, CentreOfSphereAndAxisOfCapsule) {
@@ -190,9 +197,9 @@ namespace {
 // sampleMoved's other cases: for random points p and path starts `from` (drawn by `draw`), unless
 // p is inside and `from` outside, the answer is sample(p)'s. Counts the outside and inside points
 // checked.
-void expectSampleMovedIsSampleOtherwise(const ObstacleShape& shape, const std::function<bool(const Vec3&)>& within,
-                                        const std::function<void(std::mt19937&, Vec3&, Vec3&)>& draw,
-                                        unsigned seed) {
+void expectSampleMovedIsSampleOtherwise(
+    const ObstacleShape& shape, const std::function<bool(const Vec3&)>& within,
+    const std::function<void(std::mt19937&, Vec3&, Vec3&)>& draw, unsigned seed) {
   std::mt19937 rng(seed);
   int outside = 0, inside = 0;
   for (int trial = 0; trial < 5000; ++trial) {
@@ -261,7 +268,10 @@ TEST_F(BoxEntryFace, OutsideOrAlreadyInsideIsTheSignedDistanceSample) {
   // Outside the box (every node resting in a skin) the frame is the smooth distance gradient
   // whatever the path; a path that starts inside has no entry face: the nearest face.
   expectSampleMovedIsSampleOtherwise(
-      box, [&](const Vec3& q) { return ((kRotation.transpose() * (q - kCentre)).cwiseAbs() - half).maxCoeff() <= 0.0; },
+      box,
+      [&](const Vec3& q) {
+        return ((kRotation.transpose() * (q - kCentre)).cwiseAbs() - half).maxCoeff() <= 0.0;
+      },
       [](std::mt19937& rng, Vec3& p, Vec3& from) {
         std::uniform_real_distribution<double> u(-0.4, 0.4);
         p = kCentre + Vec3(u(rng), u(rng), u(rng));
@@ -278,7 +288,9 @@ class CylinderEntrySurface : public ::testing::Test {
  protected:
   const Vec3 axis = kRotation.col(2), radialX = kRotation.col(0), radialY = kRotation.col(1);
   const CylinderShape cylinder{kCentre - 0.1 * axis, kCentre + 0.1 * axis, 0.1};
-  Vec3 world(double x, double y, double a) const { return kCentre + x * radialX + y * radialY + a * axis; }
+  Vec3 world(double x, double y, double a) const {
+    return kCentre + x * radialX + y * radialY + a * axis;
+  }
 };
 
 TEST_F(CylinderEntrySurface, SideEntryNearTheCapGetsTheSideNormal) {
@@ -307,7 +319,8 @@ TEST_F(CylinderEntrySurface, TheSurfaceCrossedNotAPreferredOne) {
   EXPECT_LT((s.normal + axis).norm(), 1e-12);
   EXPECT_NEAR(s.distance, -0.005, 1e-12);
   // The side crossed last: the cap plane at 29 %, the side at 47 % (radially along -y here).
-  ASSERT_TRUE(cylinder.sampleMoved(world(0.0, -0.092, -0.095), world(0.0, -0.107, -0.102), 0.01, s));
+  ASSERT_TRUE(
+      cylinder.sampleMoved(world(0.0, -0.092, -0.095), world(0.0, -0.107, -0.102), 0.01, s));
   EXPECT_LT((s.normal + radialY).norm(), 1e-12) << s.normal.transpose();
   EXPECT_NEAR(s.distance, -0.008, 1e-12);
   // A path that ends on the axis: the normal where it crossed the side.

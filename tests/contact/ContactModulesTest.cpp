@@ -22,13 +22,16 @@ double seconds(const Simulator& sim, const std::string& name) {
   return it == names.end() ? -1.0 : sim.moduleSeconds()[it - names.begin()];
 }
 
-nlohmann::json baseScene() { return test::clothScene(0.3, 6, Vec3(0, 0.05, 0), 0.01); }
+nlohmann::json baseScene() {
+  return test::clothScene(0.3, 6, Vec3(0, 0.05, 0), 0.01);
+}
 
 TEST(ContactModules, NoObstaclesNoSelfCollisionBuildsNoContact) {
   const test::ContactRun run = test::runScene(baseScene(), 5);
   const Simulator& sim = *run.sim;
   EXPECT_EQ(sim.contact(), nullptr);
-  for (const std::string& name : sim.moduleNames()) EXPECT_EQ(name.find("contact"), std::string::npos) << name;
+  for (const std::string& name : sim.moduleNames())
+    EXPECT_EQ(name.find("contact"), std::string::npos) << name;
   EXPECT_FALSE(has(sim, "self_collision"));
   EXPECT_TRUE(run.trajectory.contacts.empty());
   EXPECT_TRUE(sim.lastContacts().points.empty());

@@ -29,7 +29,8 @@ RandomContacts makeContacts(int nodes, int seed, bool coupled) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   RandomContacts r;
   r.mass = Eigen::VectorXd::NullaryExpr(nodes, [&](Eigen::Index) { return 1e-4 * (0.5 + u(rng)); });
-  r.freeMomentum = NodeMatrix::NullaryExpr(nodes, 3, [&](Eigen::Index, Eigen::Index) { return 1e-4 * g(rng); });
+  r.freeMomentum =
+      NodeMatrix::NullaryExpr(nodes, 3, [&](Eigen::Index, Eigen::Index) { return 1e-4 * g(rng); });
   auto contact = [&](int node, int partner) {
     ContactConstraint c;
     c.node = node;
@@ -59,7 +60,8 @@ RandomContacts makeContacts(int nodes, int seed, bool coupled) {
       const int a = static_cast<int>(u(rng) * nodes), b = static_cast<int>(u(rng) * nodes);
       if (a == b) continue;
       bool duplicate = false;
-      for (const auto& p : r.pairs) duplicate = duplicate || (p.node == std::min(a, b) && p.partner == std::max(a, b));
+      for (const auto& p : r.pairs)
+        duplicate = duplicate || (p.node == std::min(a, b) && p.partner == std::max(a, b));
       if (!duplicate) r.pairs.push_back(contact(std::min(a, b), std::max(a, b)));
     }
   std::vector<int> obstacleNodes;
@@ -79,7 +81,8 @@ TEST(ContactSolver, UncoupledContactsAreExactAfterOneSweep) {
   StepContacts out;
   solver.record(out);
   ASSERT_EQ(out.points.size(), r.obstacle.size());
-  for (const ContactPoint& p : out.points) ASSERT_EQ(test::branchViolation(p, 1e-12), "") << "node " << p.node;
+  for (const ContactPoint& p : out.points)
+    ASSERT_EQ(test::branchViolation(p, 1e-12), "") << "node " << p.node;
 }
 
 class ContactSolverCoupled : public ::testing::TestWithParam<int> {};
@@ -145,7 +148,8 @@ int checkLinearization(bool withPairs, int seed, int nodes) {
   solver.linearize();
   std::mt19937 rng(seed + 100);
   std::normal_distribution<double> g(0.0, 1.0);
-  const NodeMatrix direction = NodeMatrix::NullaryExpr(nodes, 3, [&](Eigen::Index, Eigen::Index) { return 1e-4 * g(rng); });
+  const NodeMatrix direction =
+      NodeMatrix::NullaryExpr(nodes, 3, [&](Eigen::Index, Eigen::Index) { return 1e-4 * g(rng); });
   NodeMatrix analytic = NodeMatrix::Zero(nodes, 3);
   solver.addLawJacobian(direction, analytic);
 
@@ -158,23 +162,26 @@ int checkLinearization(bool withPairs, int seed, int nodes) {
   // change anywhere moves every impulse coupled to it: compare only without either.
   if (!converged) return 0;
   for (std::size_t k = 0; k < base.points.size(); ++k)
-    if (plusRecord.points[k].branch != base.points[k].branch || minusRecord.points[k].branch != base.points[k].branch)
+    if (plusRecord.points[k].branch != base.points[k].branch ||
+        minusRecord.points[k].branch != base.points[k].branch)
       return 0;
   int compared = 0, cornerSticks = 0;
   for (int node = 0; node < nodes; ++node) {
     if (contactsOf[node] == 0) continue;
     const Vec3 fd = (plus.row(node) - minus.row(node)).transpose() / (2 * eps);
     const Vec3 a = analytic.row(node).transpose();
-    EXPECT_LT((a - fd).norm(), 1e-6 * (1e-4 + fd.norm())) << "node " << node << " with " << contactsOf[node]
-                                                            << " contacts: analytic " << a.transpose()
-                                                            << ", finite differences " << fd.transpose();
+    EXPECT_LT((a - fd).norm(), 1e-6 * (1e-4 + fd.norm()))
+        << "node " << node << " with " << contactsOf[node] << " contacts: analytic "
+        << a.transpose() << ", finite differences " << fd.transpose();
     ++compared;
   }
   for (std::size_t k = 0; k + 1 < r.obstacle.size(); ++k)
-    cornerSticks += base.points[k].node == base.points[k + 1].node && base.points[k].branch == ContactBranch::Stick &&
+    cornerSticks += base.points[k].node == base.points[k + 1].node &&
+                    base.points[k].branch == ContactBranch::Stick &&
                     base.points[k + 1].branch == ContactBranch::Stick;
   if (!withPairs) {
-    EXPECT_GE(cornerSticks, 1) << "no node sticks to both of its obstacles: the singular case is not checked";
+    EXPECT_GE(cornerSticks, 1)
+        << "no node sticks to both of its obstacles: the singular case is not checked";
   }
   return compared;
 }
@@ -196,7 +203,8 @@ TEST(ContactSolver, LinearizationStaysFiniteAtCornersWhoseSweepsHaveNotSettled) 
     for (auto& c : r.obstacle) c.friction *= 2.0;
     r.pairs.clear();
     r.layerStart.assign(1, 0);
-    for (std::size_t k = 0; k + 1 < r.obstacle.size(); ++k) corners += r.obstacle[k].node == r.obstacle[k + 1].node;
+    for (std::size_t k = 0; k + 1 < r.obstacle.size(); ++k)
+      corners += r.obstacle[k].node == r.obstacle[k + 1].node;
     ContactSolver solver(200);
     solver.setContacts(r.obstacle, r.pairs, r.layerStart, r.mass);
     solver.solve(r.freeMomentum, 0.0, 1);

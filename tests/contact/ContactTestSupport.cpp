@@ -7,8 +7,8 @@
 
 namespace weft::test {
 
-nlohmann::json clothScene(double size, int quads, const Vec3& centre, double dt, double stretch, double bend,
-                          double density) {
+nlohmann::json clothScene(double size, int quads, const Vec3& centre, double dt, double stretch,
+                          double bend, double density) {
   nlohmann::json scene = gridScene(size, quads, dt, 0, stretch, bend, density);
   scene["gravity"] = {0.0, -9.8, 0.0};
   scene["solver"] = {{"pd_iterations", 400}, {"pd_tolerance", 1e-3}};
@@ -42,7 +42,8 @@ std::string branchViolation(const ContactPoint& p, double tolerance) {
   const double tol = tolerance * scale + 1e-15, velTol = tol / p.effectiveMass;
   if (std::abs(n.norm() - 1.0) > 1e-9) why << "normal not unit; ";
   if (rN < -tol) why << "r_N = " << rN << " < 0; ";
-  if (rT.norm() > p.friction * rN + tol) why << "|r_T| = " << rT.norm() << " > mu r_N = " << p.friction * rN << "; ";
+  if (rT.norm() > p.friction * rN + tol)
+    why << "|r_T| = " << rT.norm() << " > mu r_N = " << p.friction * rN << "; ";
   switch (p.branch) {
     case ContactBranch::TakeOff:
       if (p.impulse.norm() > tol) why << "take-off with r = " << p.impulse.norm() << "; ";
@@ -55,14 +56,18 @@ std::string branchViolation(const ContactPoint& p, double tolerance) {
       if (std::abs(uN) > velTol) why << "slip with u_N = " << uN << "; ";
       // At the stick-slip boundary u_T may vanish: then r_T need only lie on the cone.
       if (uT.norm() <= velTol) {
-        if (std::abs(rT.norm() - p.friction * rN) > tol) why << "slip with r_T inside the cone and u_T = 0; ";
+        if (std::abs(rT.norm() - p.friction * rN) > tol)
+          why << "slip with r_T inside the cone and u_T = 0; ";
         break;
       }
       const Vec3 expected = -p.friction * rN * uT.normalized();
-      if ((rT - expected).norm() > tol) why << "slip with r_T off the cone or not opposite u_T (" << (rT - expected).norm() << "); ";
+      if ((rT - expected).norm() > tol)
+        why << "slip with r_T off the cone or not opposite u_T (" << (rT - expected).norm()
+            << "); ";
       break;
     }
-    default: why << "no branch; ";
+    default:
+      why << "no branch; ";
   }
   return why.str();
 }

@@ -17,8 +17,8 @@ namespace weft::test {
 
 // A flat square grid cloth (XZ plane, normal +Y) of `size` m with `quads` x `quads` quads,
 // centred at `centre`, gravity -9.8 Y, plain contact-scene solver settings.
-nlohmann::json clothScene(double size, int quads, const Vec3& centre, double dt, double stretch = 1000.0,
-                          double bend = 1e-3, double density = 0.2);
+nlohmann::json clothScene(double size, int quads, const Vec3& centre, double dt,
+                          double stretch = 1000.0, double bend = 1e-3, double density = 0.2);
 
 // Appends an obstacle entry {shape: geometry, friction: mu}.
 void addObstacle(nlohmann::json& scene, const std::string& shape, const nlohmann::json& geometry,
@@ -40,5 +40,7 @@ std::string branchViolation(const ContactPoint& p, double tolerance = 1e-9);
 }  // namespace weft::test
 
 namespace weft::test {
-inline double maxSpeedOf(const NodeMatrix& v) { return std::sqrt(v.rowwise().squaredNorm().maxCoeff()); }
+inline double maxSpeedOf(const NodeMatrix& v) {
+  return std::sqrt(v.rowwise().squaredNorm().maxCoeff());
+}
 }  // namespace weft::test

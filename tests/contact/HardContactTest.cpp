@@ -43,7 +43,8 @@ TEST(HardContact, FastImpactOnAThinPlateDoesNotTunnel) {
   const test::ContactRun run = test::runScene(doc, 30);
   for (const NodeMatrix& x : run.trajectory.positions) {
     ASSERT_TRUE(x.allFinite());
-    ASSERT_GT(x.col(1).minCoeff(), 0.005 + kSkin - kTolerance) << "a node went into or through the plate";
+    ASSERT_GT(x.col(1).minCoeff(), 0.005 + kSkin - kTolerance)
+        << "a node went into or through the plate";
   }
 }
 
@@ -76,7 +77,8 @@ TEST(HardContact, ClothSqueezedBetweenTwoObstacles) {
   EXPECT_GT(doubleContacts, 100) << "nodes should be pressed by both obstacles at once";
   // Dragged along by the slab's friction against the floor's: both have mu 0.5 and the floor's
   // normal force is the slab's plus the weight, so the cloth moves, but not faster than the slab.
-  const double shift = run.trajectory.positions.back().col(0).mean() - run.trajectory.positions.front().col(0).mean();
+  const double shift = run.trajectory.positions.back().col(0).mean() -
+                       run.trajectory.positions.front().col(0).mean();
   RecordProperty("squeezed_shift_mm", std::to_string(shift * 1e3));
   EXPECT_GT(shift, -1e-3);
   EXPECT_LT(shift, 0.1 + 1e-3);
@@ -95,7 +97,8 @@ void expectObstaclePushesTheCloth(const char* kind, const nlohmann::json& shape,
   test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.2);
   test::addObstacle(doc, kind, shape, 0.2);
   doc["obstacles"][1]["motion"] = {
-      {"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.4}, {"offset", {0.4, 0, 0}}}}}};
+      {"keyframes",
+       {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.4}, {"offset", {0.4, 0, 0}}}}}};
   for (const auto& [method, bound] : boundPerMethod) {
     SCOPED_TRACE(method);
     doc["solver"]["contact"] = method;
@@ -111,9 +114,12 @@ void expectObstaclePushesTheCloth(const char* kind, const nlohmann::json& shape,
           closest = std::min(closest, d);
         }
     }
-    const double shift = run.trajectory.positions.back().col(0).mean() - run.trajectory.positions.front().col(0).mean();
-    ::testing::Test::RecordProperty(std::string("pushed_shift_mm_") + method, std::to_string(shift * 1e3));
-    ::testing::Test::RecordProperty(std::string("closest_mm_") + method, std::to_string(closest * 1e3));
+    const double shift = run.trajectory.positions.back().col(0).mean() -
+                         run.trajectory.positions.front().col(0).mean();
+    ::testing::Test::RecordProperty(std::string("pushed_shift_mm_") + method,
+                                    std::to_string(shift * 1e3));
+    ::testing::Test::RecordProperty(std::string("closest_mm_") + method,
+                                    std::to_string(closest * 1e3));
     EXPECT_GT(shift, minimumShift);
   }
 }
@@ -143,7 +149,9 @@ TEST(HardContact, MovingCylinderPushesTheCloth) {
   const double radius = 0.1;
   expectObstaclePushesTheCloth(
       "cylinder", {{"a", {-0.3, 0.0, 0}}, {"b", {-0.3, 0.1, 0}}, {"radius", radius}},
-      [&](int n, const Vec3& x) { return std::hypot(x.x() - (-0.3 + 1.0 * n * 0.01), x.z()) - radius; },
+      [&](int n, const Vec3& x) {
+        return std::hypot(x.x() - (-0.3 + 1.0 * n * 0.01), x.z()) - radius;
+      },
       {{"pd", -5e-3}, {"newton", kSkin - 3 * kTolerance}}, 0.3);
 }
 
@@ -157,7 +165,8 @@ TEST(HardContact, NodeTheWallMovesOverGetsTheWallsNormal) {
   test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.2);
   test::addObstacle(doc, "box", {{"center", {-0.3, 0.05, 0}}, {"size", {0.2, 0.1, 0.6}}}, 0.2);
   doc["obstacles"][1]["motion"] = {
-      {"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.4}, {"offset", {0.4, 0, 0}}}}}};
+      {"keyframes",
+       {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.4}, {"offset", {0.4, 0, 0}}}}}};
   const Scene scene = test::parse(doc);
   std::vector<ContactObstacle> obstacles;
   for (const Obstacle& o : scene.obstacles) obstacles.emplace_back(o);

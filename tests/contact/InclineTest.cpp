@@ -18,7 +18,9 @@ struct InclineCase {
   double thetaDeg, mu;
 };
 
-void PrintTo(const InclineCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const InclineCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class Incline : public ::testing::TestWithParam<InclineCase> {};
 
@@ -41,7 +43,8 @@ void checkIncline(const InclineCase& c, const char* contactMethod) {
     ASSERT_NEAR(t.positions[n].col(1).minCoeff(), skin, 1e-9) << "step " << n;
     ASSERT_NEAR(t.positions[n].col(1).maxCoeff(), skin, 1e-9) << "step " << n;
     for (const ContactPoint& p : t.contacts[n - 1].points)
-      ASSERT_EQ(test::branchViolation(p, 1e-9), "") << "step " << n << " node " << p.node << " " << branchName(p.branch);
+      ASSERT_EQ(test::branchViolation(p, 1e-9), "")
+          << "step " << n << " node " << p.node << " " << branchName(p.branch);
   }
   const double expected = g * (std::sin(theta) - c.mu * std::cos(theta));
   const NodeMatrix& v = t.velocities.back();
@@ -57,25 +60,38 @@ void checkIncline(const InclineCase& c, const char* contactMethod) {
     EXPECT_LT(v.col(2).cwiseAbs().maxCoeff(), 1e-6);
     EXPECT_EQ(t.steps.back().slip, run.sim->model().nodeCount());
     // Distance travelled: implicit Euler x_n = a h^2 n (n + 1) / 2.
-    EXPECT_NEAR((t.positions.back().col(0) - x0.col(0)).mean(), expected * h * h * steps * (steps + 1) / 2,
+    EXPECT_NEAR((t.positions.back().col(0) - x0.col(0)).mean(),
+                expected * h * h * steps * (steps + 1) / 2,
                 0.01 * expected * h * h * steps * steps / 2);
   }
 }
 
-TEST_P(Incline, SticksOrSlidesAsCoulombSays) { checkIncline(GetParam(), "pd"); }
+TEST_P(Incline, SticksOrSlidesAsCoulombSays) {
+  checkIncline(GetParam(), "pd");
+}
 // The same law through the experimental active-set Newton contact solve (ActiveContactSet.h).
-TEST_P(Incline, ActiveSetSticksOrSlidesAsCoulombSays) { checkIncline(GetParam(), "active_set"); }
-// ... and through the semismooth Newton solve of the same fixed point (Simulator::solveContactNewton).
-TEST_P(Incline, NewtonSticksOrSlidesAsCoulombSays) { checkIncline(GetParam(), "newton"); }
+TEST_P(Incline, ActiveSetSticksOrSlidesAsCoulombSays) {
+  checkIncline(GetParam(), "active_set");
+}
+// ... and through the semismooth Newton solve of the same fixed point
+// (Simulator::solveContactNewton).
+TEST_P(Incline, NewtonSticksOrSlidesAsCoulombSays) {
+  checkIncline(GetParam(), "newton");
+}
 
-INSTANTIATE_TEST_SUITE_P(
-    Cases, Incline,
-    ::testing::Values(InclineCase{"Theta10Frictionless", 10, 0.0}, InclineCase{"Theta10Mu02Sticks", 10, 0.2},
-                      InclineCase{"Theta20Mu02Slides", 20, 0.2}, InclineCase{"Theta20Mu05Sticks", 20, 0.5},
-                      InclineCase{"Theta30Mu03Slides", 30, 0.3}, InclineCase{"Theta30Mu07Sticks", 30, 0.7},
-                      InclineCase{"Theta45Mu09Slides", 45, 0.9}, InclineCase{"Theta45Mu11Sticks", 45, 1.1},
-                      InclineCase{"Theta60Mu1000Sticks", 60, 1000.0}),
-    [](const ::testing::TestParamInfo<InclineCase>& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Cases, Incline,
+                         ::testing::Values(InclineCase{"Theta10Frictionless", 10, 0.0},
+                                           InclineCase{"Theta10Mu02Sticks", 10, 0.2},
+                                           InclineCase{"Theta20Mu02Slides", 20, 0.2},
+                                           InclineCase{"Theta20Mu05Sticks", 20, 0.5},
+                                           InclineCase{"Theta30Mu03Slides", 30, 0.3},
+                                           InclineCase{"Theta30Mu07Sticks", 30, 0.7},
+                                           InclineCase{"Theta45Mu09Slides", 45, 0.9},
+                                           InclineCase{"Theta45Mu11Sticks", 45, 1.1},
+                                           InclineCase{"Theta60Mu1000Sticks", 60, 1000.0}),
+                         [](const ::testing::TestParamInfo<InclineCase>& info) {
+                           return std::string(info.param.name);
+                         });
 
 }  // namespace
 }  // namespace weft

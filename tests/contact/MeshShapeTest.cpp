@@ -18,7 +18,8 @@ namespace {
 // A sphere of `radius` at `centre`: an octahedron subdivided `levels` times, projected onto the
 // sphere, outward counter-clockwise triangles.
 TriangleMesh geodesicSphere(const Vec3& centre, double radius, int levels) {
-  std::vector<Vec3> v = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+  std::vector<Vec3> v = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
+                         -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
   std::vector<std::array<int, 3>> t = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                                        {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   for (int l = 0; l < levels; ++l) {
@@ -42,7 +43,8 @@ TriangleMesh geodesicSphere(const Vec3& centre, double radius, int levels) {
   }
   TriangleMesh mesh;
   mesh.vertices.resize(static_cast<int>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) mesh.vertices.row(i) = (centre + radius * v[i]).transpose();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    mesh.vertices.row(i) = (centre + radius * v[i]).transpose();
   mesh.triangles.resize(static_cast<int>(t.size()), 3);
   for (std::size_t i = 0; i < t.size(); ++i) mesh.triangles.row(i) << t[i][0], t[i][1], t[i][2];
   return mesh;
@@ -68,7 +70,8 @@ TEST(TriangleBvh, NearestPointMatchesBruteForce) {
   TriangleMesh mesh = geodesicSphere(kCentre, 0.5, 3);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int i = 0; i < mesh.vertexCount(); ++i) mesh.vertices.row(i) += 0.02 * Vec3(u(rng), u(rng), u(rng)).transpose();
+  for (int i = 0; i < mesh.vertexCount(); ++i)
+    mesh.vertices.row(i) += 0.02 * Vec3(u(rng), u(rng), u(rng)).transpose();
   const TriangleBvh bvh(mesh);
   EXPECT_GT(bvh.depth(), 3);
   for (int k = 0; k < 1500; ++k) {

@@ -38,14 +38,16 @@ TEST(NewtonContact, SlopeMatchesThePdIterationWithFewerSolves) {
     newtonSolves += newton.trajectory.steps[n - 1].pdIterations;
     // Both stop at a residual below 1e-6 m/s^2 (mass-weighted RMS); over a step that moves a
     // node by h^2 times that, and the two trajectories' differences accumulate over the steps.
-    EXPECT_LT((pd.trajectory.positions[n] - newton.trajectory.positions[n]).cwiseAbs().maxCoeff(), 1e-7)
+    EXPECT_LT((pd.trajectory.positions[n] - newton.trajectory.positions[n]).cwiseAbs().maxCoeff(),
+              1e-7)
         << "step " << n;
     const StepContacts& a = pd.trajectory.contacts[n - 1];
     const StepContacts& b = newton.trajectory.contacts[n - 1];
     ASSERT_EQ(a.points.size(), b.points.size()) << "step " << n;
     for (std::size_t k = 0; k < a.points.size(); ++k) {
       ASSERT_EQ(a.points[k].branch, b.points[k].branch) << "step " << n << " contact " << k;
-      EXPECT_EQ(test::branchViolation(b.points[k], 1e-6), "") << "step " << n << " node " << b.points[k].node;
+      EXPECT_EQ(test::branchViolation(b.points[k], 1e-6), "")
+          << "step " << n << " node " << b.points[k].node;
     }
   }
   EXPECT_GT(newton.trajectory.steps.back().slip, 0) << "the ribbon must be sliding";
@@ -56,7 +58,8 @@ TEST(NewtonContact, SlopeMatchesThePdIterationWithFewerSolves) {
 
 TEST(NewtonContact, SphereDropStaysOutsideAndConvergedStepsObeyTheLaw) {
   constexpr double kRadius = 0.4, kSkin = 1e-3;
-  nlohmann::json doc = test::clothScene(0.8, 12, Vec3(0.0, kRadius + 0.05, 0.0), 0.01, 500.0, 1e-3, 0.2);
+  nlohmann::json doc =
+      test::clothScene(0.8, 12, Vec3(0.0, kRadius + 0.05, 0.0), 0.01, 500.0, 1e-3, 0.2);
   test::addObstacle(doc, "sphere", {{"center", {0, 0, 0}}, {"radius", kRadius}}, 0.5);
   doc["obstacles"][0]["thickness"] = kSkin;
   doc["solver"]["contact"] = "newton";
@@ -72,7 +75,8 @@ TEST(NewtonContact, SphereDropStaysOutsideAndConvergedStepsObeyTheLaw) {
     // node sliding over the curved surface may dip by about travel^2 / (2 R) below it (1 mm).
     EXPECT_GT(t.positions[n].rowwise().norm().minCoeff() - kRadius - kSkin, -1e-3) << "step " << n;
     for (const ContactPoint& p : t.contacts[n - 1].points) {
-      ASSERT_EQ(test::branchViolation(p, 1e-3), "") << "step " << n << " node " << p.node << " " << branchName(p.branch);
+      ASSERT_EQ(test::branchViolation(p, 1e-3), "")
+          << "step " << n << " node " << p.node << " " << branchName(p.branch);
       active += p.branch != ContactBranch::TakeOff;
     }
   }

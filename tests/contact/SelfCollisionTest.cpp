@@ -64,7 +64,8 @@ void expectFiniteWithPairsOnTheirBranches(const test::ContactRun& run, const cha
       if (p.partner < 0) continue;
       ++pairs;
       // Pairs are solved by Gauss-Seidel sweeps: their law holds to the sweep tolerance.
-      ASSERT_EQ(test::branchViolation(p, 1e-3), "") << what << ", pair " << p.node << "-" << p.partner;
+      ASSERT_EQ(test::branchViolation(p, 1e-3), "")
+          << what << ", pair " << p.node << "-" << p.partner;
     }
   EXPECT_GT(pairs, 40) << what << ": the scene should bring the cloth into self-contact";
 }
@@ -85,14 +86,14 @@ TEST(SelfCollision, ClothFoldedOntoItselfKeepsItsLayersApart) {
   doc["cloths"][0]["self_collision"] = {{"radius", kRadius}, {"friction", 0.3}};
   std::vector<int> edge;
   for (int j = 0; j <= q; ++j) edge.push_back(j * (q + 1) + q);
-  doc["cloths"][0]["attachments"] = nlohmann::json::array(
-      {{{"vertices", edge},
-        {"kind", "handle"},
-        {"trajectory",
-         {{"keyframes",
-           {{{"time", 0.0}, {"offset", {0, 0, 0}}},
-            {{"time", 0.3}, {"offset", {-0.2, 0.15, 0}}},
-            {{"time", 0.6}, {"offset", {-0.36, 0.025, 0}}}}}}}}});
+  doc["cloths"][0]["attachments"] =
+      nlohmann::json::array({{{"vertices", edge},
+                              {"kind", "handle"},
+                              {"trajectory",
+                               {{"keyframes",
+                                 {{{"time", 0.0}, {"offset", {0, 0, 0}}},
+                                  {{"time", 0.3}, {"offset", {-0.2, 0.15, 0}}},
+                                  {{"time", 0.6}, {"offset", {-0.36, 0.025, 0}}}}}}}}});
   const test::ContactRun run = test::runScene(doc, 80);
   expectFiniteAndPairsApart(run, "fold");
   // Folded: the handle edge lies over the opposite half.
@@ -103,7 +104,8 @@ TEST(SelfCollision, ClothFoldedOntoItselfKeepsItsLayersApart) {
 // are never paired. Two cloths stacked closer than the reach used to be excluded wholesale (their
 // rest distance was below it), so a cloth lying on another had no pairs at all and sank into it.
 TEST(SelfCollisionDetector, ExcludesOnlyMeshNeighboursThatStartWithinTheReach) {
-  const double radius = 0.008, reach = (1.0 + SelfCollisionDetector::kMarginFraction) * radius;  // 12 mm
+  const double radius = 0.008,
+               reach = (1.0 + SelfCollisionDetector::kMarginFraction) * radius;  // 12 mm
   const double gap = 0.004;  // 4 mm: within the reach
   // Cloth 0: a 0.1 m x 5 mm strip of 20 x 1 quads (5 mm edges), folded at x = 0 so that its +X half
   // lies 4 mm above its -X half (column 10 + k above column 10 - k). Cloth 1: the same strip, flat,
@@ -118,12 +120,15 @@ TEST(SelfCollisionDetector, ExcludesOnlyMeshNeighboursThatStartWithinTheReach) {
   Scene scene = test::parse(doc);
   TriangleMesh& strip = scene.cloths[0].mesh;
   for (int v = 0; v < strip.vertexCount(); ++v)
-    if (strip.vertices(v, 0) > 1e-9) strip.vertices.row(v) = Vec3(-strip.vertices(v, 0), gap, strip.vertices(v, 2)).transpose();
+    if (strip.vertices(v, 0) > 1e-9)
+      strip.vertices.row(v) = Vec3(-strip.vertices(v, 0), gap, strip.vertices(v, 2)).transpose();
   const ClothModel model = buildClothModel(scene);
   SelfCollisionDetector detector(scene, model);
   const int n = 21, second = model.vertexOffset[1];
   const auto node = [](int column) { return column; };  // row 0 of the strip (z = -2.5 mm)
-  const auto restDistance = [&](int a, int b) { return (model.rest.vertices.row(a) - model.rest.vertices.row(b)).norm(); };
+  const auto restDistance = [&](int a, int b) {
+    return (model.rest.vertices.row(a) - model.rest.vertices.row(b)).norm();
+  };
 
   // Along the unfolded lower layer: 10 mm apart (two edges) is within the reach, 15 mm is not.
   EXPECT_TRUE(detector.excluded(node(0), node(1)));  // one ring
@@ -148,7 +153,8 @@ TEST(SelfCollisionDetector, ExcludesOnlyMeshNeighboursThatStartWithinTheReach) {
   EXPECT_GT(crossClose, n);
   // The rule is symmetric.
   for (int a = 0; a < model.nodeCount(); ++a)
-    for (int b = 0; b < model.nodeCount(); ++b) ASSERT_EQ(detector.excluded(a, b), detector.excluded(b, a));
+    for (int b = 0; b < model.nodeCount(); ++b)
+      ASSERT_EQ(detector.excluded(a, b), detector.excluded(b, a));
 
   // Detection at rest (no motion) pairs the layers and the two cloths: every pair it reports is
   // within the reach and not excluded, and the two far-from-the-fold examples above are among them.
@@ -193,7 +199,8 @@ TEST(SelfCollision, StackedClothsLandingTogetherStayStacked) {
       ASSERT_TRUE(t.positions[n].allFinite()) << "state " << n;
       // Every upper node above its lower twin by at least the collision distance, less the
       // tolerance of the tests above.
-      const double above = (t.positions[n].col(1).tail(m) - t.positions[n].col(1).head(m)).minCoeff();
+      const double above =
+          (t.positions[n].col(1).tail(m) - t.positions[n].col(1).head(m)).minCoeff();
       EXPECT_GT(above, kRadius - kTolerance) << "state " << n;
     }
     // Landed: both layers at rest on the floor, the lower within its 1 mm skin.
@@ -204,8 +211,8 @@ TEST(SelfCollision, StackedClothsLandingTogetherStayStacked) {
 
 // A cloth thrown into the corner of the floor and two walls, crumpling onto itself. It runs the
 // Newton contact solve (solver.contact = "newton", set below), on which some steps still end
-// unconverged (see the test's first comment). The converged steps hold the walls: that needed the Newton
-// matrix to differentiate coupled contacts (corner nodes, pairs sharing nodes) through the
+// unconverged (see the test's first comment). The converged steps hold the walls: that needed the
+// Newton matrix to differentiate coupled contacts (corner nodes, pairs sharing nodes) through the
 // fixed point of their sweeps (ContactSolver::addLawJacobian): linearised one contact at a
 // time, 35 steps ended unconverged and a node ended state 5 5.1 mm behind the x wall. With the
 // PD iteration (DiffCloth Eq. 12) the steps run out of pd_iterations and a node ends 12.6 mm
@@ -244,13 +251,15 @@ TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
     // on: the tilted cloth starts with a corner 9.3 mm across the x = -0.2 wall (state 0), which
     // the first step's contact pushes back out.
     const Trajectory& t = run.trajectory;
-    ASSERT_LT(t.positions.front().col(0).minCoeff(), -0.2) << "the scene no longer starts across the wall";
+    ASSERT_LT(t.positions.front().col(0).minCoeff(), -0.2)
+        << "the scene no longer starts across the wall";
     const SelfCollisionDetector detector(*run.scene, run.sim->model());
     double deepest = 0.0, closest = 1e9;  // over all states: past a wall's plane (m), pair ratio
     std::string close;
     for (int n = 1; n <= t.stepCount(); ++n) {
       const NodeMatrix& x = t.positions[n];
-      const double inside = -std::min({x.col(0).minCoeff() + 0.2, x.col(1).minCoeff(), x.col(2).minCoeff() + 0.2});
+      const double inside =
+          -std::min({x.col(0).minCoeff() + 0.2, x.col(1).minCoeff(), x.col(2).minCoeff() + 0.2});
       const double ratio = closestPairRatio(run, detector, n);
       deepest = std::max(deepest, inside);
       closest = std::min(closest, ratio);
@@ -261,9 +270,11 @@ TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
         close += " " + std::to_string(n) + " (" + std::to_string(ratio) + ")";
       }
     }
-    std::printf("corner run %d: %d of 80 steps converged; converged states with a pair too close:%s; over all "
-                "steps, deepest inside a wall %.2f mm, closest pair %.2f of its distance\n",
-                variant, runConverged, close.empty() ? " none" : close.c_str(), 1e3 * deepest, closest);
+    std::printf(
+        "corner run %d: %d of 80 steps converged; converged states with a pair too close:%s; over "
+        "all "
+        "steps, deepest inside a wall %.2f mm, closest pair %.2f of its distance\n",
+        variant, runConverged, close.empty() ? " none" : close.c_str(), 1e3 * deepest, closest);
   }
   EXPECT_GE(converged, 170) << "of 240 steps";
   EXPECT_EQ(closeStates, 0);

@@ -17,11 +17,13 @@
 namespace weft {
 namespace {
 
-std::set<std::pair<int, int>> bruteForcePairs(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper) {
+std::set<std::pair<int, int>> bruteForcePairs(const std::vector<Vec3>& lower,
+                                              const std::vector<Vec3>& upper) {
   std::set<std::pair<int, int>> pairs;
   for (std::size_t a = 0; a < lower.size(); ++a)
     for (std::size_t b = a + 1; b < lower.size(); ++b)
-      if ((lower[a].array() <= upper[b].array()).all() && (lower[b].array() <= upper[a].array()).all())
+      if ((lower[a].array() <= upper[b].array()).all() &&
+          (lower[b].array() <= upper[a].array()).all())
         pairs.emplace(static_cast<int>(a), static_cast<int>(b));
   return pairs;
 }
@@ -52,7 +54,8 @@ TEST_P(SpatialHash, FindsExactlyTheBruteForcePairsOnce) {
     grid.overlappingPairs(lower, upper, cellSize, found);
     std::vector<std::pair<int, int>> sorted = found;
     std::sort(sorted.begin(), sorted.end());
-    EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a pair reported twice";
+    EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end())
+        << "a pair reported twice";
     for (const auto& p : found) ASSERT_LT(p.first, p.second);
     const std::set<std::pair<int, int>> unique(found.begin(), found.end());
     EXPECT_EQ(unique, expected);
@@ -87,7 +90,8 @@ TEST(SelfCollisionDetector, FindsExactlyTheBruteForceSweptPairs) {
       double closest = std::min(dx.norm(), (dx + dd).norm());
       const double tau = -dx.dot(dd) / dd.squaredNorm();
       if (tau > 0.0 && tau < 1.0) closest = std::min(closest, (dx + tau * dd).norm());
-      const double reach = (1.0 + SelfCollisionDetector::kMarginFraction) * detector.collisionDistance(a, b);
+      const double reach =
+          (1.0 + SelfCollisionDetector::kMarginFraction) * detector.collisionDistance(a, b);
       if (closest < reach && !detector.excluded(a, b)) expected.emplace(a, b);
     }
   ASSERT_GT(expected.size(), 100u);

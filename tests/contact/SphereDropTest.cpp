@@ -22,7 +22,8 @@ constexpr double kRadius = 0.4, kSkin = 1e-3;
 constexpr double kPenetrationTolerance = 1e-3;
 
 nlohmann::json dropScene(double offsetX, double mu) {
-  nlohmann::json doc = test::clothScene(0.8, 12, Vec3(offsetX, kRadius + 0.05, 0.0), 0.01, 500.0, 1e-3, 0.2);
+  nlohmann::json doc =
+      test::clothScene(0.8, 12, Vec3(offsetX, kRadius + 0.05, 0.0), 0.01, 500.0, 1e-3, 0.2);
   test::addObstacle(doc, "sphere", {{"center", {0, 0, 0}}, {"radius", kRadius}}, mu);
   doc["obstacles"][0]["thickness"] = kSkin;
   doc["solver"]["contact"] = "newton";
@@ -47,8 +48,9 @@ TEST(SphereDrop, RestsOnTopWithoutPenetrationAndEveryContactObeysItsBranch) {
     converged += t.steps[n - 1].converged;
     for (const ContactPoint& p : t.contacts[n - 1].points) {
       const std::string why = test::branchViolation(p, 1e-9);
-      ASSERT_EQ(why, "") << "step " << n << " node " << p.node << " " << branchName(p.branch) << " converged "
-                         << t.steps[n - 1].converged << " iterations " << t.steps[n - 1].pdIterations;
+      ASSERT_EQ(why, "") << "step " << n << " node " << p.node << " " << branchName(p.branch)
+                         << " converged " << t.steps[n - 1].converged << " iterations "
+                         << t.steps[n - 1].pdIterations;
       ++contacts;
       active += p.branch != ContactBranch::TakeOff;
     }
@@ -76,8 +78,9 @@ TEST(SphereDrop, OffCentreClothStaysWithLargeFrictionSlidesOffWithout) {
   for (const test::ContactRun* run : {&sticky, &slippery})
     for (int n = 1; n <= run->trajectory.stepCount(); ++n) {
       ASSERT_GT(deepest(run->trajectory.positions[n]), -kPenetrationTolerance)
-          << "step " << n << ", converged " << run->trajectory.steps[n - 1].converged << ", residual "
-          << run->trajectory.steps[n - 1].residual << ", iterations " << run->trajectory.steps[n - 1].pdIterations;
+          << "step " << n << ", converged " << run->trajectory.steps[n - 1].converged
+          << ", residual " << run->trajectory.steps[n - 1].residual << ", iterations "
+          << run->trajectory.steps[n - 1].pdIterations;
       for (const ContactPoint& p : run->trajectory.contacts[n - 1].points)
         ASSERT_EQ(test::branchViolation(p, 1e-9), "") << "step " << n;
     }
@@ -87,7 +90,8 @@ TEST(SphereDrop, OffCentreClothStaysWithLargeFrictionSlidesOffWithout) {
   RecordProperty("slippery_shift_mm", std::to_string(slipperyShift * 1e3));
   // The centroid moves a little even when nothing slides, since the overhanging side drapes
   // (measured: 30 mm); sliding off moves it by more than the cloth's offset.
-  EXPECT_LT(std::abs(stickyShift), 0.2 * slipperyShift) << "large friction: the cloth should stay where it landed";
+  EXPECT_LT(std::abs(stickyShift), 0.2 * slipperyShift)
+      << "large friction: the cloth should stay where it landed";
   EXPECT_GT(slipperyShift, 0.15) << "no friction: the cloth should slide off";
   EXPECT_EQ(slippery.trajectory.steps.back().stick, 0) << "mu = 0 cannot stick while sliding";
 }

@@ -80,7 +80,8 @@ double directGrowth(const TempDir& dir, nlohmann::json doc, const std::string& n
   EXPECT_EQ(pass.unconvergedSteps, 0) << name;
   BackwardSettings direct = scene.solver.backward;
   direct.method = "direct";
-  const GradientResult g = backpropagate(scene, pass.trajectory, TaskLoss(scene), ParameterSet::fromTask(scene), direct);
+  const GradientResult g =
+      backpropagate(scene, pass.trajectory, TaskLoss(scene), ParameterSet::fromTask(scene), direct);
   EXPECT_TRUE(g.gradient.allFinite()) << name;
   return g.solver.adjointGrowth;
 }

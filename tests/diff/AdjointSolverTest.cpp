@@ -81,7 +81,8 @@ double fixedPointSpectralRadius(AdjointSystem& system) {
 }
 
 TEST(AdjointSolvers, AllThreeGiveTheSameSolution) {
-  const std::unique_ptr<AdjointSystem> prepared = systemAtLastState(test::softWindClothScene(6, 15));
+  const std::unique_ptr<AdjointSystem> prepared =
+      systemAtLastState(test::softWindClothScene(6, 15));
   AdjointSystem& system = *prepared;
   EXPECT_LT(fixedPointSpectralRadius(system), 1.0);
   const NodeMatrix g = randomBlock(system.nodeCount(), 2);
@@ -118,7 +119,8 @@ TEST(AdjointSolvers, GmresWarmStartReachesTheSameSolution) {
   const LinearSolveResult r1 = warm.solve(system, g, exact);
   EXPECT_TRUE(r1.converged);
   EXPECT_EQ(r1.iterations, 0);
-  NodeMatrix near = fromZero + 1e-3 * randomBlock(system.nodeCount(), 5) * (fromZero.norm() / fromZero.size());
+  NodeMatrix near =
+      fromZero + 1e-3 * randomBlock(system.nodeCount(), 5) * (fromZero.norm() / fromZero.size());
   const LinearSolveResult r2 = warm.solve(system, g, near);
   ASSERT_TRUE(r2.converged);
   EXPECT_LT(r2.iterations, r0.iterations);
@@ -143,8 +145,8 @@ TEST(AdjointSolvers, ClampedHessianPreconditionerNeedsFewIterations) {
   ASSERT_TRUE(ra.converged);
   ASSERT_TRUE(rb.converged);
   EXPECT_LT((b - c).norm(), 1e-7 * c.norm());
-  std::printf("iterations to 1e-10: preconditioned by P %d, by the clamped Hessian %d\n", ra.iterations,
-              rb.iterations);
+  std::printf("iterations to 1e-10: preconditioned by P %d, by the clamped Hessian %d\n",
+              ra.iterations, rb.iterations);
   EXPECT_LT(4 * rb.iterations, ra.iterations);
 }
 
@@ -169,13 +171,14 @@ TEST(AdjointSolvers, AutomaticPreconditionerSwitchesToTheHessianOnlyWherePIsSlow
       ASSERT_TRUE(ra.converged);
       EXPECT_LT((a - c).norm(), 1e-7 * c.norm());
       EXPECT_STREQ(automatic.name(), "gmres (auto: hessian)");
-      std::printf("seed %d: automatic %d iterations, clamped Hessian %d\n", seed, ra.iterations, rb.iterations);
+      std::printf("seed %d: automatic %d iterations, clamped Hessian %d\n", seed, ra.iterations,
+                  rb.iterations);
       // First solve: P for as many iterations as a factorisation costs, shared by the steps a
       // factor is assumed to serve, then the Hessian from where P stopped; second: the Hessian
       // at once.
-      const int budget = std::max(
-          GmresSolver::kAutomaticPIterations,
-          static_cast<int>(std::lround(system.hessianFactorCost() / GmresSolver::kAutomaticPriorReuse)));
+      const int budget = std::max(GmresSolver::kAutomaticPIterations,
+                                  static_cast<int>(std::lround(system.hessianFactorCost() /
+                                                               GmresSolver::kAutomaticPriorReuse)));
       if (seed == 6) {
         EXPECT_GT(ra.iterations, budget);
         EXPECT_LE(ra.iterations, budget + rb.iterations + 2);
@@ -185,7 +188,8 @@ TEST(AdjointSolvers, AutomaticPreconditionerSwitchesToTheHessianOnlyWherePIsSlow
     }
   }
   {
-    const std::unique_ptr<AdjointSystem> prepared = systemAtLastState(test::softWindClothScene(6, 25));
+    const std::unique_ptr<AdjointSystem> prepared =
+        systemAtLastState(test::softWindClothScene(6, 25));
     AdjointSystem& system = *prepared;
     ASSERT_TRUE(system.hasDeltaP());
     // At a backward pass's default tolerance, 1e-4, P needs under kAutomaticPIterations here.
@@ -212,22 +216,27 @@ TEST(AdjointSolvers, AutomaticPreconditionerSwitchesToTheHessianOnlyWherePIsSlow
 TEST(AdjointSolvers, AutomaticPreconditionerRepeatsBitForBit) {
   TempDir dir;
   Scene scene = withTightForwardSolver(
-      test::withTrajectoryTask(dir, test::windClothScene(10, 20), {"cloths.0.material.stretch", "wind.strength"}),
+      test::withTrajectoryTask(dir, test::windClothScene(10, 20),
+                               {"cloths.0.material.stretch", "wind.strength"}),
       1e-8);
   ASSERT_EQ(scene.solver.backward.preconditioner, "auto");
   scene.solver.backward.tolerance = 1e-10;
   const ForwardPass pass = runForwardPass(scene);
   const TaskLoss loss(scene);
   const ParameterSet parameters = ParameterSet::fromTask(scene);
-  const GradientResult a = backpropagate(scene, pass.trajectory, loss, parameters, scene.solver.backward);
-  const GradientResult b = backpropagate(scene, pass.trajectory, loss, parameters, scene.solver.backward);
+  const GradientResult a =
+      backpropagate(scene, pass.trajectory, loss, parameters, scene.solver.backward);
+  const GradientResult b =
+      backpropagate(scene, pass.trajectory, loss, parameters, scene.solver.backward);
   EXPECT_EQ(a.solver.iterations, b.solver.iterations);
-  for (int k = 0; k < parameters.size(); ++k) EXPECT_EQ(a.gradient[k], b.gradient[k]) << parameters[k].path;
+  for (int k = 0; k < parameters.size(); ++k)
+    EXPECT_EQ(a.gradient[k], b.gradient[k]) << parameters[k].path;
   // It did switch: far fewer iterations than with P alone on this cloth in tension.
   BackwardSettings byP = scene.solver.backward;
   byP.preconditioner = "p";
   const GradientResult c = backpropagate(scene, pass.trajectory, loss, parameters, byP);
-  std::printf("iterations over %d steps: auto %lld, P %lld\n", a.solver.solves, a.solver.iterations, c.solver.iterations);
+  std::printf("iterations over %d steps: auto %lld, P %lld\n", a.solver.solves, a.solver.iterations,
+              c.solver.iterations);
   EXPECT_LT(2 * a.solver.iterations, c.solver.iterations);
 }
 
@@ -237,7 +246,8 @@ TEST(AdjointSolvers, AutomaticPreconditionerRepeatsBitForBit) {
 TEST(AdjointSolvers, PreviousSolutionsCutIterationsAndKeepTheGradient) {
   TempDir dir;
   const Scene scene = withTightForwardSolver(
-      test::withTrajectoryTask(dir, test::windClothScene(10, 40), {"cloths.0.material.stretch", "wind.strength"}),
+      test::withTrajectoryTask(dir, test::windClothScene(10, 40),
+                               {"cloths.0.material.stretch", "wind.strength"}),
       1e-8);
   ASSERT_EQ(scene.solver.backward.history, 8);
   const ParameterSet parameters = ParameterSet::fromTask(scene);
@@ -276,7 +286,8 @@ TEST(AdjointSolvers, AutomaticPreconditionerCostsAboutTheCheaperChoice) {
     SCOPED_TRACE(c.name);
     TempDir dir;
     const Scene scene = withTightForwardSolver(
-        test::withTrajectoryTask(dir, c.document, {"cloths.0.material.stretch", "wind.strength"}), 1e-8);
+        test::withTrajectoryTask(dir, c.document, {"cloths.0.material.stretch", "wind.strength"}),
+        1e-8);
     const ForwardPass pass = runForwardPass(scene);
     const TaskLoss loss(scene);
     const ParameterSet parameters = ParameterSet::fromTask(scene);
@@ -289,11 +300,13 @@ TEST(AdjointSolvers, AutomaticPreconditionerCostsAboutTheCheaperChoice) {
       const GradientResult r = backpropagate(scene, pass.trajectory, loss, parameters, settings);
       EXPECT_EQ(r.solver.fallbacks, 0) << preconditioner;
       const AdjointSolverStats& s = r.solver;
-      return double(s.iterations - s.hessianIterations) + costs.hessianIterationCost() * double(s.hessianIterations) +
+      return double(s.iterations - s.hessianIterations) +
+             costs.hessianIterationCost() * double(s.hessianIterations) +
              costs.hessianFactorCost() * s.hessianFactorizations;
     };
     const double automatic = cost("auto"), byP = cost("p"), byHessian = cost("hessian");
-    std::printf("%s: cost in iterations with P: auto %.0f, P %.0f, Hessian %.0f\n", c.name, automatic, byP, byHessian);
+    std::printf("%s: cost in iterations with P: auto %.0f, P %.0f, Hessian %.0f\n", c.name,
+                automatic, byP, byHessian);
     EXPECT_LT(automatic, 1.25 * std::min(byP, byHessian));
   }
 }
@@ -301,8 +314,9 @@ TEST(AdjointSolvers, AutomaticPreconditionerCostsAboutTheCheaperChoice) {
 TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
   TempDir dir;
   const Scene scene = withTightForwardSolver(
-      test::withTrajectoryTask(dir, test::softWindClothScene(6, 25),
-                               {"cloths.0.material.stretch", "wind.strength", "cloths.0.material.density"}),
+      test::withTrajectoryTask(
+          dir, test::softWindClothScene(6, 25),
+          {"cloths.0.material.stretch", "wind.strength", "cloths.0.material.density"}),
       1e-8);
   const ForwardPass pass = runForwardPass(scene);
   const TaskLoss loss(scene);
@@ -317,7 +331,8 @@ TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
     EXPECT_EQ(r.solver.fallbacks, 0) << method;
     EXPECT_EQ(r.solver.solves, scene.time.steps) << method;
     std::printf("%-11s %d steps, %lld iterations (max %d per step), %d fallbacks, %.4f s\n", method,
-                r.solver.solves, r.solver.iterations, r.solver.maxIterations, r.solver.fallbacks, r.solver.seconds);
+                r.solver.solves, r.solver.iterations, r.solver.maxIterations, r.solver.fallbacks,
+                r.solver.seconds);
     gradients.push_back(r.gradient);
   }
   for (int k = 0; k < parameters.size(); ++k) {
@@ -336,13 +351,16 @@ TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
 // those modes.
 nlohmann::json squeezedClothScene() {
   nlohmann::json doc = test::gridScene(0.3, 5, 0.01, 10, 1000.0, 0.0, 0.1);
-  const nlohmann::json keyframes = nlohmann::json::array(
-      {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}}, {{"time", 0.1}, {"offset", {-0.1, 0.0, 0.0}}}});
+  const nlohmann::json keyframes =
+      nlohmann::json::array({{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}},
+                             {{"time", 0.1}, {"offset", {-0.1, 0.0, 0.0}}}});
   nlohmann::json fixed = {{"vertices", {0, 6, 12, 18, 24, 30}}, {"kind", "fixed"}};
-  nlohmann::json handle = {
-      {"vertices", {5, 11, 17, 23, 29, 35}}, {"kind", "handle"}, {"trajectory", {{"keyframes", keyframes}}}};
+  nlohmann::json handle = {{"vertices", {5, 11, 17, 23, 29, 35}},
+                           {"kind", "handle"},
+                           {"trajectory", {{"keyframes", keyframes}}}};
   doc["cloths"][0]["attachments"] = nlohmann::json::array({fixed, handle});
-  doc["wind"] = {{"direction", {1.0, 0.0, 0.0}}, {"strength", 0.5}, {"frequency", 1.0}, {"phase", 0.0}};
+  doc["wind"] = {
+      {"direction", {1.0, 0.0, 0.0}}, {"strength", 0.5}, {"frequency", 1.0}, {"phase", 0.0}};
   return doc;
 }
 
@@ -377,18 +395,23 @@ TEST(AdjointSolvers, DivergingFixedPointIsDetectedAndFallsBack) {
   settings.tolerance = 1e-10;
   settings.maxIterations = 200;
   settings.method = "direct";
-  const GradientResult reference = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  const GradientResult reference =
+      backpropagate(scene, pass.trajectory, loss, parameters, settings);
   settings.method = "fixed_point";
-  const GradientResult fixedPoint = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  const GradientResult fixedPoint =
+      backpropagate(scene, pass.trajectory, loss, parameters, settings);
   EXPECT_GT(fixedPoint.solver.notConverged, 0);
   EXPECT_GT(fixedPoint.solver.diverged, 0);
   EXPECT_EQ(fixedPoint.solver.fallbacks, fixedPoint.solver.notConverged);
   settings.method = "gmres";
   const GradientResult gmres = backpropagate(scene, pass.trajectory, loss, parameters, settings);
-  std::printf("fixed point: %d of %d steps not converged (%d diverged), %d fallbacks; gmres: %lld iterations, "
-              "max %d per step, %d fallbacks\n", fixedPoint.solver.notConverged, fixedPoint.solver.solves,
-              fixedPoint.solver.diverged, fixedPoint.solver.fallbacks, gmres.solver.iterations,
-              gmres.solver.maxIterations, gmres.solver.fallbacks);
+  std::printf(
+      "fixed point: %d of %d steps not converged (%d diverged), %d fallbacks; gmres: %lld "
+      "iterations, "
+      "max %d per step, %d fallbacks\n",
+      fixedPoint.solver.notConverged, fixedPoint.solver.solves, fixedPoint.solver.diverged,
+      fixedPoint.solver.fallbacks, gmres.solver.iterations, gmres.solver.maxIterations,
+      gmres.solver.fallbacks);
   EXPECT_EQ(gmres.solver.fallbacks, 0);
   for (int k = 0; k < parameters.size(); ++k) {
     SCOPED_TRACE(parameters[k].path);

@@ -18,12 +18,19 @@ namespace {
 
 using test::TempDir;
 
-const std::vector<std::string> kAllParameters = {
-    "cloths.0.material.stretch",   "cloths.0.material.bend",      "cloths.0.material.density",
-    "wind.strength",               "wind.direction.0",            "wind.direction.2",
-    "wind.frequency",              "wind.phase",                  "cloths.0.initial_velocity.0",
-    "cloths.0.initial_velocity.2", "cloths.0.forces.0.force.1",   "cloths.0.forces.0.force.2",
-    "gravity.1"};
+const std::vector<std::string> kAllParameters = {"cloths.0.material.stretch",
+                                                 "cloths.0.material.bend",
+                                                 "cloths.0.material.density",
+                                                 "wind.strength",
+                                                 "wind.direction.0",
+                                                 "wind.direction.2",
+                                                 "wind.frequency",
+                                                 "wind.phase",
+                                                 "cloths.0.initial_velocity.0",
+                                                 "cloths.0.initial_velocity.2",
+                                                 "cloths.0.forces.0.force.1",
+                                                 "cloths.0.forces.0.force.2",
+                                                 "gravity.1"};
 
 TEST(Backpropagation, MatchesCentralFiniteDifferencesForEveryParameterKind) {
   TempDir dir;
@@ -39,7 +46,8 @@ TEST(Backpropagation, FinalFrameLossOnChosenVertices) {
   nlohmann::json targetDoc = doc;
   targetDoc["cloths"][0]["material"]["density"] = 0.12;
   const std::string target = test::writeTargetTrajectory(targetDoc, dir.file("final.npy"));
-  test::addTask(doc, "final", target, {"cloths.0.material.density", "wind.phase", "cloths.0.material.stretch"});
+  test::addTask(doc, "final", target,
+                {"cloths.0.material.density", "wind.phase", "cloths.0.material.stretch"});
   doc["task"]["loss"]["final"]["vertices"] = {42, 45, 48};
   doc["task"]["loss"]["final"]["weight"] = 10.0;
   const Scene scene = test::parse(doc);
@@ -56,8 +64,8 @@ TEST(Backpropagation, InitialVelocityGradientIsTheSumOfTheNodalOnes) {
   const Scene tight = withTightForwardSolver(scene, 1e-8);
   const ForwardPass pass = runForwardPass(tight);
   const TaskLoss loss(tight);
-  const GradientResult g = backpropagate(tight, pass.trajectory, loss, ParameterSet::fromTask(tight),
-                                         tight.solver.backward);
+  const GradientResult g = backpropagate(tight, pass.trajectory, loss,
+                                         ParameterSet::fromTask(tight), tight.solver.backward);
   EXPECT_NEAR(g.gradient[0], g.dLdv0.col(2).sum(), 1e-12 * std::abs(g.gradient[0]));
   EXPECT_EQ(g.solver.solves, 10);
 }
@@ -66,12 +74,14 @@ TEST(Backpropagation, InitialVelocityGradientIsTheSumOfTheNodalOnes) {
 // (velocities held) and the run continued from there by Simulator::restart.
 TEST(Backpropagation, StateGradientMatchesFiniteDifferencesMidRun) {
   TempDir dir;
-  const Scene scene = withTightForwardSolver(test::windTaskScene(dir, {"wind.strength"}, 12), 1e-10);
+  const Scene scene =
+      withTightForwardSolver(test::windTaskScene(dir, {"wind.strength"}, 12), 1e-10);
   const ForwardPass pass = runForwardPass(scene);
   const TaskLoss loss(scene);
   BackwardSettings exact = scene.solver.backward;
   exact.method = "direct";  // per-vertex values: the default 1e-4 solve tolerance shows in them
-  const GradientResult g = backpropagate(scene, pass.trajectory, loss, ParameterSet::fromTask(scene), exact);
+  const GradientResult g =
+      backpropagate(scene, pass.trajectory, loss, ParameterSet::fromTask(scene), exact);
   ASSERT_EQ(g.dLdx.size(), pass.trajectory.positions.size());
   EXPECT_EQ(g.dLdx[0], g.dLdx0);
   const int n = 6;

@@ -1,8 +1,9 @@
 // Gradients through frictional contact (DiffCloth Sec. 4.2, ContactAdjoint.h) against central
 // finite differences of the task loss: a ribbon sliding down an incline (slip branch), a small
 // cloth resting on a sphere (stick branch, curved frames), the same cloth sliding over the sphere,
-// and a cloth pushed into a wall (nodes touching two planes: coupled contacts). The scenes keep their contact set constant under the finite-difference probes:
-// a contact appearing or vanishing between the +/- runs is a jump no derivative describes.
+// and a cloth pushed into a wall (nodes touching two planes: coupled contacts). The scenes keep
+// their contact set constant under the finite-difference probes: a contact appearing or vanishing
+// between the +/- runs is a jump no derivative describes.
 //
 // Agreement test: |adjoint - fd| <= 1e-4 max(|adjoint|, |fd|) + 1e-6 max_k |adjoint_k|, i.e. a
 // relative error below 1e-4 on every component that is not negligible against the gradient's
@@ -56,7 +57,8 @@ nlohmann::json cornerScene() {
 }
 
 // The document with a trajectory task whose target is the document simulated with `changes`.
-Scene withTask(const TempDir& dir, nlohmann::json doc, const std::vector<std::pair<std::string, double>>& changes,
+Scene withTask(const TempDir& dir, nlohmann::json doc,
+               const std::vector<std::pair<std::string, double>>& changes,
                const std::vector<std::string>& parameters) {
   nlohmann::json target = doc;
   for (const auto& [path, value] : changes) *findJsonPath(target, path) = value;
@@ -85,10 +87,11 @@ GradientCheckOptions options(const char* method = nullptr) {
 
 TEST(ContactGradient, RibbonSlidingDownAnInclineSlipBranch) {
   TempDir dir;
-  const Scene scene = withTask(dir, test::inclineScene(),
-                               {{"obstacles.0.friction", 0.25}, {"cloths.0.material.stretch", 120.0}},
-                               {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.initial_velocity.2",
-                                "gravity.1", "cloths.0.material.density", "cloths.0.material.stretch"});
+  const Scene scene = withTask(
+      dir, test::inclineScene(),
+      {{"obstacles.0.friction", 0.25}, {"cloths.0.material.stretch", 120.0}},
+      {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.initial_velocity.2",
+       "gravity.1", "cloths.0.material.density", "cloths.0.material.stretch"});
   const BranchCounts branches = branchesOf(scene);
   EXPECT_EQ(branches.stick, 0);
   EXPECT_GT(branches.slip, 30 * 15);  // nearly every node slips on every step
@@ -114,7 +117,8 @@ TEST(ContactGradient, EveryBackwardSolverGivesTheSameContactGradientAndTheFixedP
   for (const char* method : {"direct", "gmres", "fixed_point"}) {
     SCOPED_TRACE(method);
     settings.method = method;
-    const GradientResult g = backpropagate(tight, pass.trajectory, loss, ParameterSet::fromTask(tight), settings);
+    const GradientResult g =
+        backpropagate(tight, pass.trajectory, loss, ParameterSet::fromTask(tight), settings);
     gradients.push_back(g.gradient);
     if (std::string(method) == "gmres") {
       EXPECT_EQ(g.solver.fallbacks, 0);
@@ -123,7 +127,8 @@ TEST(ContactGradient, EveryBackwardSolverGivesTheSameContactGradientAndTheFixedP
     }
   }
   for (std::size_t k = 1; k < gradients.size(); ++k)
-    EXPECT_LT((gradients[k] - gradients[0]).norm(), 1e-7 * gradients[0].norm()) << gradients[k].transpose();
+    EXPECT_LT((gradients[k] - gradients[0]).norm(), 1e-7 * gradients[0].norm())
+        << gradients[k].transpose();
 }
 
 // On the sliding ribbon P needs a few iterations per step at the default tolerance, and a guess
@@ -133,26 +138,31 @@ TEST(ContactGradient, EveryBackwardSolverGivesTheSameContactGradientAndTheFixedP
 TEST(ContactGradient, PreviousSolutionsKeepTheGradientAtTheDefaultTolerance) {
   TempDir dir;
   const Scene scene = withTightForwardSolver(
-      withTask(dir, test::inclineScene(), {{"obstacles.0.friction", 0.25}},
-               {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.material.stretch"}),
+      withTask(
+          dir, test::inclineScene(), {{"obstacles.0.friction", 0.25}},
+          {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.material.stretch"}),
       1e-8);
   BackwardSettings settings = scene.solver.backward;
   settings.tolerance = 1e-4;
   const test::HistoryGradients g = test::gradientsWithAndWithoutHistory(scene, settings);
   const GradientResult &direct = g.direct, &combined = g.combined, &lastOnly = g.lastOnly;
-  const double errorLastOnly = (lastOnly.gradient - direct.gradient).norm() / direct.gradient.norm();
-  const double errorCombined = (combined.gradient - direct.gradient).norm() / direct.gradient.norm();
-  std::printf("at 1e-4: gradient error %.3g from the last solution (%lld iterations), %.3g from the combination (%lld)\n",
-              errorLastOnly, lastOnly.solver.iterations, errorCombined, combined.solver.iterations);
+  const double errorLastOnly =
+      (lastOnly.gradient - direct.gradient).norm() / direct.gradient.norm();
+  const double errorCombined =
+      (combined.gradient - direct.gradient).norm() / direct.gradient.norm();
+  std::printf(
+      "at 1e-4: gradient error %.3g from the last solution (%lld iterations), %.3g from the "
+      "combination (%lld)\n",
+      errorLastOnly, lastOnly.solver.iterations, errorCombined, combined.solver.iterations);
   EXPECT_LT(errorCombined, 2.0 * errorLastOnly + 1e-7);
 }
 
 TEST(ContactGradient, ClothRestingOnASphereStickBranchWithCurvedFrames) {
   TempDir dir;
-  const Scene scene =
-      withTask(dir, sphereScene(0.9, 0.05), {{"cloths.0.material.stretch", 24.0}, {"gravity.0", 0.5}},
-               {"cloths.0.material.stretch", "cloths.0.material.density", "cloths.0.initial_velocity.0", "gravity.0",
-                "gravity.1", "obstacles.0.friction"});
+  const Scene scene = withTask(
+      dir, sphereScene(0.9, 0.05), {{"cloths.0.material.stretch", 24.0}, {"gravity.0", 0.5}},
+      {"cloths.0.material.stretch", "cloths.0.material.density", "cloths.0.initial_velocity.0",
+       "gravity.0", "gravity.1", "obstacles.0.friction"});
   const BranchCounts branches = branchesOf(scene);
   EXPECT_GT(branches.stick, 3 * 15);
   // A stuck cloth barely responds (gradient ~1e-7 of a loss ~1e-8): the finite differences carry
@@ -160,15 +170,16 @@ TEST(ContactGradient, ClothRestingOnASphereStickBranchWithCurvedFrames) {
   // same comparison agrees to 1e-7 on most components (`weft gradcheck` with
   // --forward-tolerance 1e-11, 40 s: too slow for the suite), so the bound here is 1e-3, and the
   // friction derivative (zero: nothing slips) is compared to 1e-5 of the largest component.
-  test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()), 1e-3, 1e-5);
+  test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()),
+                                1e-3, 1e-5);
 }
 
 TEST(ContactGradient, ClothSlidingOverASphere) {
   TempDir dir;
   const Scene scene =
       withTask(dir, sphereScene(0.1, 0.3), {{"obstacles.0.friction", 0.12}, {"gravity.0", 0.5}},
-               {"obstacles.0.friction", "cloths.0.material.density", "cloths.0.initial_velocity.0", "gravity.0",
-                "cloths.0.material.stretch"});
+               {"obstacles.0.friction", "cloths.0.material.density", "cloths.0.initial_velocity.0",
+                "gravity.0", "cloths.0.material.stretch"});
   const BranchCounts branches = branchesOf(scene);
   EXPECT_EQ(branches.stick, 0);
   EXPECT_GT(branches.slip, 3 * 15);
@@ -177,9 +188,10 @@ TEST(ContactGradient, ClothSlidingOverASphere) {
 
 TEST(ContactGradient, NodesTouchingTwoObstaclesCoupleTheirContacts) {
   TempDir dir;
-  const Scene scene = withTask(dir, cornerScene(), {{"obstacles.1.friction", 0.25}},
-                               {"obstacles.0.friction", "obstacles.1.friction", "cloths.0.initial_velocity.0",
-                                "cloths.0.initial_velocity.2", "cloths.0.material.density", "gravity.1"});
+  const Scene scene =
+      withTask(dir, cornerScene(), {{"obstacles.1.friction", 0.25}},
+               {"obstacles.0.friction", "obstacles.1.friction", "cloths.0.initial_velocity.0",
+                "cloths.0.initial_velocity.2", "cloths.0.material.density", "gravity.1"});
   const ForwardPass pass = runForwardPass(withTightForwardSolver(scene, 1e-8));
   int doubled = 0;  // steps with a node in contact with both planes
   for (const StepContacts& step : pass.trajectory.contacts) {
@@ -196,7 +208,8 @@ TEST(ContactGradient, NodesTouchingTwoObstaclesCoupleTheirContacts) {
   EXPECT_GE(doubled, 3);
   for (const char* method : {"gmres", "direct"}) {
     SCOPED_TRACE(method);
-    test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options(method)));
+    test::expectGradientAgreement(
+        checkGradient(scene, ParameterSet::fromTask(scene), options(method)));
   }
 }
 
@@ -209,10 +222,9 @@ TEST(ContactGradient, NewtonForwardStickBranchAgreesToTheTightTolerance) {
   TempDir dir;
   nlohmann::json doc = sphereScene(0.9, 0.05);
   doc["solver"]["contact"] = "newton";
-  const Scene scene =
-      withTask(dir, doc, {{"cloths.0.material.stretch", 24.0}, {"gravity.0", 0.5}},
-               {"cloths.0.material.stretch", "cloths.0.material.density", "cloths.0.initial_velocity.0", "gravity.0",
-                "gravity.1"});
+  const Scene scene = withTask(dir, doc, {{"cloths.0.material.stretch", 24.0}, {"gravity.0", 0.5}},
+                               {"cloths.0.material.stretch", "cloths.0.material.density",
+                                "cloths.0.initial_velocity.0", "gravity.0", "gravity.1"});
   EXPECT_GT(branchesOf(scene).stick, 3 * 15);
   GradientCheckOptions o = options();
   o.forwardTolerance = 1e-11;
@@ -228,11 +240,12 @@ TEST(ContactGradient, NewtonForwardSlipAndCoupledContacts) {
     doc["solver"]["contact"] = "newton";
     const Scene scene =
         corner ? withTask(dir, doc, {{"obstacles.1.friction", 0.25}},
-                          {"obstacles.0.friction", "obstacles.1.friction", "cloths.0.initial_velocity.0",
-                           "cloths.0.material.density"})
-               : withTask(dir, doc, {{"obstacles.0.friction", 0.25}, {"cloths.0.material.stretch", 120.0}},
-                          {"obstacles.0.friction", "cloths.0.initial_velocity.0", "cloths.0.material.density",
-                           "cloths.0.material.stretch"});
+                          {"obstacles.0.friction", "obstacles.1.friction",
+                           "cloths.0.initial_velocity.0", "cloths.0.material.density"})
+               : withTask(dir, doc,
+                          {{"obstacles.0.friction", 0.25}, {"cloths.0.material.stretch", 120.0}},
+                          {"obstacles.0.friction", "cloths.0.initial_velocity.0",
+                           "cloths.0.material.density", "cloths.0.material.stretch"});
     test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options()));
   }
 }
@@ -250,8 +263,9 @@ TEST(ContactGradient, NodesStickingToTwoObstaclesAtOnce) {
   doc["gravity"] = {2.0, -9.8, 0.0};  // pressed into the wall
   doc["cloths"][0]["initial_velocity"] = {0.05, 0.0, 0.0};
   doc["solver"]["contact"] = "newton";
-  const Scene scene = withTask(dir, doc, {{"gravity.0", 2.5}},
-                               {"gravity.0", "cloths.0.material.density", "cloths.0.initial_velocity.0"});
+  const Scene scene =
+      withTask(dir, doc, {{"gravity.0", 2.5}},
+               {"gravity.0", "cloths.0.material.density", "cloths.0.initial_velocity.0"});
   const ForwardPass pass = runForwardPass(withTightForwardSolver(scene, 1e-8));
   int doubleSticks = 0;  // (step, node) with a stick on both planes
   for (const StepContacts& step : pass.trajectory.contacts) {
@@ -263,7 +277,8 @@ TEST(ContactGradient, NodesStickingToTwoObstaclesAtOnce) {
   EXPECT_GE(doubleSticks, 10);
   for (const char* method : {"gmres", "direct"}) {
     SCOPED_TRACE(method);
-    test::expectGradientAgreement(checkGradient(scene, ParameterSet::fromTask(scene), options(method)));
+    test::expectGradientAgreement(
+        checkGradient(scene, ParameterSet::fromTask(scene), options(method)));
   }
 }
 

@@ -15,10 +15,12 @@ namespace weft::test {
 
 nlohmann::json windClothScene(int quads, int steps) {
   nlohmann::json doc = hangingClothScene(0.4, quads, 0.01, steps, 300.0, 0.001, 0.1);
-  doc["wind"] = {{"direction", {0.2, 0.0, 1.0}}, {"strength", 1.5}, {"frequency", 2.0}, {"phase", 0.3}};
+  doc["wind"] = {
+      {"direction", {0.2, 0.0, 1.0}}, {"strength", 1.5}, {"frequency", 2.0}, {"phase", 0.3}};
   nlohmann::json& cloth = doc["cloths"][0];
   const int bottomMiddle = quads * (quads + 1) + quads / 2;
-  cloth["forces"] = nlohmann::json::array({{{"vertices", {bottomMiddle}}, {"force", {0.0, 0.0, 0.002}}}});
+  cloth["forces"] =
+      nlohmann::json::array({{{"vertices", {bottomMiddle}}, {"force", {0.0, 0.0, 0.002}}}});
   cloth["initial_velocity"] = {0.0, 0.0, 0.1};
   return doc;
 }
@@ -27,8 +29,10 @@ std::string writeTargetTrajectory(const nlohmann::json& document, const std::str
   const Scene scene = withTightForwardSolver(parse(document), 1e-8);
   const ForwardPass pass = runForwardPass(scene);
   const std::vector<double> flat = pass.trajectory.flattenedPositions();
-  writeNpy(path, {pass.trajectory.positions.size(), static_cast<std::size_t>(pass.trajectory.nodeCount()), 3},
-           flat.data());
+  writeNpy(
+      path,
+      {pass.trajectory.positions.size(), static_cast<std::size_t>(pass.trajectory.nodeCount()), 3},
+      flat.data());
   return path;
 }
 
@@ -48,7 +52,8 @@ Scene withTrajectoryTask(const TempDir& dir, const nlohmann::json& document,
                          const std::vector<std::string>& parameters) {
   nlohmann::json doc = document;
   nlohmann::json targetDoc = doc;
-  targetDoc["cloths"][0]["material"]["stretch"] = doc["cloths"][0]["material"]["stretch"].get<double>() * 5.0 / 6.0;
+  targetDoc["cloths"][0]["material"]["stretch"] =
+      doc["cloths"][0]["material"]["stretch"].get<double>() * 5.0 / 6.0;
   targetDoc["wind"]["strength"] = 2.0;
   const std::string target = writeTargetTrajectory(targetDoc, dir.file("target.npy"));
   addTask(doc, "trajectory", target, parameters);
@@ -91,14 +96,17 @@ void expectAdjointMatchesFiniteDifferences(const Scene& scene) {
 
 void expectGradientAgreement(const GradientCheckReport& report, double relative, double floor) {
   double largest = 0.0;
-  for (const GradientCheckEntry& e : report.entries) largest = std::max(largest, std::abs(e.adjoint));
+  for (const GradientCheckEntry& e : report.entries)
+    largest = std::max(largest, std::abs(e.adjoint));
   ASSERT_GT(largest, 0.0);
   EXPECT_EQ(report.unconvergedSteps, 0);
   for (const GradientCheckEntry& e : report.entries) {
     SCOPED_TRACE(e.param);
-    const double allowed = relative * std::max(std::abs(e.adjoint), std::abs(e.finiteDifference)) + floor * largest;
+    const double allowed =
+        relative * std::max(std::abs(e.adjoint), std::abs(e.finiteDifference)) + floor * largest;
     EXPECT_LE(std::abs(e.adjoint - e.finiteDifference), allowed)
-        << "adjoint " << e.adjoint << " fd " << e.finiteDifference << " (largest component " << largest << ")";
+        << "adjoint " << e.adjoint << " fd " << e.finiteDifference << " (largest component "
+        << largest << ")";
   }
 }
 

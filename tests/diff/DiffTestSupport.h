@@ -59,6 +59,7 @@ HistoryGradients gradientsWithAndWithoutHistory(const Scene& scene, BackwardSett
 // A checked gradient: every component within `relative` of its finite difference plus `floor`
 // times the largest component (components negligible against it carry the forward tolerance's
 // noise in their finite differences); every forward run converged; the largest is nonzero.
-void expectGradientAgreement(const GradientCheckReport& report, double relative = 1e-4, double floor = 1e-6);
+void expectGradientAgreement(const GradientCheckReport& report, double relative = 1e-4,
+                             double floor = 1e-6);
 
 }  // namespace weft::test

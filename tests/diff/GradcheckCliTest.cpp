@@ -25,8 +25,8 @@ using ::testing::StartsWith;
 const std::string kScene = std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json";
 
 TEST(GradcheckCli, PrintsOneLinePerParameterAndASummary) {
-  const auto r = runWeft({"gradcheck", kScene, "--param", "cloths.0.material.stretch", "--param", "wind.strength",
-                          "--threads", "1"});
+  const auto r = runWeft({"gradcheck", kScene, "--param", "cloths.0.material.stretch", "--param",
+                          "wind.strength", "--threads", "1"});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   const auto lines = splitLines(r.out);
   ASSERT_EQ(lines.size(), 3u) << r.out;
@@ -47,8 +47,8 @@ TEST(GradcheckCli, PrintsOneLinePerParameterAndASummary) {
 }
 
 TEST(GradcheckCli, JsonListHasTheSpecKeys) {
-  const auto r = runWeft({"gradcheck", kScene, "--json", "--param", "cloths.0.material.density", "--param",
-                          "wind.phase", "--eps", "1e-5", "--threads", "1"});
+  const auto r = runWeft({"gradcheck", kScene, "--json", "--param", "cloths.0.material.density",
+                          "--param", "wind.phase", "--eps", "1e-5", "--threads", "1"});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   const nlohmann::json list = nlohmann::json::parse(r.out);  // stdout is the JSON document alone
   ASSERT_TRUE(list.is_array());
@@ -57,7 +57,8 @@ TEST(GradcheckCli, JsonListHasTheSpecKeys) {
   EXPECT_EQ(list[1]["param"], "wind.phase");
   for (const auto& e : list) {
     EXPECT_EQ(e.size(), 4u);
-    for (const char* key : {"adjoint", "finite_difference", "relative_error"}) EXPECT_TRUE(e[key].is_number()) << key;
+    for (const char* key : {"adjoint", "finite_difference", "relative_error"})
+      EXPECT_TRUE(e[key].is_number()) << key;
     EXPECT_LT(e["relative_error"].get<double>(), 1e-4) << e.dump();
   }
   EXPECT_THAT(r.err, HasSubstr("gradcheck: wind_sysid:"));
@@ -78,18 +79,25 @@ TEST(GradcheckCli, TaskParametersAreTheDefault) {
 struct BadGradcheck {
   const char* name;
   std::vector<std::string> args;
-  const char* where;   // "<file>: <path>: " the message must contain
+  const char* where;  // "<file>: <path>: " the message must contain
   const char* phrase;
 };
 
 TEST(GradcheckCli, BadInputExitsTwoNamingFileAndPath) {
   const std::string noTask = test::dataFile("scenes/hanging_wind.json");
   const BadGradcheck cases[] = {
-      {"UnknownParameter", {kScene, "--param", "cloths.0.material.nope"}, "--param cloths.0.material.nope: ",
+      {"UnknownParameter",
+       {kScene, "--param", "cloths.0.material.nope"},
+       "--param cloths.0.material.nope: ",
        "names no value"},
-      {"NotDifferentiable", {kScene, "--param", "time.dt"}, "--param time.dt: ", "not differentiable"},
+      {"NotDifferentiable",
+       {kScene, "--param", "time.dt"},
+       "--param time.dt: ",
+       "not differentiable"},
       {"NoTask", {noTask}, "task: ", "no task"},
-      {"ContactFrictionOfNoObstacle", {kScene, "--param", "obstacles.3.friction"}, "--param obstacles.3.friction: ",
+      {"ContactFrictionOfNoObstacle",
+       {kScene, "--param", "obstacles.3.friction"},
+       "--param obstacles.3.friction: ",
        "names no value"},
       {"BadEps", {kScene, "--eps", "0"}, "--eps: ", "must be in (0, 1)"},
       {"BadBackward", {kScene, "--backward", "cg"}, "--backward: ", "must be one of"},

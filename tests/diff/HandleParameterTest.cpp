@@ -147,7 +147,6 @@ TEST(HandleParameter, ResolvesTheTrajectoryKnotsAndStiffness) {
   }
 }
 
-
 // The Hat task in miniature: a final-frame target made by the same scene with another spline.
 TEST(HandleParameter, SplineGradientsMatchFiniteDifferencesForAFinalFrameTarget) {
   TempDir dir;

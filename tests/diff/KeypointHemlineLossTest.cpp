@@ -162,7 +162,6 @@ TEST(TaskLoss, SumsItsWeightedTerms) {
   EXPECT_NEAR(loss.value(t), expected, 1e-12 * expected);
 }
 
-
 const std::vector<std::string> kMaterial = {"cloths.0.material.stretch", "cloths.0.material.bend",
                                             "cloths.0.material.density"};
 
@@ -245,8 +244,7 @@ TEST(TaskLoss, BadKeypointAndHemlineInputNamesItsJsonPath) {
        "needs a target"},
       {"HemlineVertex", hemline({{"vertices", {20, 99}}}), "task.loss.hemline.vertices.1",
        "out of range"},
-      {"HemlineStep", hemline({{"steps", {6, 9}}}), "task.loss.hemline.steps.1",
-       "in [0, 6]"},
+      {"HemlineStep", hemline({{"steps", {6, 9}}}), "task.loss.hemline.steps.1", "in [0, 6]"},
       {"HemlineBothTargets", hemline({{"apex_angle_deg", 100.0}}),
        "task.loss.hemline.apex_angle_deg", "not both"},
       {"HemlineApexAngle",

@@ -47,27 +47,43 @@ TEST(SceneParameter, ResolvesEverySupportedPath) {
 // The list the editor offers: exactly the paths that resolve, found by walking the document.
 TEST(SceneParameter, ListsEveryDifferentiablePathOfTheScene) {
   nlohmann::json doc = test::windClothScene(4, 5);
-  doc["obstacles"] = {{{"sphere", {{"center", {0.0, -1.0, 0.0}}, {"radius", 0.2}}}, {"friction", 0.3}}};
+  doc["obstacles"] = {
+      {{"sphere", {{"center", {0.0, -1.0, 0.0}}, {"radius", 0.2}}}, {"friction", 0.3}}};
   const test::TempDir dir;
   // The task is not a source of parameters (its bounds and weights are numbers too).
-  test::addTask(doc, "trajectory", test::writeTargetTrajectory(doc, dir.file("target.npy")), {"wind.strength"});
+  test::addTask(doc, "trajectory", test::writeTargetTrajectory(doc, dir.file("target.npy")),
+                {"wind.strength"});
   doc["task"]["bounds"] = {{"wind.strength", {0.5, 3.0}}};
   const Scene scene = test::parse(doc);
   const std::vector<std::string> paths = differentiableParameterPaths(scene);
-  const std::vector<std::string> expected = {
-      "cloths.0.forces.0.force.0", "cloths.0.forces.0.force.1", "cloths.0.forces.0.force.2",
-      "cloths.0.initial_velocity.0", "cloths.0.initial_velocity.1", "cloths.0.initial_velocity.2",
-      "cloths.0.material.bend", "cloths.0.material.density", "cloths.0.material.stretch",
-      "gravity.0", "gravity.1", "gravity.2", "obstacles.0.friction",
-      "wind.direction.0", "wind.direction.1", "wind.direction.2", "wind.frequency", "wind.phase", "wind.strength"};
+  const std::vector<std::string> expected = {"cloths.0.forces.0.force.0",
+                                             "cloths.0.forces.0.force.1",
+                                             "cloths.0.forces.0.force.2",
+                                             "cloths.0.initial_velocity.0",
+                                             "cloths.0.initial_velocity.1",
+                                             "cloths.0.initial_velocity.2",
+                                             "cloths.0.material.bend",
+                                             "cloths.0.material.density",
+                                             "cloths.0.material.stretch",
+                                             "gravity.0",
+                                             "gravity.1",
+                                             "gravity.2",
+                                             "obstacles.0.friction",
+                                             "wind.direction.0",
+                                             "wind.direction.1",
+                                             "wind.direction.2",
+                                             "wind.frequency",
+                                             "wind.phase",
+                                             "wind.strength"};
   EXPECT_EQ(paths, expected);
   for (const std::string& p : paths) EXPECT_NO_THROW(resolveSceneParameter(scene, p, "x")) << p;
 }
 
 TEST(SceneParameter, RejectsUnknownAndNonDifferentiablePaths) {
   const Scene scene = test::parse(test::windClothScene(4, 5));
-  for (const char* path : {"cloths.3.material.stretch", "cloths.0.material.stiffness", "time.dt",
-                           "cloths.0.attachments.0.stiffness", "wind.direction", "wind.direction.5"}) {
+  for (const char* path :
+       {"cloths.3.material.stretch", "cloths.0.material.stiffness", "time.dt",
+        "cloths.0.attachments.0.stiffness", "wind.direction", "wind.direction.5"}) {
     SCOPED_TRACE(path);
     try {
       resolveSceneParameter(scene, path, std::string("--param ") + path);
@@ -81,7 +97,8 @@ TEST(SceneParameter, RejectsUnknownAndNonDifferentiablePaths) {
 
 TEST(ParameterSet, SetsValuesThroughTheLoader) {
   const Scene scene = test::parse(test::windClothScene(4, 5));
-  const ParameterSet set = ParameterSet::fromPaths(scene, {"cloths.0.material.density", "wind.direction.2"});
+  const ParameterSet set =
+      ParameterSet::fromPaths(scene, {"cloths.0.material.density", "wind.direction.2"});
   Eigen::VectorXd v = set.values(scene);
   EXPECT_DOUBLE_EQ(v[0], 0.1);
   EXPECT_DOUBLE_EQ(v[1], 1.0);

@@ -57,18 +57,18 @@ nlohmann::json stackedClothsScene() {
   for (int k = 0; k < 2; ++k) {
     // The lower cloth 0.5 mm above the floor, the upper exactly the collision distance above it.
     const double height = 0.0005 + k * kRadius;
-    nlohmann::json cloth = {
-        {"mesh",
-         {{"grid", {{"size", {size, size}}, {"resolution", {kQuads, kQuads}}}},
-          {"transform", {{"translate", {0.0, height, 0.0}}}}}},
-        {"material", {{"density", 1.0}, {"stretch", 20.0}, {"bend", 0.0005}}},
-        {"self_collision", {{"radius", kRadius}, {"friction", 0.15}}}};
+    nlohmann::json cloth = {{"mesh",
+                             {{"grid", {{"size", {size, size}}, {"resolution", {kQuads, kQuads}}}},
+                              {"transform", {{"translate", {0.0, height, 0.0}}}}}},
+                            {"material", {{"density", 1.0}, {"stretch", 20.0}, {"bend", 0.0005}}},
+                            {"self_collision", {{"radius", kRadius}, {"friction", 0.15}}}};
     if (k == 1) {
       cloth["initial_velocity"] = {0.005, 0.0, 0.002};
       // A small pull on one corner (the last node) makes the upper cloth deform as it slides, so
       // its density matters (under gravity and Coulomb friction alone a uniform slide does not
       // depend on the mass).
-      cloth["forces"] = nlohmann::json::array({{{"vertices", {(kQuads + 1) * (kQuads + 1) - 1}}, {"force", {0.0003, 0.0, 0.0}}}});
+      cloth["forces"] = nlohmann::json::array(
+          {{{"vertices", {(kQuads + 1) * (kQuads + 1) - 1}}, {"force", {0.0003, 0.0, 0.0}}}});
     }
     doc["cloths"].push_back(cloth);
   }
@@ -93,7 +93,8 @@ PairRun pairsOf(const nlohmann::json& doc) {
     for (const ContactPoint& p : pass.trajectory.contacts[n].points) {
       if (p.partner < 0) continue;
       record.emplace(p.node, p.partner, static_cast<int>(p.branch));
-      const Vec3 d = pass.trajectory.positions[n + 1].row(p.node) - pass.trajectory.positions[n + 1].row(p.partner);
+      const Vec3 d = pass.trajectory.positions[n + 1].row(p.node) -
+                     pass.trajectory.positions[n + 1].row(p.partner);
       run.largestSlide = std::max(run.largestSlide, std::hypot(d.x(), d.z()));
     }
     run.steps.push_back(record);
@@ -102,11 +103,13 @@ PairRun pairsOf(const nlohmann::json& doc) {
 }
 
 // The document with a trajectory task whose target is the document simulated with `changes`.
-Scene withTask(const TempDir& dir, nlohmann::json doc, const std::vector<std::pair<std::string, double>>& changes,
+Scene withTask(const TempDir& dir, nlohmann::json doc,
+               const std::vector<std::pair<std::string, double>>& changes,
                const std::vector<std::string>& parameters) {
   nlohmann::json target = doc;
   for (const auto& [path, value] : changes) *findJsonPath(target, path) = value;
-  test::addTask(doc, "trajectory", test::writeTargetTrajectory(target, dir.file("target.npy")), parameters);
+  test::addTask(doc, "trajectory", test::writeTargetTrajectory(target, dir.file("target.npy")),
+                parameters);
   return test::parse(doc);
 }
 
@@ -119,11 +122,12 @@ TEST(SelfCollisionGradient, ClothSlippingOverAnotherClothMatchesFiniteDifference
   const PairRun run = pairsOf(doc);
   ASSERT_EQ(run.steps.size(), static_cast<std::size_t>(kSteps));
   PairRecord expected;
-  for (int i = 0; i < nodes; ++i) expected.emplace(i, nodes + i, static_cast<int>(ContactBranch::Slip));
+  for (int i = 0; i < nodes; ++i)
+    expected.emplace(i, nodes + i, static_cast<int>(ContactBranch::Slip));
   for (int n = 0; n < kSteps; ++n) EXPECT_EQ(run.steps[n], expected) << "step " << n + 1;
   EXPECT_EQ(run.unconverged, 0);
   RecordProperty("largest_slide_m", std::to_string(run.largestSlide));
-  EXPECT_GT(run.largestSlide, 1e-4);           // the upper cloth does slide
+  EXPECT_GT(run.largestSlide, 1e-4);            // the upper cloth does slide
   EXPECT_LT(run.largestSlide, 0.25 * kRadius);  // far from breaking a pair
 
   // The probes change nothing discrete: the same pairs in the same branches at friction
@@ -137,10 +141,12 @@ TEST(SelfCollisionGradient, ClothSlippingOverAnotherClothMatchesFiniteDifference
   // Target: the same scene with a rougher upper cloth and a faster push. The pair's friction
   // is the mean of its cloths' (SelfCollisionDetector), so cloths.1's coefficient acts through it.
   TempDir dir;
-  const Scene scene = withTask(dir, doc, {{"cloths.1.self_collision.friction", 0.17}, {"cloths.1.initial_velocity.0", 0.008}},
-                               {"cloths.1.self_collision.friction", "cloths.0.self_collision.friction",
-                                "cloths.1.initial_velocity.0", "cloths.1.initial_velocity.2",
-                                "cloths.1.material.density", "gravity.0"});
+  const Scene scene =
+      withTask(dir, doc,
+               {{"cloths.1.self_collision.friction", 0.17}, {"cloths.1.initial_velocity.0", 0.008}},
+               {"cloths.1.self_collision.friction", "cloths.0.self_collision.friction",
+                "cloths.1.initial_velocity.0", "cloths.1.initial_velocity.2",
+                "cloths.1.material.density", "gravity.0"});
   test::expectAdjointMatchesFiniteDifferences(scene);
 
   // The iterative path (GMRES on (P - Delta P - Delta R)^T z = g, Eq. 29, with Delta R applied
@@ -154,7 +160,9 @@ TEST(SelfCollisionGradient, ClothSlippingOverAnotherClothMatchesFiniteDifference
   Eigen::VectorXd gradients[2];
   for (int k = 0; k < 2; ++k) {
     settings.method = k == 0 ? "direct" : "gmres";
-    gradients[k] = backpropagate(tight, pass.trajectory, loss, ParameterSet::fromTask(tight), settings).gradient;
+    gradients[k] =
+        backpropagate(tight, pass.trajectory, loss, ParameterSet::fromTask(tight), settings)
+            .gradient;
   }
   EXPECT_LT((gradients[1] - gradients[0]).norm(), 1e-7 * gradients[0].norm())
       << "direct " << gradients[0].transpose() << "\ngmres  " << gradients[1].transpose();

@@ -29,7 +29,8 @@ struct Operator {
   }
   NodeMatrix operator()(const NodeMatrix& z) const {
     NodeMatrix out(kNodes, 3);
-    Eigen::Map<Eigen::VectorXd>(out.data(), 3 * kNodes) = a * Eigen::Map<const Eigen::VectorXd>(z.data(), 3 * kNodes);
+    Eigen::Map<Eigen::VectorXd>(out.data(), 3 * kNodes) =
+        a * Eigen::Map<const Eigen::VectorXd>(z.data(), 3 * kNodes);
     return out;
   }
 };
@@ -59,7 +60,8 @@ TEST(SolutionHistory, RecoversTheSolutionOfACombinationOfKeptRightHandSides) {
   ASSERT_TRUE(history.guess(g, guess));
   const NodeMatrix residual = g - k(guess);
   for (const NodeMatrix* z : {&z1, &z2, &z3})
-    EXPECT_LT(std::abs((residual.array() * k(*z).array()).sum()), 1e-10 * residual.norm() * k(*z).norm());
+    EXPECT_LT(std::abs((residual.array() * k(*z).array()).sum()),
+              1e-10 * residual.norm() * k(*z).norm());
   EXPECT_LT(residual.norm(), g.norm());
 }
 

@@ -55,7 +55,8 @@ TEST(FinalFrameLoss, LooksAtTheLastStateOnly) {
   EXPECT_TRUE(g[1].isZero());
 }
 
-void expectInputError(const nlohmann::json& doc, const std::string& path, const std::string& phrase) {
+void expectInputError(const nlohmann::json& doc, const std::string& path,
+                      const std::string& phrase) {
   const Scene scene = test::parse(doc);
   try {
     TaskLoss loss(scene);

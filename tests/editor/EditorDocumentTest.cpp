@@ -66,12 +66,15 @@ TEST(EditorDocument, WarnsOfAHandleDrivenIntoAnObstacleAndForgetsItWhenMovedOut)
       {{"vertices", {0}},
        {"kind", "handle"},
        {"trajectory",
-        {{"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 1.0}, {"offset", {1.0, 0, 0}}}}}}}}};
-  scene["obstacles"] = {{{"sphere", {{"center", {0, 0, -0.5}}, {"radius", 0.2}}}, {"friction", 0.3}}};
+        {{"keyframes",
+          {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 1.0}, {"offset", {1.0, 0, 0}}}}}}}}};
+  scene["obstacles"] = {
+      {{"sphere", {{"center", {0, 0, -0.5}}, {"radius", 0.2}}}, {"friction", 0.3}}};
   EditorDocument doc(scene);
   ASSERT_TRUE(doc.valid()) << doc.validationError();
   ASSERT_EQ(doc.scene()->warnings.size(), 1u);
-  EXPECT_NE(doc.scene()->warnings[0].find("cloths.0.attachments.0: the handle's targets enter obstacles.0 (sphere)"),
+  EXPECT_NE(doc.scene()->warnings[0].find(
+                "cloths.0.attachments.0: the handle's targets enter obstacles.0 (sphere)"),
             std::string::npos)
       << doc.scene()->warnings[0];
   // Moving the sphere off the handle's path clears the warning on the next validation.
@@ -119,7 +122,8 @@ TEST(EditorDocument, CoalescedEditsAreOneUndoStep) {
 TEST(EditorDocument, EditWithAFailingChangeIsRefused) {
   EditorDocument doc;
   const nlohmann::json before = doc.document();
-  const std::string error = doc.edit("Break", [](nlohmann::json& d) { d.at("missing").push_back(1); });
+  const std::string error =
+      doc.edit("Break", [](nlohmann::json& d) { d.at("missing").push_back(1); });
   EXPECT_NE(error.find("Break"), std::string::npos);
   EXPECT_EQ(doc.document(), before);
 }
@@ -171,7 +175,8 @@ TEST(EditorDocument, OpenRejectsBrokenFilesAndKeepsTheDocument) {
   EXPECT_THROW(doc.open(dir.write("bad.json", "{ not json")), InputError);
   EXPECT_EQ(doc.document(), before);
   // Valid JSON that the loader rejects is opened, with the loader's message.
-  doc.open(dir.write("invalid.json", R"({"time": {"dt": 0.01, "steps": 5}, "cloths": [], "colour": 1})"));
+  doc.open(dir.write("invalid.json",
+                     R"({"time": {"dt": 0.01, "steps": 5}, "cloths": [], "colour": 1})"));
   EXPECT_FALSE(doc.valid());
   EXPECT_FALSE(doc.validationError().empty());
 }

@@ -26,9 +26,11 @@
 namespace weft::test {
 namespace {
 
-ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions, const std::string& size = "960x600") {
+ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions,
+                        const std::string& size = "960x600") {
   const std::string script = dir.write("script.json", nlohmann::json{{"actions", actions}}.dump(2));
-  return runProcess({WEFT_EDITOR_BINARY, "--headless", "--script", script, "--size", size}, dir.path());
+  return runProcess({WEFT_EDITOR_BINARY, "--headless", "--script", script, "--size", size},
+                    dir.path());
 }
 
 nlohmann::json readJson(const std::string& path) {
@@ -37,14 +39,18 @@ nlohmann::json readJson(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
-Vec3 vec(const nlohmann::json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
+Vec3 vec(const nlohmann::json& j) {
+  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
 
 // The hanging cloth with a sphere beside it and a box under it.
 nlohmann::json clothSphereBox() {
   nlohmann::json doc = hangingClothScene(1.0, 4, 0.01, 3, 500.0);
-  doc["obstacles"] = {{{"sphere", {{"center", {0.2, 0.3, 0.4}}, {"radius", 0.2}}}, {"friction", 0.3}},
-                      {{"box", {{"center", {0.0, -0.2, 0.0}}, {"size", {1.2, 0.2, 0.8}}, {"rotate_deg", {0.0, 0.0, 0.0}}}},
-                       {"friction", 0.3}}};
+  doc["obstacles"] = {
+      {{"sphere", {{"center", {0.2, 0.3, 0.4}}, {"radius", 0.2}}}, {"friction", 0.3}},
+      {{"box",
+        {{"center", {0.0, -0.2, 0.0}}, {"size", {1.2, 0.2, 0.8}}, {"rotate_deg", {0.0, 0.0, 0.0}}}},
+       {"friction", 0.3}}};
   return doc;
 }
 
@@ -53,34 +59,40 @@ TEST(EditorGizmo, DragMovesAnObstacleAlongOneAxisAsOneUndoStep) {
   const std::string scene = writeScene(dir.file("scene.json"), clothSphereBox());
   const float distance = 2.5f;
   const ProcessResult r = runEditor(
-      dir, {{{"open", scene}},
-            {{"simulate", true}},
-            {{"gizmo", "obstacles.0"}},
-            // Looking along -Z at the sphere's centre: X is right on screen.
-            {{"camera", {{"yaw", 0}, {"pitch", 0}, {"distance", distance}, {"target", {0.2, 0.3, 0.4}}}}},
-            {{"frames", 1}},
-            {{"write_state", dir.file("before.json")}},
-            // 40 px right and 12 px down: only the motion along X's image counts.
-            {{"gizmo_drag", "translate_x"}, {"by", {40, 12}}, {"steps", 4}},
-            {{"write_state", dir.file("moved.json")}},
-            {{"gizmo_drag", "rotate_x"}, {"by", {0, 10}}, {"expect_error", "no rotate_x handle"}},
-            {{"undo", true}},
-            {{"write_state", dir.file("undone.json")}},
-            // The cloth moves by its mesh.transform; its gizmo sits at the centre of its bounds,
-            // (0, 1, 0), here the camera's target.
-            {{"gizmo", "cloths.0"}},
-            {{"camera", {{"yaw", 0}, {"pitch", 0}, {"distance", distance}, {"target", {0.0, 1.0, 0.0}}}}},
-            {{"frames", 1}},
-            {{"gizmo_drag", "translate_y"}, {"by", {0, -20}}},
-            {{"write_state", dir.file("cloth.json")}},
-            // The box turns: from the top (-Z up on screen), a quarter turn counter-clockwise
-            // about +Y, which points at the camera.
-            {{"gizmo", "obstacles.1"}},
-            {{"camera", {{"yaw", 0}, {"pitch", 90}, {"distance", 3.0}, {"target", {0.0, -0.2, 0.0}}}}},
-            {{"frames", 1}},
-            {{"gizmo_drag", "rotate_y"}, {"from_centre", {70.71068, -70.71068}}, {"by", {-141.42136, 0}}, {"steps", 6}},
-            {{"write_state", dir.file("turned.json")}},
-            {{"gizmo", "cloths.0.attachments.0"}, {"expect_error", "fixed attachment"}}});
+      dir,
+      {{{"open", scene}},
+       {{"simulate", true}},
+       {{"gizmo", "obstacles.0"}},
+       // Looking along -Z at the sphere's centre: X is right on screen.
+       {{"camera",
+         {{"yaw", 0}, {"pitch", 0}, {"distance", distance}, {"target", {0.2, 0.3, 0.4}}}}},
+       {{"frames", 1}},
+       {{"write_state", dir.file("before.json")}},
+       // 40 px right and 12 px down: only the motion along X's image counts.
+       {{"gizmo_drag", "translate_x"}, {"by", {40, 12}}, {"steps", 4}},
+       {{"write_state", dir.file("moved.json")}},
+       {{"gizmo_drag", "rotate_x"}, {"by", {0, 10}}, {"expect_error", "no rotate_x handle"}},
+       {{"undo", true}},
+       {{"write_state", dir.file("undone.json")}},
+       // The cloth moves by its mesh.transform; its gizmo sits at the centre of its bounds,
+       // (0, 1, 0), here the camera's target.
+       {{"gizmo", "cloths.0"}},
+       {{"camera",
+         {{"yaw", 0}, {"pitch", 0}, {"distance", distance}, {"target", {0.0, 1.0, 0.0}}}}},
+       {{"frames", 1}},
+       {{"gizmo_drag", "translate_y"}, {"by", {0, -20}}},
+       {{"write_state", dir.file("cloth.json")}},
+       // The box turns: from the top (-Z up on screen), a quarter turn counter-clockwise
+       // about +Y, which points at the camera.
+       {{"gizmo", "obstacles.1"}},
+       {{"camera", {{"yaw", 0}, {"pitch", 90}, {"distance", 3.0}, {"target", {0.0, -0.2, 0.0}}}}},
+       {{"frames", 1}},
+       {{"gizmo_drag", "rotate_y"},
+        {"from_centre", {70.71068, -70.71068}},
+        {"by", {-141.42136, 0}},
+        {"steps", 6}},
+       {{"write_state", dir.file("turned.json")}},
+       {{"gizmo", "cloths.0.attachments.0"}, {"expect_error", "fixed attachment"}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 
   const nlohmann::json before = readJson(dir.file("before.json"));
@@ -90,7 +102,8 @@ TEST(EditorGizmo, DragMovesAnObstacleAlongOneAxisAsOneUndoStep) {
   EXPECT_FALSE(before["gizmo"]["rotates"]) << "a sphere has no rings";
   const int height = before["viewport"][1];
   // One pixel at the sphere centre's depth (the camera's target), in metres.
-  const double metresPerPixel = 2.0 * distance * std::tan(render::Camera().fovYDeg * M_PI / 360.0) / height;
+  const double metresPerPixel =
+      2.0 * distance * std::tan(render::Camera().fovYDeg * M_PI / 360.0) / height;
 
   const nlohmann::json moved = readJson(dir.file("moved.json"));
   const Vec3 centre = vec(moved["document"]["obstacles"][0]["sphere"]["center"]);
@@ -103,7 +116,8 @@ TEST(EditorGizmo, DragMovesAnObstacleAlongOneAxisAsOneUndoStep) {
 
   // One undo step takes the whole drag back, and the cache is current again.
   const nlohmann::json undone = readJson(dir.file("undone.json"));
-  EXPECT_EQ(undone["document"]["obstacles"][0]["sphere"]["center"], nlohmann::json::array({0.2, 0.3, 0.4}));
+  EXPECT_EQ(undone["document"]["obstacles"][0]["sphere"]["center"],
+            nlohmann::json::array({0.2, 0.3, 0.4}));
   EXPECT_FALSE(undone["can_undo"]);
   EXPECT_FALSE(undone["dirty"]);
   EXPECT_FALSE(undone["cache_stale"]);
@@ -112,7 +126,8 @@ TEST(EditorGizmo, DragMovesAnObstacleAlongOneAxisAsOneUndoStep) {
   EXPECT_TRUE(cloth["gizmo"]["rotates"]);
   const nlohmann::json& transform = cloth["document"]["cloths"][0]["mesh"]["transform"];
   EXPECT_EQ(transform["translate"][0], 0.0);
-  EXPECT_NEAR(transform["translate"][1].get<double>(), 1.0 + 20 * metresPerPixel, 1e-5 * 20 * metresPerPixel);
+  EXPECT_NEAR(transform["translate"][1].get<double>(), 1.0 + 20 * metresPerPixel,
+              1e-5 * 20 * metresPerPixel);
   EXPECT_EQ(transform["translate"][2], 0.0);
   EXPECT_EQ(transform["rotate_deg"], nlohmann::json::array({90.0, 0.0, 0.0}));
 
@@ -198,7 +213,8 @@ TEST(EditorGizmo, ViewportMatchesGolden) {
       "700x420");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json state = readJson(dir.file("state.json"));
-  EXPECT_GT(state["document"]["obstacles"][1]["box"]["center"][1].get<double>(), -0.2) << "the box went up";
+  EXPECT_GT(state["document"]["obstacles"][1]["box"]["center"][1].get<double>(), -0.2)
+      << "the box went up";
   const render::Image image = render::readPng(dir.file("viewport.png"));
   EXPECT_EQ(image.width, state["viewport"][0].get<int>());
   EXPECT_EQ(image.height, state["viewport"][1].get<int>());
@@ -278,8 +294,8 @@ TEST(EditorKeys, HandleFollowsItsKeysAndTheyAreSaved) {
   EXPECT_TRUE(dragged["key_pending"]);
   EXPECT_EQ(dragged["frame"], 10);
   EXPECT_EQ(dragged["keys"].size(), 1u) << "a drag is not a key yet";
-  const double metresPerPixel =
-      2.0 * distance * std::tan(render::Camera().fovYDeg * M_PI / 360.0) / dragged["viewport"][1].get<int>();
+  const double metresPerPixel = 2.0 * distance * std::tan(render::Camera().fovYDeg * M_PI / 360.0) /
+                                dragged["viewport"][1].get<int>();
   const Vec3 dragOffset = vec(dragged["handle_offset"]);
   EXPECT_NEAR(dragOffset.x(), 30 * metresPerPixel, 1e-5 * 30 * metresPerPixel);
   EXPECT_EQ(dragOffset.y(), 0.0);
@@ -325,7 +341,8 @@ TEST(EditorKeys, HandleFollowsItsKeysAndTheyAreSaved) {
   EXPECT_EQ(attachment["kind"], "handle");
   EXPECT_EQ(attachment["vertices"], nlohmann::json::array({node}));
   ASSERT_EQ(attachment["trajectory"]["keyframes"].size(), 3u);
-  EXPECT_EQ(attachment["trajectory"]["keyframes"][2]["offset"], nlohmann::json::array({0.1, 0.15, 0.0}));
+  EXPECT_EQ(attachment["trajectory"]["keyframes"][2]["offset"],
+            nlohmann::json::array({0.1, 0.15, 0.0}));
   const nlohmann::json reopened = readJson(dir.file("reopened.json"));
   EXPECT_EQ(reopened["dirty"], false);
   EXPECT_EQ(reopened["keys"], readJson(dir.file("state-5.json"))["keys"]);

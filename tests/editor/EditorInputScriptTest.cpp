@@ -115,26 +115,33 @@ TEST(EditorInput, RightDragOrbitsMiddleDragPansWheelZooms) {
 // first pixel. It used to wait for ImGui's 6 px drag threshold and drop the motion before it.
 TEST(EditorInput, SlowDragsOrbitAndPanFromTheFirstPixel) {
   TempDir dir;
-  const ProcessResult r = runEditor(
-      dir, {{{"open", hangingScene(dir)}},
-            {{"camera", kFront}},
-            {{"frames", 1}},
-            {{"mouse_drag", "right"}, {"from", inView(200, 200)}, {"to", inView(220, 200)}, {"steps", 20}},
-            {{"write_state", dir.file("orbit.json")}},
-            {{"camera", kFront}},
-            {{"frames", 1}},
-            {{"mouse_drag", "middle"}, {"from", inView(200, 200)}, {"to", inView(200, 210)}, {"steps", 10}},
-            {{"write_state", dir.file("pan.json")}},
-            // A move and a press in one frame, then the release: no drag, so no turn.
-            {{"camera", kFront}},
-            {{"mouse_move", inView(60, 300)}},
-            {{"mouse_press", "right"}, {"at", inView(200, 200)}},
-            {{"mouse_release", "right"}},
-            {{"write_state", dir.file("press.json")}}});
+  const ProcessResult r =
+      runEditor(dir, {{{"open", hangingScene(dir)}},
+                      {{"camera", kFront}},
+                      {{"frames", 1}},
+                      {{"mouse_drag", "right"},
+                       {"from", inView(200, 200)},
+                       {"to", inView(220, 200)},
+                       {"steps", 20}},
+                      {{"write_state", dir.file("orbit.json")}},
+                      {{"camera", kFront}},
+                      {{"frames", 1}},
+                      {{"mouse_drag", "middle"},
+                       {"from", inView(200, 200)},
+                       {"to", inView(200, 210)},
+                       {"steps", 10}},
+                      {{"write_state", dir.file("pan.json")}},
+                      // A move and a press in one frame, then the release: no drag, so no turn.
+                      {{"camera", kFront}},
+                      {{"mouse_move", inView(60, 300)}},
+                      {{"mouse_press", "right"}, {"at", inView(200, 200)}},
+                      {{"mouse_release", "right"}},
+                      {{"write_state", dir.file("press.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NEAR(readJson(dir.file("orbit.json"))["camera"]["yaw"].get<double>(), -20 * 0.4, 1e-4);
   const nlohmann::json pan = readJson(dir.file("pan.json"));
-  const float metresPerPixel = 3.0f * 2.0f * std::tan(render::Camera().fovYDeg * 3.14159265f / 360.0f) /
+  const float metresPerPixel = 3.0f * 2.0f *
+                               std::tan(render::Camera().fovYDeg * 3.14159265f / 360.0f) /
                                pan["viewport"][1].get<float>();
   EXPECT_NEAR(pan["camera"]["target"][1].get<double>(), 1.0 + 10 * metresPerPixel, 1e-5);
   EXPECT_EQ(readJson(dir.file("press.json"))["camera"]["yaw"], 0.0);
@@ -239,16 +246,17 @@ TEST(EditorInput, GizmoPressAndDragMovesTheObjectAsGizmoDragDoes) {
 // empty space takes the gizmo off.
 TEST(EditorInput, CtrlClickPicksTheObjectForTheGizmo) {
   TempDir dir;
-  const nlohmann::json view = {{"yaw", 0}, {"pitch", 0}, {"distance", 2.5}, {"target", {0.2, 0.3, 0.4}}};
-  const ProcessResult r = runEditor(
-      dir, {{{"open", clothAndSphere(dir)}},
-            {{"camera", view}},
-            {{"frames", 1}},
-            {{"write_state", dir.file("size.json")}},
-            {{"mouse_click", inView(210, 215)}, {"modifiers", "ctrl"}},
-            {{"write_state", dir.file("sphere.json")}},
-            {{"mouse_click", inView(10, 420)}, {"modifiers", "ctrl"}},
-            {{"write_state", dir.file("nothing.json")}}});
+  const nlohmann::json view = {
+      {"yaw", 0}, {"pitch", 0}, {"distance", 2.5}, {"target", {0.2, 0.3, 0.4}}};
+  const ProcessResult r =
+      runEditor(dir, {{{"open", clothAndSphere(dir)}},
+                      {{"camera", view}},
+                      {{"frames", 1}},
+                      {{"write_state", dir.file("size.json")}},
+                      {{"mouse_click", inView(210, 215)}, {"modifiers", "ctrl"}},
+                      {{"write_state", dir.file("sphere.json")}},
+                      {{"mouse_click", inView(10, 420)}, {"modifiers", "ctrl"}},
+                      {{"write_state", dir.file("nothing.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   // The sphere's centre is the viewport's centre; the click lands within a few pixels of it.
   const nlohmann::json viewport = readJson(dir.file("size.json"))["viewport"];
@@ -382,12 +390,11 @@ TEST(EditorInput, PlaybackShortcutsStepAndPlay) {
 TEST(EditorInput, SpaceAtTheLastStatePlaysFromTheStart) {
   TempDir dir;
   // 400 states of 10 ms: four seconds of playback, far longer than the frames below take.
-  const ProcessResult r =
-      runEditor(dir, {{{"open", hangingScene(dir, 400)}},
-                      {{"simulate", true}},
-                      {{"scrub", 400}},
-                      {{"key", "space"}},
-                      {{"write_state", dir.file("replay.json")}}});
+  const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir, 400)}},
+                                          {{"simulate", true}},
+                                          {{"scrub", 400}},
+                                          {{"key", "space"}},
+                                          {{"write_state", dir.file("replay.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const nlohmann::json replay = readJson(dir.file("replay.json"));
   EXPECT_TRUE(replay["playing"]);
@@ -421,23 +428,26 @@ TEST(EditorInput, ViewAndGizmoShortcuts) {
 TEST(EditorInput, FileDialogsTakeATypedPath) {
   TempDir dir;
   const std::string copy = dir.file("copy.json");
-  const ProcessResult r = runEditor(
-      dir, {{{"open", hangingScene(dir)}},
-            {{"set", "time.steps"}, {"value", 9}},
-            {{"key", "ctrl+shift+s"}},
-            {{"write_state", dir.file("save-as.json")}},
-            {{"key", "ctrl+a"}},  // the current file's path is filled in: replace it
-            {{"type", copy}},
-            {{"key", "enter"}},
-            {{"expect", {{"file", copy}, {"dirty", false}, {"dialog", nullptr}}}},
-            {{"new", true}},
-            {{"key", "ctrl+o"}},
-            {{"key", "ctrl+a"}},
-            {{"type", copy}},
-            {{"key", "enter"}},
-            {{"expect", {{"file", copy}, {"dialog", nullptr}, {"value", {{"path", "time.steps"}, {"equals", 9}}}}}},
-            {{"key", "ctrl+i"}},
-            {{"write_state", dir.file("import.json")}}});
+  const ProcessResult r =
+      runEditor(dir, {{{"open", hangingScene(dir)}},
+                      {{"set", "time.steps"}, {"value", 9}},
+                      {{"key", "ctrl+shift+s"}},
+                      {{"write_state", dir.file("save-as.json")}},
+                      {{"key", "ctrl+a"}},  // the current file's path is filled in: replace it
+                      {{"type", copy}},
+                      {{"key", "enter"}},
+                      {{"expect", {{"file", copy}, {"dirty", false}, {"dialog", nullptr}}}},
+                      {{"new", true}},
+                      {{"key", "ctrl+o"}},
+                      {{"key", "ctrl+a"}},
+                      {{"type", copy}},
+                      {{"key", "enter"}},
+                      {{"expect",
+                        {{"file", copy},
+                         {"dialog", nullptr},
+                         {"value", {{"path", "time.steps"}, {"equals", 9}}}}}},
+                      {{"key", "ctrl+i"}},
+                      {{"write_state", dir.file("import.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_EQ(readJson(dir.file("save-as.json"))["dialog"]["title"], "Save scene as");
   EXPECT_EQ(readJson(copy)["time"]["steps"], 9);
@@ -510,17 +520,16 @@ TEST(EditorInput, ClosingWithUnsavedChangesAsksFirst) {
 // edit being asked about, or replace the document behind the prompt).
 TEST(EditorInput, ShortcutsWaitWhileADialogIsOpen) {
   TempDir dir;
-  const ProcessResult r = runEditor(
-      dir, {{{"open", hangingScene(dir)}},
-            {{"simulate", true}},
-            {{"scrub", 2}},
-            {{"set", "cloths.0.material.stretch"}, {"value", 800.0}},
-            {{"close", true}},
-            {{"frames", 1}},
-            {{"key", "ctrl+z"}},
-            {{"key", "ctrl+n"}},
-            {{"key", "right"}},
-            {{"write_state", dir.file("state.json")}}});
+  const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir)}},
+                                          {{"simulate", true}},
+                                          {{"scrub", 2}},
+                                          {{"set", "cloths.0.material.stretch"}, {"value", 800.0}},
+                                          {{"close", true}},
+                                          {{"frames", 1}},
+                                          {{"key", "ctrl+z"}},
+                                          {{"key", "ctrl+n"}},
+                                          {{"key", "right"}},
+                                          {{"write_state", dir.file("state.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const nlohmann::json state = readJson(dir.file("state.json"));
   EXPECT_EQ(state["dialog"]["title"], "Unsaved changes");
@@ -537,35 +546,37 @@ TEST(EditorInput, NewAndOpenWithUnsavedChangesAskFirst) {
   const std::string scene = hangingScene(dir);
   const std::string copy = dir.file("untitled-saved.json");
   const ProcessResult r = runEditor(
-      dir, {{{"open", scene}},
-            {{"set", "time.steps"}, {"value", 7}},
-            {{"key", "ctrl+n"}},
-            {{"frames", 1}},
-            {{"expect", {{"unsaved_prompt", "new"}, {"close_prompt", false}, {"file", scene}}}},
-            {{"write_state", dir.file("new-prompt.json")}},
-            {{"key", "escape"}},  // Cancel: nothing happens
-            {{"expect", {{"unsaved_prompt", nullptr}, {"dialog", nullptr}, {"file", scene}, {"dirty", true}}}},
-            {{"key", "ctrl+n"}},
-            {{"frames", 1}},
-            {{"key", "enter"}},  // Save, then the new document
-            {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}, {"dirty", false}}}},
-            // An untitled document with changes, then Open: Save goes through Save As first.
-            {{"set", "time.steps"}, {"value", 11}},
-            {{"key", "ctrl+o"}},
-            {{"key", "ctrl+a"}},
-            {{"type", scene}},
-            {{"key", "enter"}},
-            {{"frames", 1}},
-            {{"expect", {{"unsaved_prompt", "open"}, {"file", ""}}}},
-            {{"key", "enter"}},
-            {{"frames", 1}},
-            {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}}}},
-            {{"write_state", dir.file("save-as.json")}},
-            {{"type", copy}},
-            {{"key", "enter"}},
-            {{"frames", 1}},
-            {{"expect", {{"dialog", nullptr}, {"file", scene}, {"dirty", false}}}},
-            {{"expect", {{"value", {{"path", "time.steps"}, {"equals", 7}}}}}}});
+      dir,
+      {{{"open", scene}},
+       {{"set", "time.steps"}, {"value", 7}},
+       {{"key", "ctrl+n"}},
+       {{"frames", 1}},
+       {{"expect", {{"unsaved_prompt", "new"}, {"close_prompt", false}, {"file", scene}}}},
+       {{"write_state", dir.file("new-prompt.json")}},
+       {{"key", "escape"}},  // Cancel: nothing happens
+       {{"expect",
+         {{"unsaved_prompt", nullptr}, {"dialog", nullptr}, {"file", scene}, {"dirty", true}}}},
+       {{"key", "ctrl+n"}},
+       {{"frames", 1}},
+       {{"key", "enter"}},  // Save, then the new document
+       {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}, {"dirty", false}}}},
+       // An untitled document with changes, then Open: Save goes through Save As first.
+       {{"set", "time.steps"}, {"value", 11}},
+       {{"key", "ctrl+o"}},
+       {{"key", "ctrl+a"}},
+       {{"type", scene}},
+       {{"key", "enter"}},
+       {{"frames", 1}},
+       {{"expect", {{"unsaved_prompt", "open"}, {"file", ""}}}},
+       {{"key", "enter"}},
+       {{"frames", 1}},
+       {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}}}},
+       {{"write_state", dir.file("save-as.json")}},
+       {{"type", copy}},
+       {{"key", "enter"}},
+       {{"frames", 1}},
+       {{"expect", {{"dialog", nullptr}, {"file", scene}, {"dirty", false}}}},
+       {{"expect", {{"value", {{"path", "time.steps"}, {"equals", 7}}}}}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_EQ(readJson(dir.file("new-prompt.json"))["dialog"]["title"], "Unsaved changes");
   EXPECT_EQ(readJson(dir.file("save-as.json"))["dialog"]["title"], "Save scene as");
@@ -574,13 +585,13 @@ TEST(EditorInput, NewAndOpenWithUnsavedChangesAskFirst) {
 
   // Discard (clicked) drops the changes and goes on: New replaces the document, unsaved.
   const nlohmann::json rect = readJson(dir.file("new-prompt.json"))["dialog"]["rect"];
-  const ProcessResult discard = runEditor(
-      dir, {{{"open", scene}},
-            {{"set", "time.steps"}, {"value", 9}},
-            {{"key", "ctrl+n"}},
-            {{"frames", 1}},
-            {{"mouse_click", promptButton(rect, 1)}},
-            {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}, {"dirty", false}}}}});
+  const ProcessResult discard =
+      runEditor(dir, {{{"open", scene}},
+                      {{"set", "time.steps"}, {"value", 9}},
+                      {{"key", "ctrl+n"}},
+                      {{"frames", 1}},
+                      {{"mouse_click", promptButton(rect, 1)}},
+                      {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}, {"dirty", false}}}}});
   ASSERT_EQ(discard.exitCode, 0) << discard.err << discard.out;
   EXPECT_EQ(readJson(scene)["time"]["steps"], 7) << "discarded, not saved";
 }

@@ -24,9 +24,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions, std::vector<std::string> extra = {}) {
+ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions,
+                        std::vector<std::string> extra = {}) {
   const std::string script = dir.write("script.json", nlohmann::json{{"actions", actions}}.dump(2));
-  std::vector<std::string> argv = {WEFT_EDITOR_BINARY, "--headless", "--script", script, "--size", "960x600"};
+  std::vector<std::string> argv = {WEFT_EDITOR_BINARY, "--headless", "--script", script,
+                                   "--size",           "960x600"};
   argv.insert(argv.end(), extra.begin(), extra.end());
   return runProcess(argv, dir.path());
 }
@@ -39,7 +41,8 @@ nlohmann::json readJson(const std::string& path) {
 
 TEST(EditorScript, SessionEditsPinsSimulatesScrubsAndSaves) {
   TempDir dir;
-  const std::string scene = writeScene(dir.file("hanging.json"), hangingClothScene(1.0, 8, 0.01, 30, 500.0));
+  const std::string scene =
+      writeScene(dir.file("hanging.json"), hangingClothScene(1.0, 8, 0.01, 30, 500.0));
   const nlohmann::json actions = {
       {{"open", scene}},
       {{"set", "cloths.0.material.stretch"}, {"value", 800.0}},
@@ -93,20 +96,24 @@ TEST(EditorScript, SessionEditsPinsSimulatesScrubsAndSaves) {
 
 TEST(EditorScript, UndoRedoAndBoxSelect) {
   TempDir dir;
-  const std::string scene = writeScene(dir.file("hanging.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  const std::string scene =
+      writeScene(dir.file("hanging.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
   const ProcessResult r = runEditor(
-      dir, {{{"open", scene}},
-            {{"set", "cloths.0.material.bend"}, {"value", 0.01}},
-            {{"undo", true}},
-            {{"expect", {{"dirty", false}, {"can_redo", true}}}},
-            {{"redo", true}},
-            {{"expect", {{"dirty", true}, {"value", {{"path", "cloths.0.material.bend"}, {"equals", 0.01}}}}}},
-            {{"camera", "front"}},
-            {{"frames", 1}},
-            {{"box_select", {0, 0, 960, 600}}},
-            {{"write_state", dir.file("state.json")}}});
+      dir,
+      {{{"open", scene}},
+       {{"set", "cloths.0.material.bend"}, {"value", 0.01}},
+       {{"undo", true}},
+       {{"expect", {{"dirty", false}, {"can_redo", true}}}},
+       {{"redo", true}},
+       {{"expect",
+         {{"dirty", true}, {"value", {{"path", "cloths.0.material.bend"}, {"equals", 0.01}}}}}},
+       {{"camera", "front"}},
+       {{"frames", 1}},
+       {{"box_select", {0, 0, 960, 600}}},
+       {{"write_state", dir.file("state.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(readJson(dir.file("state.json"))["selected"].size(), 25u) << "the whole view selects every vertex";
+  EXPECT_EQ(readJson(dir.file("state.json"))["selected"].size(), 25u)
+      << "the whole view selects every vertex";
 }
 
 // Save As into another folder (a relative path, as typed into the dialog): the garment the scene
@@ -135,7 +142,8 @@ TEST(EditorScript, SaveAsIntoAnotherFolderKeepsTheGarmentFound) {
 
 TEST(EditorScript, FailingActionExitsNonzeroNamingIt) {
   TempDir dir;
-  const ProcessResult r = runEditor(dir, {{{"new", true}}, {{"set", "cloths.0.material.colour.red"}, {"value", 1}}});
+  const ProcessResult r =
+      runEditor(dir, {{{"new", true}}, {{"set", "cloths.0.material.colour.red"}, {"value", 1}}});
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("actions.1 (set)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("cloths.0.material.colour.red"), std::string::npos) << r.err;
@@ -150,7 +158,8 @@ TEST(EditorScript, FailingActionExitsNonzeroNamingIt) {
 
   const ProcessResult expectation = runEditor(dir, {{{"expect", {{"cache_frames", 3}}}}});
   EXPECT_EQ(expectation.exitCode, 2);
-  EXPECT_NE(expectation.err.find("cache_frames is 0, expected 3"), std::string::npos) << expectation.err;
+  EXPECT_NE(expectation.err.find("cache_frames is 0, expected 3"), std::string::npos)
+      << expectation.err;
 }
 
 TEST(EditorScript, InvalidValueIsReportedByTheLoaderNotClamped) {
@@ -163,8 +172,10 @@ TEST(EditorScript, InvalidValueIsReportedByTheLoaderNotClamped) {
             {{"save", dir.file("invalid.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   // Simulating an invalid document is a clear error, not a crash.
-  const ProcessResult sim = runEditor(
-      dir, {{{"new", true}}, {{"set", "time.dt"}, {"value", -1.0}, {"allow_invalid", true}}, {{"simulate", 3}}});
+  const ProcessResult sim =
+      runEditor(dir, {{{"new", true}},
+                      {{"set", "time.dt"}, {"value", -1.0}, {"allow_invalid", true}},
+                      {{"simulate", 3}}});
   EXPECT_EQ(sim.exitCode, 2);
   EXPECT_NE(sim.err.find("does not validate"), std::string::npos) << sim.err;
 }
@@ -179,14 +190,15 @@ TEST(EditorScript, InvalidValueIsReportedByTheLoaderNotClamped) {
 TEST(EditorScript, ViewportMatchesGolden) {
   TempDir dir;
   const ProcessResult r = runEditor(
-      dir, {{{"open", std::string(WEFT_ASSET_DIR) + "/scenes/sphere.json"}},
-            {{"set", "cloths.0.mesh.grid.resolution"}, {"value", {12, 12}}},
-            {{"select", {0, 12}}},
-            {{"pin", true}},
-            {{"camera", {{"yaw", 25}, {"pitch", 30}, {"distance", 1.9}, {"target", {0.05, 0.1, 0.0}}}}},
-            {{"frames", 1}},
-            {{"screenshot", dir.file("viewport.png")}, {"size", {320, 240}}},
-            {{"write_state", dir.file("state.json")}}});
+      dir,
+      {{{"open", std::string(WEFT_ASSET_DIR) + "/scenes/sphere.json"}},
+       {{"set", "cloths.0.mesh.grid.resolution"}, {"value", {12, 12}}},
+       {{"select", {0, 12}}},
+       {{"pin", true}},
+       {{"camera", {{"yaw", 25}, {"pitch", 30}, {"distance", 1.9}, {"target", {0.05, 0.1, 0.0}}}}},
+       {{"frames", 1}},
+       {{"screenshot", dir.file("viewport.png")}, {"size", {320, 240}}},
+       {{"write_state", dir.file("state.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(readJson(dir.file("state.json"))["cache_frames"], 0);
   const render::Image image = render::readPng(dir.file("viewport.png"));
@@ -199,7 +211,8 @@ std::string findOnPath(const std::string& name) {
   std::size_t start = 0;
   while (start <= all.size()) {
     const std::size_t end = all.find(':', start);
-    const std::string dir = all.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    const std::string dir =
+        all.substr(start, end == std::string::npos ? std::string::npos : end - start);
     if (!dir.empty() && fs::exists(dir + "/" + name)) return dir + "/" + name;
     if (end == std::string::npos) break;
     start = end + 1;
@@ -212,20 +225,21 @@ std::string findOnPath(const std::string& name) {
 TEST(EditorWindow, SmokeUnderXvfb) {
   const std::string xvfbRun = findOnPath("xvfb-run");
   if (xvfbRun.empty() || findOnPath("Xvfb").empty())
-    GTEST_SKIP() << "Xvfb is not installed (Debian package xvfb): the on-screen smoke test needs it";
+    GTEST_SKIP()
+        << "Xvfb is not installed (Debian package xvfb): the on-screen smoke test needs it";
   TempDir dir;
-  const std::string script = dir.write(
-      "smoke.json", nlohmann::json{{"actions",
-                                    {{{"frames", 3}},
-                                     {{"set", "time.steps"}, {"value", 3}},
-                                     {{"simulate", true}},
-                                     {{"scrub", 3}},
-                                     {{"frames", 2}},
-                                     {{"expect", {{"cache_frames", 4}, {"frame", 3}}}},
-                                     {{"window_screenshot", dir.file("window.png")}}}}}
-                        .dump());
-  const ProcessResult r = runProcess({xvfbRun, "-a", "-s", "-screen 0 1280x800x24", WEFT_EDITOR_BINARY,
-                                      "--script", script, "--size", "1024x640"},
+  const std::string script =
+      dir.write("smoke.json", nlohmann::json{{"actions",
+                                              {{{"frames", 3}},
+                                               {{"set", "time.steps"}, {"value", 3}},
+                                               {{"simulate", true}},
+                                               {{"scrub", 3}},
+                                               {{"frames", 2}},
+                                               {{"expect", {{"cache_frames", 4}, {"frame", 3}}}},
+                                               {{"window_screenshot", dir.file("window.png")}}}}}
+                                  .dump());
+  const ProcessResult r = runProcess({xvfbRun, "-a", "-s", "-screen 0 1280x800x24",
+                                      WEFT_EDITOR_BINARY, "--script", script, "--size", "1024x640"},
                                      dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const render::Image window = render::readPng(dir.file("window.png"));

@@ -30,7 +30,8 @@ namespace fs = std::filesystem;
 
 ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions) {
   const std::string script = dir.write("script.json", nlohmann::json{{"actions", actions}}.dump(2));
-  return runProcess({WEFT_EDITOR_BINARY, "--headless", "--script", script, "--size", "960x600"}, dir.path());
+  return runProcess({WEFT_EDITOR_BINARY, "--headless", "--script", script, "--size", "960x600"},
+                    dir.path());
 }
 
 nlohmann::json readJson(const std::string& path) {
@@ -39,7 +40,9 @@ nlohmann::json readJson(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
-Vec3 vec(const nlohmann::json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
+Vec3 vec(const nlohmann::json& j) {
+  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
 
 // A 2 x 1 strip of 6 vertices (4 triangles), in centimetres.
 std::string stripObj() {
@@ -49,7 +52,8 @@ std::string stripObj() {
 
 TEST(EditorWorkflow, ImportGarmentAndAddObstacles) {
   TempDir dir;
-  const std::string scene = writeScene(dir.file("scene.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  const std::string scene =
+      writeScene(dir.file("scene.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
   fs::create_directories(dir.file("meshes"));
   const std::string garment = dir.write("meshes/strip.obj", stripObj());
   const std::string broken = dir.write("meshes/broken.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
@@ -72,7 +76,8 @@ TEST(EditorWorkflow, ImportGarmentAndAddObstacles) {
 
   const nlohmann::json broke = readJson(dir.file("after-broken.json"));
   EXPECT_TRUE(broke["message_is_error"]) << "the refusal is shown as an error";
-  EXPECT_NE(broke["message"].get<std::string>().find("broken.obj"), std::string::npos) << broke["message"];
+  EXPECT_NE(broke["message"].get<std::string>().find("broken.obj"), std::string::npos)
+      << broke["message"];
   EXPECT_EQ(broke["document"]["cloths"].size(), 2u) << "the broken mesh added nothing";
 
   const nlohmann::json saved = readJson(scene);
@@ -90,7 +95,8 @@ TEST(EditorWorkflow, ImportGarmentAndAddObstacles) {
   EXPECT_EQ(loadScene(scene).vertexCount(), 31);
 
   const nlohmann::json undone = readJson(dir.file("after-undo.json"));
-  EXPECT_EQ(undone["document"]["obstacles"][0]["sphere"]["radius"], 0.3) << "undo takes back the last edit";
+  EXPECT_EQ(undone["document"]["obstacles"][0]["sphere"]["radius"], 0.3)
+      << "undo takes back the last edit";
   EXPECT_TRUE(undone["dirty"]);
 }
 
@@ -100,7 +106,8 @@ nlohmann::json dropOnSphere(int steps) {
   doc["gravity"] = {0.0, -9.8, 0.0};
   doc["solver"] = {{"pd_iterations", 300}, {"pd_tolerance", 1e-6}};
   doc["cloths"][0]["mesh"]["transform"] = {{"translate", {0.0, 0.205, 0.0}}};
-  doc["obstacles"] = {{{"sphere", {{"center", {0.0, 0.0, 0.0}}, {"radius", 0.2}}}, {"friction", 0.4}}};
+  doc["obstacles"] = {
+      {{"sphere", {{"center", {0.0, 0.0, 0.0}}, {"radius", 0.2}}}, {"friction", 0.4}}};
   return doc;
 }
 
@@ -124,7 +131,8 @@ TEST(EditorWorkflow, InspectorShowsTheCachedTrajectory) {
   Simulator simulator(parsed);
   Trajectory own;
   simulator.run(steps, own);
-  for (const auto& [file, node] : {std::pair<std::string, int>{"centre.json", centre}, {"edge.json", edge}}) {
+  for (const auto& [file, node] :
+       {std::pair<std::string, int>{"centre.json", centre}, {"edge.json", edge}}) {
     SCOPED_TRACE(file);
     const nlohmann::json s = readJson(dir.file(file));
     EXPECT_EQ(s["focus"], node);
@@ -175,11 +183,13 @@ TEST(EditorWorkflow, OptimiserLowersTheLossThenApplyAndUndo) {
   const nlohmann::json& opt = stepped["optimizer"];
   EXPECT_EQ(opt["status"], "paused");
   EXPECT_EQ(opt["method"], "lbfgsb");
-  EXPECT_EQ(opt["parameters"], nlohmann::json::array({"cloths.0.material.stretch", "wind.strength"}));
+  EXPECT_EQ(opt["parameters"],
+            nlohmann::json::array({"cloths.0.material.stretch", "wind.strength"}));
   ASSERT_EQ(opt["evaluations"], 4);
   const double first = opt["losses"][0], best = opt["best_loss"];
   EXPECT_LT(best, 0.1 * first) << "the loss falls over four evaluations";
-  EXPECT_EQ(stepped["document"]["cloths"][0]["material"]["stretch"], 400.0) << "nothing applied yet";
+  EXPECT_EQ(stepped["document"]["cloths"][0]["material"]["stretch"], 400.0)
+      << "nothing applied yet";
 
   const nlohmann::json applied = readJson(dir.file("applied.json"));
   EXPECT_EQ(applied["document"]["cloths"][0]["material"]["stretch"], opt["best_values"][0]);
@@ -198,11 +208,12 @@ TEST(EditorWorkflow, GradientFreeMethodsRunFromTheEditorAndFollowTheirSeed) {
   for (const char* method : {"cmaes", "es1p1"}) {
     SCOPED_TRACE(method);
     TempDir dir;
-    const nlohmann::json actions = {{{"open", std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json"}},
-                                    {{"optimize", {{"method", method}, {"seed", 7}}}},
-                                    {{"optimize_step", 6}},
-                                    {{"write_state", dir.file("state.json")}},
-                                    {{"optimize_cancel", true}}};
+    const nlohmann::json actions = {
+        {{"open", std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json"}},
+        {{"optimize", {{"method", method}, {"seed", 7}}}},
+        {{"optimize_step", 6}},
+        {{"write_state", dir.file("state.json")}},
+        {{"optimize_cancel", true}}};
     ASSERT_EQ(runEditor(dir, actions).exitCode, 0);
     const nlohmann::json first = readJson(dir.file("state.json"))["optimizer"];
     ASSERT_EQ(runEditor(dir, actions).exitCode, 0);
@@ -220,7 +231,8 @@ TEST(EditorWorkflow, GradientFreeMethodsRunFromTheEditorAndFollowTheirSeed) {
 
 TEST(EditorWorkflow, TargetsGiveALiveLossAndAreSavedNextToTheScene) {
   TempDir dir;
-  const std::string scene = writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 6, 500.0));
+  const std::string scene =
+      writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 6, 500.0));
   const ProcessResult run = runEditor(
       dir, {{{"open", scene}},
             {{"simulate", true}},
@@ -272,7 +284,8 @@ TEST(EditorWorkflow, TargetsGiveALiveLossAndAreSavedNextToTheScene) {
   EXPECT_EQ(Vec3(npy.data[24 * 3], npy.data[24 * 3 + 1], npy.data[24 * 3 + 2]), target24);
 
   const nlohmann::json undone = readJson(dir.file("undone.json"));
-  EXPECT_TRUE(vec(undone["targets"]["24"]).isApprox(end24 + Vec3(0, 0.1, 0), 1e-12)) << "undo: the typed position goes";
+  EXPECT_TRUE(vec(undone["targets"]["24"]).isApprox(end24 + Vec3(0, 0.1, 0), 1e-12))
+      << "undo: the typed position goes";
 
   const nlohmann::json reopened = readJson(dir.file("reopened.json"));
   EXPECT_EQ(vec(reopened["targets"]["24"]), target24) << "targets come back from the saved file";
@@ -288,18 +301,20 @@ TEST(EditorWorkflow, TargetsGiveALiveLossAndAreSavedNextToTheScene) {
 TEST(EditorWorkflow, SelectionByRegion) {
   TempDir dir;
   const ProcessResult r = runEditor(
-      dir, {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
-            {{"select_loop", true}, {"expect_error", "click a vertex on the border first"}},
-            {{"select_band", {{"axis", "y"}, {"min", 1.2}, {"max", 1.6}}}},
-            {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}}}}},
-            {{"select_band", {{"axis", "x"}, {"min", 0.4}, {"max", 0.6}}}, {"add", true}},
-            {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 19, 24}}}}},
-            {{"select_band", {{"axis", "w"}, {"min", 0.0}, {"max", 1.0}}}, {"expect_error", "x, y or z"}},
-            {{"select", {12}}},
-            {{"select_loop", true}, {"expect_error", "not on a border"}},
-            {{"select", {9}}},
-            {{"select_loop", true}},
-            {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 9, 10, 14, 15, 19, 20, 21, 22, 23, 24}}}}}});
+      dir,
+      {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
+       {{"select_loop", true}, {"expect_error", "click a vertex on the border first"}},
+       {{"select_band", {{"axis", "y"}, {"min", 1.2}, {"max", 1.6}}}},
+       {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}}}}},
+       {{"select_band", {{"axis", "x"}, {"min", 0.4}, {"max", 0.6}}}, {"add", true}},
+       {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 19, 24}}}}},
+       {{"select_band", {{"axis", "w"}, {"min", 0.0}, {"max", 1.0}}},
+        {"expect_error", "x, y or z"}},
+       {{"select", {12}}},
+       {{"select_loop", true}, {"expect_error", "not on a border"}},
+       {{"select", {9}}},
+       {{"select_loop", true}},
+       {{"expect", {{"selected", {0, 1, 2, 3, 4, 5, 9, 10, 14, 15, 19, 20, 21, 22, 23, 24}}}}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 }
 
@@ -308,27 +323,28 @@ TEST(EditorWorkflow, SelectionByRegion) {
 // saved scene.
 TEST(EditorWorkflow, InspectorShowsTheLossGradient) {
   TempDir dir;
-  const std::string scene = writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 6, 500.0));
-  const ProcessResult r = runEditor(
-      dir, {{{"open", scene}},
-            {{"compute_gradient", true}, {"expect_error", "no task"}},
-            {{"simulate", true}},
-            {{"scrub", 6}},
-            {{"select", {20, 24}}},
-            {{"set_targets", true}},
-            {{"move_targets", {0.0, 0.1, 0.0}}},
-            {{"select", {24}}},
-            {{"write_state", dir.file("before.json")}},
-            {{"compute_gradient", true}},
-            {{"write_state", dir.file("last.json")}},
-            {{"scrub", 3}},
-            {{"write_state", dir.file("middle.json")}},
-            {{"save", true}},
-            {{"move_targets", {0.0, 0.1, 0.0}}},
-            {{"write_state", dir.file("moved.json")}}});
+  const std::string scene =
+      writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 6, 500.0));
+  const ProcessResult r = runEditor(dir, {{{"open", scene}},
+                                          {{"compute_gradient", true}, {"expect_error", "no task"}},
+                                          {{"simulate", true}},
+                                          {{"scrub", 6}},
+                                          {{"select", {20, 24}}},
+                                          {{"set_targets", true}},
+                                          {{"move_targets", {0.0, 0.1, 0.0}}},
+                                          {{"select", {24}}},
+                                          {{"write_state", dir.file("before.json")}},
+                                          {{"compute_gradient", true}},
+                                          {{"write_state", dir.file("last.json")}},
+                                          {{"scrub", 3}},
+                                          {{"write_state", dir.file("middle.json")}},
+                                          {{"save", true}},
+                                          {{"move_targets", {0.0, 0.1, 0.0}}},
+                                          {{"write_state", dir.file("moved.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 
-  EXPECT_TRUE(readJson(dir.file("before.json"))["inspector"]["gradient"].is_null()) << "not computed yet";
+  EXPECT_TRUE(readJson(dir.file("before.json"))["inspector"]["gradient"].is_null())
+      << "not computed yet";
   const nlohmann::json last = readJson(dir.file("last.json"))["inspector"];
   ASSERT_EQ(last["state"], 6);
   ASSERT_TRUE(last["gradient"].is_array()) << last;
@@ -340,12 +356,15 @@ TEST(EditorWorkflow, InspectorShowsTheLossGradient) {
   const ForwardPass pass = runForwardPass(saved);
   BackwardSettings exact = saved.solver.backward;
   exact.method = "direct";
-  const GradientResult g = backpropagate(saved, pass.trajectory, TaskLoss(saved), ParameterSet(), exact);
+  const GradientResult g =
+      backpropagate(saved, pass.trajectory, TaskLoss(saved), ParameterSet(), exact);
   const Vec3 engine = g.dLdx[3].row(24).transpose();
   EXPECT_GT(engine.norm(), 1e-3);
-  EXPECT_TRUE(vec(middle["gradient"]).isApprox(engine, 1e-5)) << middle["gradient"] << " vs " << engine.transpose();
+  EXPECT_TRUE(vec(middle["gradient"]).isApprox(engine, 1e-5))
+      << middle["gradient"] << " vs " << engine.transpose();
 
-  EXPECT_TRUE(readJson(dir.file("moved.json"))["inspector"]["gradient"].is_null()) << "a target edit makes it stale";
+  EXPECT_TRUE(readJson(dir.file("moved.json"))["inspector"]["gradient"].is_null())
+      << "a target edit makes it stale";
 }
 
 // The Targets tab's other losses: a target shape from a mesh file (final targets at every vertex,
@@ -355,28 +374,33 @@ TEST(EditorWorkflow, TargetShapeFromAMeshAndTheHemline) {
   // The 4 x 4 grid's own frame (XZ plane, vertex (i, j) = 5 j + i), moved 0.1 m along x.
   std::string obj;
   for (int j = 0; j <= 4; ++j)
-    for (int i = 0; i <= 4; ++i) obj += "v " + std::to_string(-0.4 + 0.25 * i) + " 0 " + std::to_string(-0.5 + 0.25 * j) + "\n";
+    for (int i = 0; i <= 4; ++i)
+      obj +=
+          "v " + std::to_string(-0.4 + 0.25 * i) + " 0 " + std::to_string(-0.5 + 0.25 * j) + "\n";
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
       const int v = 5 * j + i + 1;  // OBJ counts from 1
-      obj += "f " + std::to_string(v) + " " + std::to_string(v + 5) + " " + std::to_string(v + 1) + "\n";
-      obj += "f " + std::to_string(v + 1) + " " + std::to_string(v + 5) + " " + std::to_string(v + 6) + "\n";
+      obj += "f " + std::to_string(v) + " " + std::to_string(v + 5) + " " + std::to_string(v + 1) +
+             "\n";
+      obj += "f " + std::to_string(v + 1) + " " + std::to_string(v + 5) + " " +
+             std::to_string(v + 6) + "\n";
     }
   const std::string shape = dir.write("shape.obj", obj);
   const std::string small = dir.write("small.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   const ProcessResult r = runEditor(
-      dir, {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
-            {{"load_target_mesh", small}, {"expect_error", "3 vertices, but cloth 0 has 25"}},
-            {{"load_target_mesh", shape}},
-            {{"write_state", dir.file("shape.json")}},
-            {{"set_hemline", 0.4}, {"expect_error", "select the hemline's vertices first"}},
-            {{"select", {20, 21, 22, 23, 24}}},
-            {{"set_hemline", 0.4}},
-            {{"simulate", true}},
-            {{"scrub", 4}},
-            {{"write_state", dir.file("hemline.json")}},
-            {{"remove_hemline", true}},
-            {{"write_state", dir.file("removed.json")}}});
+      dir,
+      {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
+       {{"load_target_mesh", small}, {"expect_error", "3 vertices, but cloth 0 has 25"}},
+       {{"load_target_mesh", shape}},
+       {{"write_state", dir.file("shape.json")}},
+       {{"set_hemline", 0.4}, {"expect_error", "select the hemline's vertices first"}},
+       {{"select", {20, 21, 22, 23, 24}}},
+       {{"set_hemline", 0.4}},
+       {{"simulate", true}},
+       {{"scrub", 4}},
+       {{"write_state", dir.file("hemline.json")}},
+       {{"remove_hemline", true}},
+       {{"write_state", dir.file("removed.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 
   // Every vertex has a target: its rest position (the grid rotated 90 degrees about x, raised 1 m)
@@ -404,24 +428,28 @@ TEST(EditorWorkflow, TargetShapeFromAMeshAndTheHemline) {
 TEST(EditorWorkflow, ParametersAreAddedAndRemovedInTheEditor) {
   TempDir dir;
   const ProcessResult r = runEditor(
-      dir, {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
-            {{"add_parameter", "cloths.0.material.stretch"}, {"expect_error", "no loss yet"}},
-            {{"simulate", true}},
-            {{"scrub", 4}},
-            {{"select", {20, 24}}},
-            {{"set_targets", true}},
-            {{"add_parameter", "time.dt"}, {"expect_error", "not differentiable"}},
-            {{"add_parameter", "cloths.0.material.sheen"}, {"expect_error", "names no value"}},
-            {{"add_parameter", "cloths.0.material.density"}},
-            {{"add_parameter", "cloths.0.material.stretch"}},
-            {{"add_parameter", "cloths.0.material.stretch"}, {"expect_error", "already a parameter"}},
-            {{"expect", {{"value", {{"path", "task.parameters"},
-                                    {"equals", {"cloths.0.material.density", "cloths.0.material.stretch"}}}}}}},
-            {{"remove_parameter", "cloths.0.material.density"}},
-            {{"remove_parameter", "cloths.0.material.density"}, {"expect_error", "not a parameter of the task"}},
-            {{"write_state", dir.file("removed.json")}},
-            {{"undo", true}},
-            {{"write_state", dir.file("undone.json")}}});
+      dir,
+      {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, 4, 500.0))}},
+       {{"add_parameter", "cloths.0.material.stretch"}, {"expect_error", "no loss yet"}},
+       {{"simulate", true}},
+       {{"scrub", 4}},
+       {{"select", {20, 24}}},
+       {{"set_targets", true}},
+       {{"add_parameter", "time.dt"}, {"expect_error", "not differentiable"}},
+       {{"add_parameter", "cloths.0.material.sheen"}, {"expect_error", "names no value"}},
+       {{"add_parameter", "cloths.0.material.density"}},
+       {{"add_parameter", "cloths.0.material.stretch"}},
+       {{"add_parameter", "cloths.0.material.stretch"}, {"expect_error", "already a parameter"}},
+       {{"expect",
+         {{"value",
+           {{"path", "task.parameters"},
+            {"equals", {"cloths.0.material.density", "cloths.0.material.stretch"}}}}}}},
+       {{"remove_parameter", "cloths.0.material.density"}},
+       {{"remove_parameter", "cloths.0.material.density"},
+        {"expect_error", "not a parameter of the task"}},
+       {{"write_state", dir.file("removed.json")}},
+       {{"undo", true}},
+       {{"write_state", dir.file("undone.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_EQ(readJson(dir.file("removed.json"))["document"]["task"]["parameters"],
             nlohmann::json::array({"cloths.0.material.stretch"}));
@@ -436,10 +464,12 @@ TEST(EditorWorkflow, ParametersAreAddedAndRemovedInTheEditor) {
 // folder), and states are written along the way.
 TEST(EditorWorkflow, FirstSessionFromReadmeConverges) {
   TempDir dir;
-  const nlohmann::json committed = readJson(std::string(WEFT_ASSET_DIR) + "/editor/first-session.json");
+  const nlohmann::json committed =
+      readJson(std::string(WEFT_ASSET_DIR) + "/editor/first-session.json");
   nlohmann::json actions = nlohmann::json::array();
   for (nlohmann::json a : committed["actions"]) {
-    if (a.contains("import_garment")) a["import_garment"] = std::string(WEFT_ASSET_DIR) + "/meshes/dress.obj";
+    if (a.contains("import_garment"))
+      a["import_garment"] = std::string(WEFT_ASSET_DIR) + "/meshes/dress.obj";
     if (a.contains("window_screenshot")) a["window_screenshot"] = dir.file("out/first-session.png");
     const bool optimised = a.contains("optimize_step");
     const bool targeted = a.contains("add_parameter");
@@ -451,18 +481,20 @@ TEST(EditorWorkflow, FirstSessionFromReadmeConverges) {
   const ProcessResult r = runEditor(dir, actions);
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 
-  // Imported, pinned, draped: the skirt is the only cloth, its 32 waist vertices fixed, on a sphere.
+  // Imported, pinned, draped: the skirt is the only cloth, its 32 waist vertices fixed, on a
+  // sphere.
   const nlohmann::json targeted = readJson(dir.file("targeted.json"));
   const nlohmann::json& cloth = targeted["document"]["cloths"][0];
   EXPECT_EQ(targeted["document"]["cloths"].size(), 1u);
   EXPECT_EQ(loadScene(writeScene(dir.file("check.json"), targeted["document"])).vertexCount(), 288);
-  EXPECT_EQ(cloth["attachments"][0]["vertices"], nlohmann::json::array({0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  10,
-                                                                        11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21,
-                                                                        22, 23, 24, 25, 26, 27, 28, 29, 30, 31}))
+  EXPECT_EQ(cloth["attachments"][0]["vertices"],
+            nlohmann::json::array({0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 13, 14, 15,
+                                   16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31}))
       << "the waist: the border loop through vertex 0";
   EXPECT_TRUE(targeted["document"]["obstacles"][0].contains("sphere"));
   EXPECT_EQ(targeted["targets"].size(), 32u) << "the hem: the border loop through vertex 256";
-  EXPECT_EQ(targeted["document"]["task"]["parameters"], nlohmann::json::array({"cloths.0.material.stretch"}));
+  EXPECT_EQ(targeted["document"]["task"]["parameters"],
+            nlohmann::json::array({"cloths.0.material.stretch"}));
   ASSERT_TRUE(targeted["loss"].is_number()) << targeted["loss_note"];
   const double start = targeted["loss"];
   EXPECT_GT(start, 1e-4) << "the hem hangs elsewhere at 400 N/m";
@@ -470,7 +502,8 @@ TEST(EditorWorkflow, FirstSessionFromReadmeConverges) {
   // Eight evaluations bring the loss down by orders of magnitude and the stretch back to 100.
   const nlohmann::json opt = readJson(dir.file("optimised.json"))["optimizer"];
   ASSERT_EQ(opt["evaluations"], 8);
-  EXPECT_NEAR(opt["losses"][0].get<double>(), start, 1e-3 * start) << "the first evaluation is the cached run";
+  EXPECT_NEAR(opt["losses"][0].get<double>(), start, 1e-3 * start)
+      << "the first evaluation is the cached run";
   EXPECT_LT(opt["best_loss"].get<double>(), 1e-4 * start);
   EXPECT_NEAR(opt["best_values"][0].get<double>(), 100.0, 1.0);
 
@@ -492,36 +525,40 @@ TEST(EditorWorkflow, FirstSessionFromReadmeConverges) {
 TEST(EditorWorkflow, ViewportMatchesGolden) {
   TempDir dir;
   const ProcessResult r = runEditor(
-      dir, {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 6, 0.01, 5, 500.0))}},
-            {{"add_obstacle", "sphere"}},
-            {{"set", "obstacles.0.sphere.center"}, {"value", {0.0, 0.2, 0.4}}},
-            {{"set", "obstacles.0.sphere.radius"}, {"value", 0.2}},
-            {{"add_obstacle", "box"}},
-            {{"set", "obstacles.1.box.center"}, {"value", {0.0, -0.2, 0.0}}},
-            {{"set", "obstacles.1.box.size"}, {"value", {1.2, 0.2, 0.8}}},
-            {{"select", {45, 48}}},
-            {{"set_targets", true}},
-            {{"move_targets", {0.0, 0.25, 0.3}}},
-            {{"camera", {{"yaw", 35}, {"pitch", 15}, {"distance", 3.6}, {"target", {0.0, 0.45, 0.1}}}}},
-            {{"frames", 1}},
-            {{"screenshot", dir.file("viewport.png")}, {"size", {320, 240}}}});
+      dir,
+      {{{"open", writeScene(dir.file("hang.json"), hangingClothScene(1.0, 6, 0.01, 5, 500.0))}},
+       {{"add_obstacle", "sphere"}},
+       {{"set", "obstacles.0.sphere.center"}, {"value", {0.0, 0.2, 0.4}}},
+       {{"set", "obstacles.0.sphere.radius"}, {"value", 0.2}},
+       {{"add_obstacle", "box"}},
+       {{"set", "obstacles.1.box.center"}, {"value", {0.0, -0.2, 0.0}}},
+       {{"set", "obstacles.1.box.size"}, {"value", {1.2, 0.2, 0.8}}},
+       {{"select", {45, 48}}},
+       {{"set_targets", true}},
+       {{"move_targets", {0.0, 0.25, 0.3}}},
+       {{"camera", {{"yaw", 35}, {"pitch", 15}, {"distance", 3.6}, {"target", {0.0, 0.45, 0.1}}}}},
+       {{"frames", 1}},
+       {{"screenshot", dir.file("viewport.png")}, {"size", {320, 240}}}});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(matchesGolden("editor_viewport_targets", render::readPng(dir.file("viewport.png"))));
 }
 
 TEST(EditorWorkflow, BenchmarkModePrintsFrameTimes) {
   TempDir dir;
-  const ProcessResult r = runProcess({WEFT_EDITOR_BINARY, "--bench", "--bench-grid", "6", "--bench-steps", "3",
-                                      "--bench-frames", "4", "--size", "640x400", "--bench-out", dir.file("bench")},
-                                     dir.path());
+  const ProcessResult r =
+      runProcess({WEFT_EDITOR_BINARY, "--bench", "--bench-grid", "6", "--bench-steps", "3",
+                  "--bench-frames", "4", "--size", "640x400", "--bench-out", dir.file("bench")},
+                 dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("49 cloth vertices, 4 cached states"), std::string::npos) << r.out;
-  for (const char* mode : {"| live |", "| scrub | 4 |", "| still | 4 |"}) EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
+  for (const char* mode : {"| live |", "| scrub | 4 |", "| still | 4 |"})
+    EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
   std::ifstream csv(dir.file("bench/editor-bench.csv"));
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header, "mode,frame,ms,cpu_ms");
-  const ProcessResult bad = runProcess({WEFT_EDITOR_BINARY, "--bench", "--bench-frames", "zero"}, dir.path());
+  const ProcessResult bad =
+      runProcess({WEFT_EDITOR_BINARY, "--bench", "--bench-frames", "zero"}, dir.path());
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("--bench-frames"), std::string::npos) << bad.err;
 }

@@ -25,7 +25,9 @@ using test::TempDir;
 TEST(FinalTargets, SetAndRemoveEditTheTaskAndTheSidecarTogether) {
   nlohmann::json doc = test::hangingClothScene(1.0, 4, 0.01, 5, 500.0);
   nlohmann::json sidecar = nlohmann::json::object();
-  setFinalTargets(doc, sidecar, {{12, Vec3(0.1, 0.2, 0.3)}, {3, Vec3(1, 2, 3)}, {12, Vec3(9, 9, 9)}}, "x-final-target.npy");
+  setFinalTargets(doc, sidecar,
+                  {{12, Vec3(0.1, 0.2, 0.3)}, {3, Vec3(1, 2, 3)}, {12, Vec3(9, 9, 9)}},
+                  "x-final-target.npy");
   // Sorted by vertex; of two targets for one vertex the first is kept.
   EXPECT_EQ(doc["task"]["loss"]["final"]["vertices"], nlohmann::json::array({3, 12}));
   EXPECT_EQ(doc["task"]["loss"]["final"]["target"], "x-final-target.npy");
@@ -46,7 +48,8 @@ TEST(FinalTargets, SetAndRemoveEditTheTaskAndTheSidecarTogether) {
   EXPECT_FALSE(doc.contains("task"));
   EXPECT_FALSE(sidecar.contains("final_targets"));
   // A task with parameters keeps its other terms.
-  doc["task"] = {{"loss", {{"trajectory", {{"target", "run.npy"}}}}}, {"parameters", {"cloths.0.material.stretch"}}};
+  doc["task"] = {{"loss", {{"trajectory", {{"target", "run.npy"}}}}},
+                 {"parameters", {"cloths.0.material.stretch"}}};
   setFinalTargets(doc, sidecar, {{1, Vec3::Ones()}}, "x.npy");
   setFinalTargets(doc, sidecar, {}, "x.npy");
   EXPECT_TRUE(doc["task"]["loss"].contains("trajectory"));
@@ -56,7 +59,9 @@ TEST(FinalTargets, SetAndRemoveEditTheTaskAndTheSidecarTogether) {
 TEST(FinalTargets, UndoRestoresTheSidecarWithTheDocument) {
   EditorDocument doc(test::hangingClothScene(1.0, 4, 0.01, 5, 500.0));
   auto set = [&](std::vector<FinalTarget> t) {
-    return doc.editWithSidecar("targets", [&](nlohmann::json& d, nlohmann::json& s) { setFinalTargets(d, s, t, "t.npy"); });
+    return doc.editWithSidecar("targets", [&](nlohmann::json& d, nlohmann::json& s) {
+      setFinalTargets(d, s, t, "t.npy");
+    });
   };
   ASSERT_EQ(set({{7, Vec3(0, 1, 0)}}), "");
   ASSERT_EQ(set({{7, Vec3(0, 2, 0)}}), "");
@@ -70,8 +75,12 @@ TEST(FinalTargets, UndoRestoresTheSidecarWithTheDocument) {
   EXPECT_EQ(finalTargets(doc.sidecar())[0].position.y(), 1.0);
   // Edits with one coalescing key (a drag) are one undo step.
   for (double y : {3.0, 4.0, 5.0})
-    doc.editWithSidecar("drag", [&](nlohmann::json& d, nlohmann::json& s) { setFinalTargets(d, s, {{7, Vec3(0, y, 0)}}, "t.npy"); },
-                        "drag 1");
+    doc.editWithSidecar(
+        "drag",
+        [&](nlohmann::json& d, nlohmann::json& s) {
+          setFinalTargets(d, s, {{7, Vec3(0, y, 0)}}, "t.npy");
+        },
+        "drag 1");
   ASSERT_TRUE(doc.undo());
   EXPECT_EQ(finalTargets(doc.sidecar())[0].position.y(), 1.0);
 }
@@ -148,9 +157,10 @@ TEST(LiveLoss, IsTheEngineLossOfTheCachedRun) {
   // Targets held by the editor add a final term, computed from memory (no file written).
   const NodeMatrix& last = own.positions.back();
   const Vec3 target = last.row(22).transpose() + Vec3(0, 0.1, 0);
-  ASSERT_EQ(doc.editWithSidecar("t", [&](nlohmann::json& d, nlohmann::json& s) {
-              setFinalTargets(d, s, {{22, target}}, "scene-final-target.npy");
-            }),
+  ASSERT_EQ(doc.editWithSidecar("t",
+                                [&](nlohmann::json& d, nlohmann::json& s) {
+                                  setFinalTargets(d, s, {{22, target}}, "scene-final-target.npy");
+                                }),
             "");
   EXPECT_FALSE(cache.staleFor(doc.document())) << "targets do not change the motion";
   const LossValue& both = live.evaluate(doc, cache);

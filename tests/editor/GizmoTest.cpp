@@ -28,7 +28,9 @@ render::Camera frontCamera() {
   return c;
 }
 
-Gizmo frontGizmo(bool rotates = false) { return Gizmo(Eigen::Vector3f::Zero(), rotates, frontCamera(), kWidth, kHeight); }
+Gizmo frontGizmo(bool rotates = false) {
+  return Gizmo(Eigen::Vector3f::Zero(), rotates, frontCamera(), kWidth, kHeight);
+}
 
 TEST(Gizmo, KeepsItsSizeOnScreen) {
   const Gizmo g = frontGizmo();
@@ -42,7 +44,8 @@ TEST(Gizmo, KeepsItsSizeOnScreen) {
   render::Camera far = frontCamera();
   far.distance = 4.0f;
   const Gizmo g2(Eigen::Vector3f::Zero(), false, far, kWidth, kHeight);
-  EXPECT_NEAR(g2.screenPolyline(GizmoHandle::TranslateX)[1].x() - kWidth / 2.0f, Gizmo::kArrowPixels, 1e-3f);
+  EXPECT_NEAR(g2.screenPolyline(GizmoHandle::TranslateX)[1].x() - kWidth / 2.0f,
+              Gizmo::kArrowPixels, 1e-3f);
   EXPECT_TRUE(g.polyline(GizmoHandle::RotateX).empty()) << "no rings unless the object turns";
 }
 
@@ -58,8 +61,8 @@ TEST(Gizmo, PicksTheHandleTheRayPassesNear) {
   const float r = Gizmo::kRingPixels / std::sqrt(2.0f);
   EXPECT_EQ(g.pickPixel(cx + r, cy - r), GizmoHandle::RotateZ) << "the ring facing the camera";
   EXPECT_EQ(g.pickPixel(cx + 150, cy - 120), GizmoHandle::None);
-  for (GizmoHandle h : {GizmoHandle::TranslateX, GizmoHandle::TranslateY, GizmoHandle::RotateX, GizmoHandle::RotateY,
-                        GizmoHandle::RotateZ}) {
+  for (GizmoHandle h : {GizmoHandle::TranslateX, GizmoHandle::TranslateY, GizmoHandle::RotateX,
+                        GizmoHandle::RotateY, GizmoHandle::RotateZ}) {
     const auto p = g.grabPixel(h);
     ASSERT_TRUE(p) << gizmoHandleName(h);
     EXPECT_EQ(g.pickPixel(p->x(), p->y()), h) << gizmoHandleName(h);
@@ -73,11 +76,14 @@ TEST(Gizmo, TranslationIsTheMouseMotionAlongTheAxisOnScreen) {
   ASSERT_TRUE(drag);
   // Only the motion along the axis's image counts: 40 px right (the 13 px down is ignored).
   EXPECT_NEAR(drag->update(start + Eigen::Vector2f(40, 13)), 40.0 * g.metresPerPixel(), 1e-6);
-  EXPECT_NEAR(drag->update(start + Eigen::Vector2f(-10, 0)), -10.0 * g.metresPerPixel(), 1e-6) << "from the start, not the last move";
+  EXPECT_NEAR(drag->update(start + Eigen::Vector2f(-10, 0)), -10.0 * g.metresPerPixel(), 1e-6)
+      << "from the start, not the last move";
   auto up = GizmoDrag::begin(g, GizmoHandle::TranslateY, start);
   ASSERT_TRUE(up);
-  EXPECT_NEAR(up->update(start + Eigen::Vector2f(0, -25)), 25.0 * g.metresPerPixel(), 1e-6) << "pixels go down, Y up";
-  EXPECT_FALSE(GizmoDrag::begin(g, GizmoHandle::TranslateZ, start)) << "an axis pointing at the camera cannot be dragged";
+  EXPECT_NEAR(up->update(start + Eigen::Vector2f(0, -25)), 25.0 * g.metresPerPixel(), 1e-6)
+      << "pixels go down, Y up";
+  EXPECT_FALSE(GizmoDrag::begin(g, GizmoHandle::TranslateZ, start))
+      << "an axis pointing at the camera cannot be dragged";
   EXPECT_FALSE(GizmoDrag::begin(g, GizmoHandle::RotateZ, start)) << "no rings on this gizmo";
 }
 
@@ -86,7 +92,8 @@ TEST(Gizmo, RotationIsTheAngleSweptAboutTheCentre) {
   const Eigen::Vector2f centre(kWidth / 2.0f, kHeight / 2.0f);
   auto at = [&](double degrees) {
     const double a = degrees * M_PI / 180.0;
-    return Eigen::Vector2f(centre.x() + 100.0f * float(std::cos(a)), centre.y() - 100.0f * float(std::sin(a)));
+    return Eigen::Vector2f(centre.x() + 100.0f * float(std::cos(a)),
+                           centre.y() - 100.0f * float(std::sin(a)));
   };
   auto drag = GizmoDrag::begin(g, GizmoHandle::RotateZ, at(45));
   ASSERT_TRUE(drag);
@@ -109,10 +116,12 @@ TEST(Gizmo, RotationIsTheAngleSweptAboutTheCentre) {
 }
 
 TEST(Gizmo, EulerAnglesInvertTheSceneRotation) {
-  for (const Vec3& degrees : {Vec3(10, -35, 170), Vec3(0, 0, 0), Vec3(-120, 60, 5), Vec3(90, 0, 0)}) {
+  for (const Vec3& degrees :
+       {Vec3(10, -35, 170), Vec3(0, 0, 0), Vec3(-120, 60, 5), Vec3(90, 0, 0)}) {
     RigidTransform t;
     t.rotateDeg = degrees;
-    EXPECT_LT((eulerXyzDegrees(t.rotation(), degrees) - degrees).norm(), 1e-9) << degrees.transpose();
+    EXPECT_LT((eulerXyzDegrees(t.rotation(), degrees) - degrees).norm(), 1e-9)
+        << degrees.transpose();
     EXPECT_LT((eulerXyzDegrees(t.rotation()) - degrees).norm(), 1e-9) << degrees.transpose();
   }
   // Turning on about Y past 90 degrees keeps counting (rather than the equal (180, 80, 180)),
@@ -132,7 +141,9 @@ TEST(Gizmo, EulerAnglesInvertTheSceneRotation) {
 }
 
 TEST(Placement, TranslationChangesOnlyThatComponent) {
-  nlohmann::json capsule = {{"capsule", {{"a", {-0.3, 0.1, 0.2}}, {"b", {0.3, 0.1, 0.2}}, {"radius", 0.1}}}, {"friction", 0.3}};
+  nlohmann::json capsule = {
+      {"capsule", {{"a", {-0.3, 0.1, 0.2}}, {"b", {0.3, 0.1, 0.2}}, {"radius", 0.1}}},
+      {"friction", 0.3}};
   translateObject(capsule, EditorObject::Kind::Obstacle, 1, 0.25);
   EXPECT_EQ(capsule["capsule"]["a"], nlohmann::json::array({-0.3, 0.1 + 0.25, 0.2}));
   EXPECT_EQ(capsule["capsule"]["b"], nlohmann::json::array({0.3, 0.1 + 0.25, 0.2}));
@@ -148,21 +159,26 @@ TEST(Placement, TranslationChangesOnlyThatComponent) {
   nlohmann::json mesh = {{"mesh", {{"file", "m.obj"}}}};
   translateObject(mesh, EditorObject::Kind::Obstacle, 0, 0.125);
   EXPECT_EQ(mesh["mesh"]["transform"]["translate"], nlohmann::json::array({0.125, 0.0, 0.0}));
-  nlohmann::json cloth = {{"mesh", {{"grid", {{"size", {1, 1}}, {"resolution", {2, 2}}}}, {"transform", {{"translate", {0, 1, 0}}}}}}};
+  nlohmann::json cloth = {{"mesh",
+                           {{"grid", {{"size", {1, 1}}, {"resolution", {2, 2}}}},
+                            {"transform", {{"translate", {0, 1, 0}}}}}}};
   translateObject(cloth, EditorObject::Kind::Cloth, 1, 0.5);
   EXPECT_EQ(cloth["mesh"]["transform"]["translate"], nlohmann::json::array({0, 1.5, 0}));
 }
 
 TEST(Placement, RotationTurnsAboutTheCentre) {
   const double quarter = M_PI / 2;
-  nlohmann::json box = {{"box", {{"center", {1.0, 0.0, 0.0}}, {"size", {1.0, 1.0, 1.0}}, {"rotate_deg", {0.0, 0.0, 0.0}}}}};
+  nlohmann::json box = {
+      {"box",
+       {{"center", {1.0, 0.0, 0.0}}, {"size", {1.0, 1.0, 1.0}}, {"rotate_deg", {0.0, 0.0, 0.0}}}}};
   rotateObject(box, EditorObject::Kind::Obstacle, 1, quarter, Vec3(1, 0, 0));
   EXPECT_NEAR(box["box"]["rotate_deg"][1].get<double>(), 90.0, 1e-12);
   EXPECT_EQ(box["box"]["rotate_deg"][0], 0.0);
   EXPECT_EQ(box["box"]["rotate_deg"][2], 0.0);
   EXPECT_EQ(box["box"]["center"], nlohmann::json::array({1.0, 0.0, 0.0}));
 
-  nlohmann::json cylinder = {{"cylinder", {{"a", {0.0, -0.2, 0.0}}, {"b", {0.0, 0.2, 0.0}}, {"radius", 0.2}}}};
+  nlohmann::json cylinder = {
+      {"cylinder", {{"a", {0.0, -0.2, 0.0}}, {"b", {0.0, 0.2, 0.0}}, {"radius", 0.2}}}};
   rotateObject(cylinder, EditorObject::Kind::Obstacle, 2, quarter, Vec3::Zero());  // Y turns to -X
   EXPECT_NEAR(cylinder["cylinder"]["b"][0].get<double>(), -0.2, 1e-12);
   EXPECT_NEAR(cylinder["cylinder"]["b"][1].get<double>(), 0.0, 1e-12);
@@ -178,8 +194,10 @@ TEST(Placement, RotationTurnsAboutTheCentre) {
   EXPECT_EQ(sphere, before);
 
   // A cloth's transform: every rest point x goes to Q (R x + t - c) + c.
-  nlohmann::json cloth = {{"mesh", {{"grid", {{"size", {1, 1}}, {"resolution", {2, 2}}}},
-                                    {"transform", {{"rotate_deg", {90, 0, 0}}, {"translate", {0, 1, 0}}}}}}};
+  nlohmann::json cloth = {
+      {"mesh",
+       {{"grid", {{"size", {1, 1}}, {"resolution", {2, 2}}}},
+        {"transform", {{"rotate_deg", {90, 0, 0}}, {"translate", {0, 1, 0}}}}}}};
   const Vec3 centre(0.1, 0.9, -0.2), x(0.3, 0.0, -0.4);
   rotateObject(cloth, EditorObject::Kind::Cloth, 1, 0.7, centre);
   RigidTransform before2, after;
@@ -193,7 +211,9 @@ TEST(Placement, RotationTurnsAboutTheCentre) {
 
 TEST(Placement, FindsWhatTheGizmoPlaces) {
   const nlohmann::json doc = {
-      {"cloths", {{{"attachments", {{{"vertices", {0}}, {"kind", "fixed"}}, {{"vertices", {1}}, {"kind", "handle"}}}}}}},
+      {"cloths",
+       {{{"attachments",
+          {{{"vertices", {0}}, {"kind", "fixed"}}, {{"vertices", {1}}, {"kind", "handle"}}}}}}},
       {"obstacles", {{{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}}}}};
   EditorObject o;
   EXPECT_EQ(findEditorObject(doc, "obstacles.0", o), "");
@@ -201,13 +221,15 @@ TEST(Placement, FindsWhatTheGizmoPlaces) {
   EXPECT_EQ(findEditorObject(doc, "cloths.0.attachments.1", o), "");
   EXPECT_EQ(o.kind, EditorObject::Kind::Handle);
   EXPECT_EQ(o.path(), "cloths.0.attachments.1");
-  EXPECT_NE(findEditorObject(doc, "cloths.0.attachments.0", o).find("fixed attachment"), std::string::npos);
+  EXPECT_NE(findEditorObject(doc, "cloths.0.attachments.0", o).find("fixed attachment"),
+            std::string::npos);
   EXPECT_NE(findEditorObject(doc, "obstacles.3", o).find("no such entry"), std::string::npos);
   EXPECT_NE(findEditorObject(doc, "wind", o).find("the gizmo places"), std::string::npos);
   EXPECT_EQ(o.path(), "cloths.0.attachments.1") << "a failed lookup leaves the object as it was";
   EXPECT_EQ(findEditorObject(doc, "", o), "");
   EXPECT_EQ(o.kind, EditorObject::Kind::None);
-  EXPECT_FALSE(objectRotates(doc, {EditorObject::Kind::Obstacle, 0, -1})) << "a sphere does not turn";
+  EXPECT_FALSE(objectRotates(doc, {EditorObject::Kind::Obstacle, 0, -1}))
+      << "a sphere does not turn";
 }
 
 TEST(Placement, KeysAreSetInTimeOrderReplacedAndDeleted) {
@@ -231,9 +253,8 @@ TEST(Placement, KeysAreSetInTimeOrderReplacedAndDeleted) {
   EXPECT_EQ(handleKeys(handle).size(), 2u);
 
   const nlohmann::json zero = {0, 0, 0};
-  nlohmann::json hermite = {{"times", {0, 1}},
-                            {"points", {zero, {0, 1, 0}}},
-                            {"tangents", {zero, zero}}};
+  nlohmann::json hermite = {
+      {"times", {0, 1}}, {"points", {zero, {0, 1, 0}}}, {"tangents", {zero, zero}}};
   nlohmann::json spline = {{"kind", "handle"}, {"trajectory", {{"hermite", hermite}}}};
   EXPECT_FALSE(hasKeyframes(spline));
   EXPECT_EQ(handleKeys(spline).size(), 2u) << "a spline's knots show as keys";
@@ -245,16 +266,20 @@ TEST(Placement, KeysAreSetInTimeOrderReplacedAndDeleted) {
 TEST(EditorSessionGizmo, OneUndoStepPerDragAndAnObjectGoneMidDrag) {
   EditorSession session("");
   nlohmann::json doc = EditorDocument::defaultSceneDocument();
-  doc["obstacles"] = {{{"box", {{"center", {0.0, 0.0, 0.0}}, {"size", {0.4, 0.4, 0.4}}}}, {"friction", 0.3}}};
+  doc["obstacles"] = {
+      {{"box", {{"center", {0.0, 0.0, 0.0}}, {"size", {0.4, 0.4, 0.4}}}}, {"friction", 0.3}}};
   session.newDocument(doc);
-  EXPECT_NE(session.beginGizmoDrag(GizmoHandle::TranslateY, 0, 0, kWidth, kHeight).find("nothing to move"), std::string::npos);
+  EXPECT_NE(session.beginGizmoDrag(GizmoHandle::TranslateY, 0, 0, kWidth, kHeight)
+                .find("nothing to move"),
+            std::string::npos);
   ASSERT_EQ(session.setActiveObject("obstacles.0"), "");
   session.camera() = frontCamera();
   const auto g = session.gizmo(kWidth, kHeight);
   ASSERT_TRUE(g);
   const auto grab = g->grabPixel(GizmoHandle::TranslateY);
   ASSERT_TRUE(grab);
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight), "");
+  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight),
+            "");
   for (int k = 1; k <= 5; ++k) EXPECT_EQ(session.dragGizmo(grab->x(), grab->y() - 5.0f * k), "");
   session.endGizmoDrag();
   const nlohmann::json* centre = session.document().find("obstacles.0.box.center");
@@ -265,9 +290,11 @@ TEST(EditorSessionGizmo, OneUndoStepPerDragAndAnObjectGoneMidDrag) {
   EXPECT_EQ(session.document().find("obstacles.0.box.center")->at(1), 0.0);
   EXPECT_FALSE(session.document().canUndo()) << "the five moves were one step";
 
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight), "");
+  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight),
+            "");
   ASSERT_EQ(session.document().removeValue("obstacles.0"), "");
-  EXPECT_NE(session.dragGizmo(grab->x(), grab->y() - 10.0f).find("no longer in the scene"), std::string::npos);
+  EXPECT_NE(session.dragGizmo(grab->x(), grab->y() - 10.0f).find("no longer in the scene"),
+            std::string::npos);
   session.tick(0.0);  // the next frame lets go of it
   EXPECT_EQ(session.activeObject().kind, EditorObject::Kind::None);
   EXPECT_EQ(session.draggedHandle(), GizmoHandle::None);
@@ -279,7 +306,8 @@ TEST(EditorSessionGizmo, OneUndoStepPerDragAndAnObjectGoneMidDrag) {
 TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
   EditorSession session("");
   nlohmann::json doc = EditorDocument::defaultSceneDocument();  // dt 0.01
-  doc["obstacles"] = nlohmann::json::parse(R"([{"box": {"center": [0, 0, 0], "size": [0.4, 0.4, 0.4]},
+  doc["obstacles"] =
+      nlohmann::json::parse(R"([{"box": {"center": [0, 0, 0], "size": [0.4, 0.4, 0.4]},
       "friction": 0.3, "motion": {"keyframes": [{"time": 0.0, "offset": [0, 0, 0]},
                                                {"time": 0.4, "offset": [0.4, 0, 0]}]}}])");
   session.newDocument(doc);
@@ -292,7 +320,8 @@ TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
   EXPECT_NEAR(g->origin().y(), 0.0f, 1e-6f);
   const auto grab = g->grabPixel(GizmoHandle::TranslateY);
   ASSERT_TRUE(grab);
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight), "");
+  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight),
+            "");
   ASSERT_EQ(session.dragGizmo(grab->x(), grab->y() - 20.0f), "");
   session.endGizmoDrag();
   const nlohmann::json* centre = session.document().find("obstacles.0.box.center");
@@ -302,8 +331,8 @@ TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
 
   // Turning about y at 90 degrees per second: at t = 1 s (frame 100) R is a quarter turn, so a
   // drag along world +x moves the rest pose along R^T x = +z.
-  doc["obstacles"][0]["motion"] =
-      nlohmann::json::parse(R"({"rotate": {"center": [0, 0, 0], "axis": [0, 1, 0], "degrees_per_second": 90.0}})");
+  doc["obstacles"][0]["motion"] = nlohmann::json::parse(
+      R"({"rotate": {"center": [0, 0, 0], "axis": [0, 1, 0], "degrees_per_second": 90.0}})");
   session.newDocument(doc);
   ASSERT_EQ(session.setActiveObject("obstacles.0"), "");
   session.camera() = frontCamera();
@@ -312,7 +341,8 @@ TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
   ASSERT_TRUE(turned);
   const auto grabX = turned->grabPixel(GizmoHandle::TranslateX);
   ASSERT_TRUE(grabX);
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateX, grabX->x(), grabX->y(), kWidth, kHeight), "");
+  ASSERT_EQ(
+      session.beginGizmoDrag(GizmoHandle::TranslateX, grabX->x(), grabX->y(), kWidth, kHeight), "");
   ASSERT_EQ(session.dragGizmo(grabX->x() + 20.0f, grabX->y()), "");
   session.endGizmoDrag();
   centre = session.document().find("obstacles.0.box.center");
@@ -324,8 +354,11 @@ TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
   const nlohmann::json before = session.document().document();
   const auto ring = turned->grabPixel(GizmoHandle::RotateZ);
   ASSERT_TRUE(ring);
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::RotateZ, ring->x(), ring->y(), kWidth, kHeight), "");
-  EXPECT_NE(session.dragGizmo(ring->x() + 15.0f, ring->y() + 15.0f).find("its motion has turned it"), std::string::npos);
+  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::RotateZ, ring->x(), ring->y(), kWidth, kHeight),
+            "");
+  EXPECT_NE(
+      session.dragGizmo(ring->x() + 15.0f, ring->y() + 15.0f).find("its motion has turned it"),
+      std::string::npos);
   session.endGizmoDrag();
   EXPECT_EQ(session.document().document(), before);
 }

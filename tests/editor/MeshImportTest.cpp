@@ -10,9 +10,9 @@
 
 #include <weft/scene/SceneLoader.h>
 
-#include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <assimp/Exporter.hpp>
 
 #include <array>
 #include <cstdint>
@@ -33,7 +33,8 @@ std::string stripObj() {
 }
 
 std::string stripPly() {
-  return "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+  return "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty "
+         "float z\n"
          "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
          "2 0 1\n0 0 0\n1 0 1\n2 0 0\n0 0 1\n1 0 0\n3 1 4 5\n3 5 4 2\n3 5 2 3\n3 3 2 0\n";
 }
@@ -46,7 +47,8 @@ std::string writeStripGltf(const TempDir& dir) {
   bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
   bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
   bin.close();
-  return dir.write("strip.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  return dir.write("strip.gltf",
+                   R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
     "nodes": [{"mesh": 0}],
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
     "buffers": [{"byteLength": 96, "uri": "strip.bin"}],
@@ -60,8 +62,8 @@ std::string writeStripGltf(const TempDir& dir) {
 TEST(MeshImport, GarmentEntryKeepsTheFileAndItsPlacement) {
   TempDir dir;
   const std::string scene = dir.file("scene.json");
-  for (const std::string& file :
-       {dir.write("strip.obj", stripObj()), dir.write("strip.ply", stripPly()), writeStripGltf(dir)}) {
+  for (const std::string& file : {dir.write("strip.obj", stripObj()),
+                                  dir.write("strip.ply", stripPly()), writeStripGltf(dir)}) {
     SCOPED_TRACE(file);
     MeshImportOptions o;
     o.file = file;
@@ -81,7 +83,8 @@ TEST(MeshImport, GarmentEntryKeepsTheFileAndItsPlacement) {
     EXPECT_EQ(mesh.at("transform").at("translate"), nlohmann::json::array({0.0, 1.0, 0.0}));
     EXPECT_TRUE(r.entry.contains("material"));
     // The entry is a cloth the loader accepts as it is, with the file's vertices in order.
-    const Scene s = parseScene({{"time", {{"dt", 0.01}, {"steps", 1}}}, {"cloths", {r.entry}}}, scene, dir.path());
+    const Scene s = parseScene({{"time", {{"dt", 0.01}, {"steps", 1}}}, {"cloths", {r.entry}}},
+                               scene, dir.path());
     ASSERT_EQ(s.cloths[0].mesh.vertexCount(), 6);
     // Vertex 0 of the file, (2, 0, 1): scaled by 0.5 to (1, 0, 0.5), turned 90 degrees about X
     // (z to -y) to (1, -0.5, 0), lifted by 1.
@@ -94,9 +97,10 @@ TEST(MeshImport, GarmentEntryKeepsTheFileAndItsPlacement) {
 TEST(MeshImport, FitScalesToTheSizeAndCentresTheMesh) {
   TempDir dir;
   // The strip in centimetres: 200 x 100.
-  const std::string file = dir.write("strip-cm.obj",
-                                     "v 200 0 100\nv 0 0 0\nv 100 0 100\nv 200 0 0\nv 0 0 100\nv 100 0 0\n"
-                                     "f 2 5 6\nf 6 5 3\nf 6 3 4\nf 4 3 1\n");
+  const std::string file =
+      dir.write("strip-cm.obj",
+                "v 200 0 100\nv 0 0 0\nv 100 0 100\nv 200 0 0\nv 0 0 100\nv 100 0 0\n"
+                "f 2 5 6\nf 6 5 3\nf 6 3 4\nf 4 3 1\n");
   MeshImportOptions o;
   o.file = file;
   o.fit = true;
@@ -198,10 +202,10 @@ void exportGrid(const std::string& format, const std::string& file) {
   scene.mRootNode->mNumMeshes = 1;
   scene.mRootNode->mMeshes = new unsigned[1]{0};
   scene.mNumMaterials = 1;
-  scene.mMaterials = new aiMaterial*[1]{new aiMaterial};
+  scene.mMaterials = new aiMaterial* [1] { new aiMaterial };
   aiMesh* mesh = new aiMesh;
   scene.mNumMeshes = 1;
-  scene.mMeshes = new aiMesh*[1]{mesh};
+  scene.mMeshes = new aiMesh* [1] { mesh };
   mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
   mesh->mNumVertices = 16;
   mesh->mVertices = new aiVector3D[16];

@@ -151,8 +151,12 @@ TEST(ObjectPicking, APlaneIsPickedWhereItIsDrawn) {
   const Scene scene = test::parse(doc);
   const render::SurfaceMesh cloth = clothSurface(scene);
   const DrawnPlaneExtent square{Vec3(0.5, 1.0, 0.0), 2.0};  // x, z in [-1.5, 2.5] x [-2, 2]
-  for (const auto& [x, z, inside] : {std::tuple{0.0, 0.0, true}, {2.4, 1.9, true}, {-1.4, -1.9, true},
-                                      {2.6, 0.0, false}, {0.0, -2.1, false}, {-1.6, 0.0, false}}) {
+  for (const auto& [x, z, inside] : {std::tuple{0.0, 0.0, true},
+                                     {2.4, 1.9, true},
+                                     {-1.4, -1.9, true},
+                                     {2.6, 0.0, false},
+                                     {0.0, -2.1, false},
+                                     {-1.6, 0.0, false}}) {
     SCOPED_TRACE(std::to_string(x) + ", " + std::to_string(z));
     EXPECT_TRUE(pickObject(scene, 0.0, cloth, downAt(x, z), 100.0)) << "infinite without an extent";
     const auto hit = pickObject(scene, 0.0, cloth, downAt(x, z), 100.0, square);

@@ -17,7 +17,9 @@
 namespace weft::editor {
 namespace {
 
-Scene windSysid() { return loadScene(std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json"); }
+Scene windSysid() {
+  return loadScene(std::string(WEFT_ASSET_DIR) + "/scenes/wind_sysid.json");
+}
 
 // Waits (polling) until the run is paused or over. The bound only keeps a broken run from
 // hanging the suite; nothing is asserted about time.
@@ -50,7 +52,8 @@ TEST(OptimizerRun, StepsOneEvaluationAtATimeAndLowersTheLoss) {
   for (int expected = 1; expected <= 4; ++expected) {
     run.step(1);
     // The gate lets one evaluation through, then holds the next one.
-    for (int i = 0; i < 60000 && run.evaluations() < expected; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    for (int i = 0; i < 60000 && run.evaluations() < expected; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
     settle(run);
     EXPECT_EQ(run.evaluations(), expected);
     EXPECT_EQ(run.status(), OptimizerRun::Status::Paused);
@@ -79,7 +82,8 @@ TEST(OptimizerRun, CancelStopsAPausedRunAndKeepsItsSamples) {
   setup.parameters = {"wind.strength"};
   ASSERT_EQ(run.start(windSysid(), setup, true), "");
   run.step(2);
-  for (int i = 0; i < 60000 && run.evaluations() < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  for (int i = 0; i < 60000 && run.evaluations() < 2; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   settle(run);
   run.cancel();
   EXPECT_EQ(run.status(), OptimizerRun::Status::Cancelled);
@@ -92,10 +96,12 @@ TEST(OptimizerRun, RefusesWhatItCannotRun) {
   OptimizerRun::Setup setup;
   setup.parameters = {"wind.strength"};
   setup.method = "simplex";
-  EXPECT_NE(run.start(windSysid(), setup, false).find("unknown optimisation method 'simplex'"), std::string::npos);
+  EXPECT_NE(run.start(windSysid(), setup, false).find("unknown optimisation method 'simplex'"),
+            std::string::npos);
   setup.method = "lbfgsb";
   setup.parameters.clear();
-  EXPECT_NE(run.start(windSysid(), setup, false).find("choose at least one parameter"), std::string::npos);
+  EXPECT_NE(run.start(windSysid(), setup, false).find("choose at least one parameter"),
+            std::string::npos);
   setup.parameters = {"cloths.0.material.colour"};
   EXPECT_FALSE(run.start(windSysid(), setup, false).empty());
   // No task: nothing to minimise.

@@ -17,7 +17,8 @@ render::SurfaceMesh square() {
   render::SurfaceMesh m;
   m.positions.resize(9, 3);
   for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) m.positions.row(3 * j + i) << i * 0.5f - 0.5f, j * 0.5f - 0.5f, 0.0f;
+    for (int i = 0; i < 3; ++i)
+      m.positions.row(3 * j + i) << i * 0.5f - 0.5f, j * 0.5f - 0.5f, 0.0f;
   m.triangles.resize(8, 3);
   int t = 0;
   for (int j = 0; j < 2; ++j)
@@ -52,7 +53,8 @@ TEST(Picking, ProjectionAndRayAgree) {
     ASSERT_TRUE(pixel);
     // Nudge towards the centre so the ray lands inside the mesh, near vertex v.
     const Eigen::Vector2f inward = (Eigen::Vector2f(160, 120) - *pixel) * 0.02f;
-    const auto picked = pickVertex(m, pixelRay(c, pixel->x() + inward.x(), pixel->y() + inward.y(), 320, 240));
+    const auto picked =
+        pickVertex(m, pixelRay(c, pixel->x() + inward.x(), pixel->y() + inward.y(), 320, 240));
     ASSERT_TRUE(picked) << "vertex " << v;
     EXPECT_EQ(*picked, v);
   }

@@ -46,7 +46,8 @@ TEST(SimulationCache, CancelStopsEarlyAndKeepsTheFramesSoFar) {
   SimulationCache cache;
   cache.start(hanging(24, 100000), 100000);
   // Wait until the worker is under way, then cancel.
-  for (int i = 0; i < 2000 && cache.frameCount() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  for (int i = 0; i < 2000 && cache.frameCount() < 3; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   const auto started = std::chrono::steady_clock::now();
   cache.cancel();
   EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(5));

@@ -21,7 +21,8 @@ nlohmann::json dropOnSphere(int steps) {
   doc["gravity"] = {0.0, -9.8, 0.0};
   doc["solver"] = {{"pd_iterations", 300}, {"pd_tolerance", 1e-6}};
   doc["cloths"][0]["mesh"]["transform"] = {{"translate", {0.0, 0.205, 0.0}}};
-  doc["obstacles"] = {{{"sphere", {{"center", {0.0, 0.0, 0.0}}, {"radius", 0.2}}}, {"friction", 0.4}}};
+  doc["obstacles"] = {
+      {{"sphere", {{"center", {0.0, 0.0, 0.0}}, {"radius", 0.2}}}, {"friction", 0.4}}};
   return doc;
 }
 

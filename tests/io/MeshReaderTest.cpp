@@ -170,7 +170,8 @@ std::string base64(const std::string& bytes) {
 
 // glTF 2.0 holding the scrambled strip as mesh 0 (an embedded buffer: float32 positions, uint16
 // indices), placed by `nodes` (a JSON array) of which scene 0 lists `roots`.
-std::string stripGltf(const std::string& nodes = R"([{"mesh": 0}])", const std::string& roots = "[0]") {
+std::string stripGltf(const std::string& nodes = R"([{"mesh": 0}])",
+                      const std::string& roots = "[0]") {
   std::string buffer;
   for (const auto& p : kPositions)
     for (double c : p) {
@@ -185,7 +186,8 @@ std::string stripGltf(const std::string& nodes = R"([{"mesh": 0}])", const std::
     }
   std::ostringstream g;
   g << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": )" << roots << R"(}],
-  "nodes": )" << nodes << R"(,
+  "nodes": )"
+    << nodes << R"(,
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
   "buffers": [{"byteLength": )"
     << buffer.size() << R"(, "uri": "data:application/octet-stream;base64,)" << base64(buffer)

@@ -80,8 +80,10 @@ TEST(GridMesh, AreaAtOtherPositionsFollowsTheMap) {
   NodeMatrix stretched = grid.vertices;
   stretched.col(0) *= 2.0;
   EXPECT_NEAR(grid.areaAt(stretched), 2.0, 1e-13);
-  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
-  const NodeMatrix moved = (grid.vertices * rotation.transpose()).rowwise() + Vec3(0.3, -2.0, 5.0).transpose();
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const NodeMatrix moved =
+      (grid.vertices * rotation.transpose()).rowwise() + Vec3(0.3, -2.0, 5.0).transpose();
   EXPECT_NEAR(grid.areaAt(moved), 1.0, 1e-13);
   NodeMatrix folded = grid.vertices;
   folded.col(0) = folded.col(0).cwiseAbs();

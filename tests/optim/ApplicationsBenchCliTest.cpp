@@ -70,12 +70,12 @@ TEST(ApplicationsBenchCli, RunsEveryMethodAndSeedWithinTheBudget) {
   EXPECT_EQ(p[0], "napkin_4x4");
   EXPECT_EQ(p[1], "48");  // 16 nodes
   EXPECT_EQ(p[2], "50");
-  EXPECT_GT(std::stod(p[4]), 0.0);             // forward s
-  EXPECT_GT(std::stod(p[5]), 0.0);             // backward s
+  EXPECT_GT(std::stod(p[4]), 0.0);  // forward s
+  EXPECT_GT(std::stod(p[5]), 0.0);  // backward s
   EXPECT_EQ(p[7], "100") << "GMRES converges on every step of the free napkin";
-  EXPECT_EQ(p[8], "0");                        // unconverged forward steps
-  EXPECT_GE(std::stod(p[9]), 1.0);             // adjoint growth
-  EXPECT_GT(std::stod(p[10]), 0.0);            // mean L-BFGS-B evaluation of the runs
+  EXPECT_EQ(p[8], "0");              // unconverged forward steps
+  EXPECT_GE(std::stod(p[9]), 1.0);   // adjoint growth
+  EXPECT_GT(std::stod(p[10]), 0.0);  // mean L-BFGS-B evaluation of the runs
 }
 
 // A task the paper tabulates gets its row beside DiffCloth's published figures (Tables 2-4).
@@ -93,9 +93,10 @@ TEST(ApplicationsBenchCli, PaperTasksArePrintedBesideThePublishedFigures) {
   EXPECT_NE(beside.find("| flag | Weft | 8 | 1 |"), std::string::npos) << beside;
   // Table 2: 4.77 / 10.57 / 38.89 / 25.57 / 40.14; Table 3: 6800 / 17300 / 24800, 96 %;
   // Table 4: 13.7 s / 1.6 s.
-  EXPECT_NE(beside.find("| Flag | DiffCloth | 8 | 10 | 4.77 | 10.57 | 38.89 | 25.57 | 40.14 | 6800 | "
-                        "17300 | 24800 | 2.54 | 96 | 13.7 | 1.6 |"),
-            std::string::npos)
+  EXPECT_NE(
+      beside.find("| Flag | DiffCloth | 8 | 10 | 4.77 | 10.57 | 38.89 | 25.57 | 40.14 | 6800 | "
+                  "17300 | 24800 | 2.54 | 96 | 13.7 | 1.6 |"),
+      std::string::npos)
       << beside;
   const auto passes = splitLines(test::readFile(out + "/passes.csv"));
   ASSERT_EQ(passes.size(), 2u);

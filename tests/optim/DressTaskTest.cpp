@@ -24,7 +24,9 @@ namespace {
 constexpr int kRing = 32;  // vertices per ring (16 pleats)
 constexpr int kRings = 9;
 
-std::string dressFile() { return std::string(WEFT_ASSET_DIR) + "/scenes/dress.json"; }
+std::string dressFile() {
+  return std::string(WEFT_ASSET_DIR) + "/scenes/dress.json";
+}
 
 // The dress over its first `steps` steps, the hemline term at `states`.
 Scene shortened(int steps, const std::vector<int>& states) {
@@ -105,7 +107,8 @@ TEST(DressTask, TwirlTurnsTheWaistAndFlaresTheSkirt) {
     EXPECT_NEAR(std::abs(d), 180.0, 1.0) << v;
     EXPECT_NEAR(std::hypot(x.x(), x.z()), 0.12, 1e-3) << v;  // the handle springs hold the waist
   }
-  const Scene still = withDocumentValue(scene, "cloths.0.attachments.0.trajectory.rotate.degrees_per_second", 0.0);
+  const Scene still =
+      withDocumentValue(scene, "cloths.0.attachments.0.trajectory.rotate.degrees_per_second", 0.0);
   const Trajectory hanging = runForwardPass(still).trajectory;
   EXPECT_GT(hemRadius(t, 60), hemRadius(hanging, 60) + 0.02);
 }

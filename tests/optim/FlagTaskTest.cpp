@@ -27,21 +27,28 @@ namespace {
 
 using Kind = SceneParameter::Kind;
 
-std::string flagFile() { return std::string(WEFT_ASSET_DIR) + "/scenes/flag.json"; }
+std::string flagFile() {
+  return std::string(WEFT_ASSET_DIR) + "/scenes/flag.json";
+}
 
 // The values targets/flag.npy was recorded with (scripts/make-flag.py, HIDDEN).
 const std::map<std::string, double> kHidden = {
-    {"cloths.0.material.stretch", 600.0}, {"cloths.0.material.bend", 2e-4},
-    {"cloths.0.material.density", 0.15},  {"wind.phase", 0.4},
-    {"wind.frequency", 1.5},              {"wind.direction.0", 0.6},
-    {"wind.direction.1", 0.1},            {"wind.direction.2", 0.25},
+    {"cloths.0.material.stretch", 600.0},
+    {"cloths.0.material.bend", 2e-4},
+    {"cloths.0.material.density", 0.15},
+    {"wind.phase", 0.4},
+    {"wind.frequency", 1.5},
+    {"wind.direction.0", 0.6},
+    {"wind.direction.1", 0.1},
+    {"wind.direction.2", 0.25},
 };
 
 nlohmann::json withHidden(nlohmann::json doc) {
   for (const auto& [path, value] : kHidden) {
     nlohmann::json* v = &doc;
     std::string rest = path;
-    for (std::size_t dot; (dot = rest.find('.')) != std::string::npos; rest = rest.substr(dot + 1)) {
+    for (std::size_t dot; (dot = rest.find('.')) != std::string::npos;
+         rest = rest.substr(dot + 1)) {
       const std::string key = rest.substr(0, dot);
       v = v->is_array() ? &(*v)[std::stoul(key)] : &(*v)[key];
     }
@@ -81,13 +88,15 @@ TEST(FlagTask, SceneIsThePapersFlagWithEquation35Wind) {
   // Eq. 35's k: each node's inverse distance to the flag centre at the first step.
   ASSERT_TRUE(scene.wind && scene.wind->falloffCenter);
   const Vec3 centre = *scene.wind->falloffCenter;
-  const Vec3 meshCentre = 0.5 * (flag.mesh.vertices.colwise().minCoeff() +
-                                 flag.mesh.vertices.colwise().maxCoeff()).transpose();
+  const Vec3 meshCentre =
+      0.5 * (flag.mesh.vertices.colwise().minCoeff() + flag.mesh.vertices.colwise().maxCoeff())
+                .transpose();
   EXPECT_LT((centre - meshCentre).norm(), 1e-12);
   ASSERT_EQ(scene.wind->coefficients.size(), 540);
   for (int i = 0; i < 540; ++i)
-    ASSERT_NEAR(scene.wind->coefficients[i], 1.0 / (flag.mesh.vertices.row(i).transpose() - centre).norm(),
-                1e-12) << i;
+    ASSERT_NEAR(scene.wind->coefficients[i],
+                1.0 / (flag.mesh.vertices.row(i).transpose() - centre).norm(), 1e-12)
+        << i;
   // No vertex at the centre: the nearest is half a 3 cm quad away.
   EXPECT_NEAR(scene.wind->coefficients.maxCoeff(), 1.0 / 0.015, 1e-6);
 
@@ -98,8 +107,8 @@ TEST(FlagTask, SceneIsThePapersFlagWithEquation35Wind) {
   std::multiset<Kind> kinds;
   for (const SceneParameter& p : parameters.parameters()) kinds.insert(p.kind);
   EXPECT_EQ(kinds, (std::multiset<Kind>{Kind::Stretch, Kind::Bend, Kind::Density, Kind::WindPhase,
-                                         Kind::WindFrequency, Kind::WindDirection, Kind::WindDirection,
-                                         Kind::WindDirection}));
+                                        Kind::WindFrequency, Kind::WindDirection,
+                                        Kind::WindDirection, Kind::WindDirection}));
   test::expectHiddenValuesInsideBoxesAndAwayFromStart(scene, parameters, kHidden);
 }
 
@@ -127,7 +136,8 @@ TEST(FlagTask, TargetIsTheMotionOfTheHiddenValues) {
   for (const auto& [path, value] : kHidden) hidden = withDocumentValue(hidden, path, value);
   hidden = withDocumentValue(hidden, "solver.pd_tolerance", 1e-8);
   SimulationObjective atHidden(hidden, ParameterSet::fromTask(hidden));
-  const double recorded = atHidden.value(atHidden.space().toCoordinates(atHidden.space().initialValues()));
+  const double recorded =
+      atHidden.value(atHidden.space().toCoordinates(atHidden.space().initialValues()));
   EXPECT_GT(initial, 1.0);  // m^2, summed over 100 states and 540 nodes
   EXPECT_LT(recorded, 1e-10 * initial);
 }
@@ -153,10 +163,14 @@ TEST(FlagTask, LbfgsbRecoversTheHiddenValuesWithDensityHeld) {
   test::TempDir dir;
   Scene scene = reducedFlag(dir, 10, 7, 60);
   const std::map<std::string, double> start = {
-      {"cloths.0.material.stretch", 720.0}, {"cloths.0.material.bend", 2.5e-4},
+      {"cloths.0.material.stretch", 720.0},
+      {"cloths.0.material.bend", 2.5e-4},
       {"cloths.0.material.density", kHidden.at("cloths.0.material.density")},
-      {"wind.phase", 0.5}, {"wind.frequency", 1.65}, {"wind.direction.0", 0.53},
-      {"wind.direction.1", 0.12}, {"wind.direction.2", 0.29}};
+      {"wind.phase", 0.5},
+      {"wind.frequency", 1.65},
+      {"wind.direction.0", 0.53},
+      {"wind.direction.1", 0.12},
+      {"wind.direction.2", 0.29}};
   for (const auto& [path, value] : start) scene = withDocumentValue(scene, path, value);
   nlohmann::json doc = scene.document;
   nlohmann::json parameters = nlohmann::json::array();

@@ -31,7 +31,8 @@ TEST(HatTask, SceneHasTwoSplineEndEffectorsAndAFinalPoseLoss) {
   const Vec3 axis = hat.mesh.vertices.row(0).transpose();  // the crown's apex
   double brim = 0.0;
   for (int i = 0; i < hat.mesh.vertexCount(); ++i)
-    brim = std::max(brim, std::hypot(hat.mesh.vertices(i, 0) - axis.x(), hat.mesh.vertices(i, 2) - axis.z()));
+    brim = std::max(
+        brim, std::hypot(hat.mesh.vertices(i, 0) - axis.x(), hat.mesh.vertices(i, 2) - axis.z()));
   double side[2] = {0.0, 0.0};
   for (int h = 0; h < 2; ++h) {
     const Attachment& a = hat.attachments[h];
@@ -40,7 +41,9 @@ TEST(HatTask, SceneHasTwoSplineEndEffectorsAndAFinalPoseLoss) {
     EXPECT_EQ(a.trajectory.times.size(), 2u);
     ASSERT_EQ(a.vertices.size(), 3u);
     for (int v : a.vertices) {
-      EXPECT_NEAR(std::hypot(hat.mesh.vertices(v, 0) - axis.x(), hat.mesh.vertices(v, 2) - axis.z()), brim, 1e-6);
+      EXPECT_NEAR(
+          std::hypot(hat.mesh.vertices(v, 0) - axis.x(), hat.mesh.vertices(v, 2) - axis.z()), brim,
+          1e-6);
       side[h] += hat.mesh.vertices(v, 0) - axis.x();
     }
   }
@@ -48,7 +51,9 @@ TEST(HatTask, SceneHasTwoSplineEndEffectorsAndAFinalPoseLoss) {
   const ParameterSet parameters = ParameterSet::fromTask(scene);
   ASSERT_EQ(parameters.size(), 18);  // (t1, t2, p_end) per spline
   for (const SceneParameter& p : parameters.parameters())
-    EXPECT_TRUE(p.kind == SceneParameter::Kind::HandleTangent || p.kind == SceneParameter::Kind::HandleOffset) << p.path;
+    EXPECT_TRUE(p.kind == SceneParameter::Kind::HandleTangent ||
+                p.kind == SceneParameter::Kind::HandleOffset)
+        << p.path;
   ASSERT_TRUE(scene.task->loss.contains("final"));
 }
 
@@ -57,7 +62,9 @@ TEST(HatTask, TargetIsTheRestShapeTranslatedOntoTheHead) {
   const NpyArray target = readNpy(resolveScenePath(scene.directory, "targets/hat.npy"));
   ASSERT_EQ(target.shape, (std::vector<std::size_t>{567, 3}));
   const NodeMatrix& rest = scene.cloths[0].mesh.vertices;
-  const auto at = [&](int i) { return Vec3(target.data[3 * i], target.data[3 * i + 1], target.data[3 * i + 2]); };
+  const auto at = [&](int i) {
+    return Vec3(target.data[3 * i], target.data[3 * i + 1], target.data[3 * i + 2]);
+  };
   const Vec3 shift = at(0) - rest.row(0).transpose();
   EXPECT_GT(shift.norm(), 0.3);  // the hat starts well away from the head
   const Obstacle& head = scene.obstacles.at(0);
@@ -79,20 +86,22 @@ TEST(HatTask, SplineGradientsMatchFiniteDifferencesWithTheHatOnTheHead) {
   // finite differences need (README "Contact"); here every step converges in ~100 solves. The
   // contact set is the same under the finite-difference probes (checked for three parameters
   // of each kind).
-  const Scene scene = test::loadAssetScene("hat", {{"time.steps", "10"},
-                                                   {"time.dt", "0.002"},
-                                                   {"cloths.0.material.density", "2.0"},
-                                                   {"cloths.0.mesh.transform.translate", "[0,-0.009,0]"}});
+  const Scene scene =
+      test::loadAssetScene("hat", {{"time.steps", "10"},
+                                   {"time.dt", "0.002"},
+                                   {"cloths.0.material.density", "2.0"},
+                                   {"cloths.0.mesh.transform.translate", "[0,-0.009,0]"}});
   int active = 0;
   test::contactSet(scene, &active);
   EXPECT_GT(active, 100);
   GradientCheckOptions options;
   options.eps = 1e-3;
   const std::string h = "cloths.0.attachments.";
-  test::expectContactSetUnchanged(scene,
-                                  {h + "0.trajectory.hermite.tangents.0.1", h + "1.trajectory.hermite.tangents.1.0",
-                                   h + "1.trajectory.hermite.points.1.1"},
-                                  options.eps);
+  test::expectContactSetUnchanged(
+      scene,
+      {h + "0.trajectory.hermite.tangents.0.1", h + "1.trajectory.hermite.tangents.1.0",
+       h + "1.trajectory.hermite.points.1.1"},
+      options.eps);
   const GradientCheckReport report = checkGradient(scene, ParameterSet::fromTask(scene), options);
   ASSERT_EQ(report.entries.size(), 18u);
   // Measured: relative error below 3e-5 on every component above 1e-3 of the largest, and below

@@ -27,9 +27,10 @@ const char* kWind = "wind.strength";
 TEST(LandscapeCli, GridMinimumIsAtTheGeneratingValues) {
   TempDir dir;
   const std::string out = dir.file("land");
-  const auto r = runWeft({"landscape", kScene, "--param", kStretch, "--param", kWind, "--grid", "3", "--range",
-                          std::string(kStretch) + "=200:300", "--range", std::string(kWind) + "=1.5:2.5", "--out",
-                          out, "--quiet", "--threads", "1"});
+  const auto r =
+      runWeft({"landscape", kScene, "--param", kStretch, "--param", kWind, "--grid", "3", "--range",
+               std::string(kStretch) + "=200:300", "--range", std::string(kWind) + "=1.5:2.5",
+               "--out", out, "--quiet", "--threads", "1"});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   EXPECT_THAT(r.out, StartsWith("landscape: wind_sysid: 9 points"));
   const auto lines = splitLines(test::readFile(out + "/landscape.csv"));
@@ -50,13 +51,15 @@ TEST(LandscapeCli, GridMinimumIsAtTheGeneratingValues) {
   EXPECT_DOUBLE_EQ(atStretch, 250.0);
   EXPECT_DOUBLE_EQ(atWind, 2.0);
   EXPECT_LT(minLoss, 1e-6 * maxLoss) << "the target was simulated at (250, 2.0)";
-  EXPECT_TRUE(std::filesystem::exists(out + "/landscape.png") || r.err.find("gnuplot") != std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out + "/landscape.png") ||
+              r.err.find("gnuplot") != std::string::npos);
 }
 
 TEST(LandscapeCli, OneParameterGivesALineWithDefaultRange) {
   TempDir dir;
   const std::string out = dir.file("line");
-  const auto r = runWeft({"landscape", kScene, "--param", kWind, "--grid", "3", "--out", out, "--quiet", "--threads", "1"});
+  const auto r = runWeft({"landscape", kScene, "--param", kWind, "--grid", "3", "--out", out,
+                          "--quiet", "--threads", "1"});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   const auto lines = splitLines(test::readFile(out + "/landscape.csv"));
   ASSERT_EQ(lines.size(), 4u);
@@ -82,19 +85,34 @@ TEST(LandscapeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
   const std::string s = kStretch, w = kWind;
   const BadLandscape cases[] = {
       {"NoParam", {kScene}, "--param: ", "one or two parameters"},
-      {"ThreeParams", {kScene, "--param", s, "--param", w, "--param", "wind.frequency"}, "--param: ",
+      {"ThreeParams",
+       {kScene, "--param", s, "--param", w, "--param", "wind.frequency"},
+       "--param: ",
        "one or two parameters"},
       {"SameParamTwice", {kScene, "--param", s, "--param", s}, "--param: ", "must differ"},
       {"UnknownPath", {kScene, "--param", s, "--param", "wind.nope"}, "wind.nope: ", ""},
       {"GridOne", {kScene, "--param", s, "--param", w, "--grid", "1"}, "--grid: ", ""},
       {"GridText", {kScene, "--param", s, "--param", w, "--grid", "ten"}, "--grid: ", ""},
-      {"RangeReversed", {kScene, "--param", s, "--param", w, "--range", s + "=300:200"}, "--range ", "LO < HI"},
-      {"RangeMalformed", {kScene, "--param", s, "--param", w, "--range", s + "=abc"}, "--range ", "PATH=LO:HI"},
-      {"RangeNotNumbers", {kScene, "--param", s, "--param", w, "--range", s + "=a:b"}, "--range ", "numbers"},
-      {"RangeOtherPath", {kScene, "--param", s, "--param", w, "--range", "wind.phase=0:1"}, "--range wind.phase: ",
+      {"RangeReversed",
+       {kScene, "--param", s, "--param", w, "--range", s + "=300:200"},
+       "--range ",
+       "LO < HI"},
+      {"RangeMalformed",
+       {kScene, "--param", s, "--param", w, "--range", s + "=abc"},
+       "--range ",
+       "PATH=LO:HI"},
+      {"RangeNotNumbers",
+       {kScene, "--param", s, "--param", w, "--range", s + "=a:b"},
+       "--range ",
+       "numbers"},
+      {"RangeOtherPath",
+       {kScene, "--param", s, "--param", w, "--range", "wind.phase=0:1"},
+       "--range wind.phase: ",
        "not one of the --param"},
-      {"RangeInvalidValue", {kScene, "--param", s, "--param", w, "--grid", "2", "--range", s + "=-10:100"},
-       "at grid point", ""},
+      {"RangeInvalidValue",
+       {kScene, "--param", s, "--param", w, "--grid", "2", "--range", s + "=-10:100"},
+       "at grid point",
+       ""},
   };
   for (const BadLandscape& c : cases) {
     SCOPED_TRACE(c.name);

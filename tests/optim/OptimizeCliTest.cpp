@@ -34,7 +34,8 @@ std::string writeTinyScene(const TempDir& dir, const nlohmann::json& extraTask =
   test::writeTargetTrajectory(target, dir.file("target.npy"));
   test::addTask(doc, "trajectory", "target.npy", {"cloths.0.material.stretch", "wind.strength"});
   if (extraTask.is_object())
-    for (auto it = extraTask.begin(); it != extraTask.end(); ++it) doc["task"][it.key()] = it.value();
+    for (auto it = extraTask.begin(); it != extraTask.end(); ++it)
+      doc["task"][it.key()] = it.value();
   return test::writeScene(dir.file("tiny.json"), doc);
 }
 
@@ -56,8 +57,8 @@ TEST(OptimizeCli, WritesLossCsvResultJsonAndPlot) {
   const std::string scene = writeTinyScene(dir);
   const std::string out = dir.file("opt");
   const int budget = 20 * 2 * kSteps;
-  const auto r = runWeft({"optimize", scene, "--budget", std::to_string(budget), "--out", out, "--seed", "3",
-                          "--quiet", "--threads", "1"});
+  const auto r = runWeft({"optimize", scene, "--budget", std::to_string(budget), "--out", out,
+                          "--seed", "3", "--quiet", "--threads", "1"});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   EXPECT_THAT(r.out, StartsWith("optimize: "));
 
@@ -84,8 +85,9 @@ TEST(OptimizeCli, WritesLossCsvResultJsonAndPlot) {
   EXPECT_LT(best, 1e-3 * first) << "the loss falls";
 
   const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
-  for (const char* key : {"method", "seed", "initial_parameters", "initial_loss", "final_parameters", "final_loss",
-                          "evaluations", "steps", "gradient_norm", "stop_reason"})
+  for (const char* key :
+       {"method", "seed", "initial_parameters", "initial_loss", "final_parameters", "final_loss",
+        "evaluations", "steps", "gradient_norm", "stop_reason"})
     EXPECT_TRUE(result.contains(key)) << key;
   EXPECT_EQ(result["method"], "lbfgsb");
   EXPECT_EQ(result["seed"], 3);
@@ -107,8 +109,8 @@ TEST(OptimizeCli, AdamLowersTheLossAndIsReproducible) {
   std::vector<std::string> csv[2];
   for (int k = 0; k < 2; ++k) {
     const std::string out = dir.file("adam" + std::to_string(k));
-    const auto r = runWeft({"optimize", scene, "--method", "adam", "--seed", "5", "--max-evaluations", "15", "--out",
-                            out, "--quiet", "--threads", "1"});
+    const auto r = runWeft({"optimize", scene, "--method", "adam", "--seed", "5",
+                            "--max-evaluations", "15", "--out", out, "--quiet", "--threads", "1"});
     ASSERT_EQ(r.exitCode, 0) << describe(r);
     csv[k] = withoutWallSeconds(test::readFile(out + "/loss.csv"));
     const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
@@ -139,7 +141,10 @@ TEST(OptimizeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
       {"ZeroBudget", {scene, "--budget", "0"}, "--budget: ", "positive whole number"},
       {"TooSmallBudget", {scene, "--budget", "10"}, "--budget: ", "at least one evaluation"},
       // A value-only evaluation costs the 15 forward steps: 14 do not buy one.
-      {"TooSmallBudgetCmaes", {scene, "--method", "cmaes", "--budget", "14"}, "--budget: ", "no backward"},
+      {"TooSmallBudgetCmaes",
+       {scene, "--method", "cmaes", "--budget", "14"},
+       "--budget: ",
+       "no backward"},
       {"NoTask", {noTask}, "task: ", "no task"},
       {"UnknownSet", {scene, "--set", "solver.nope.x=1"}, "--set solver.nope.x: ", "unknown path"},
   };
@@ -165,7 +170,8 @@ TEST(OptimizeCli, TaskBoundsAreValidatedAndHonoured) {
     EXPECT_THAT(r.err, HasSubstr("not one of task.parameters"));
   }
   {
-    const std::string scene = writeTinyScene(dir, {{"bounds", {{"cloths.0.material.stretch", {100.0, 200.0}}}}});
+    const std::string scene =
+        writeTinyScene(dir, {{"bounds", {{"cloths.0.material.stretch", {100.0, 200.0}}}}});
     const auto r = runWeft({"optimize", scene, "--quiet"});
     EXPECT_EQ(r.exitCode, 2) << describe(r);
     EXPECT_THAT(r.err, HasSubstr("task.bounds.cloths.0.material.stretch: "));
@@ -173,9 +179,11 @@ TEST(OptimizeCli, TaskBoundsAreValidatedAndHonoured) {
   }
   {
     // The generating stretch (250) lies below the box [280, 400]: the optimum lands on 280.
-    const std::string scene = writeTinyScene(dir, {{"bounds", {{"cloths.0.material.stretch", {280.0, 400.0}}}}});
+    const std::string scene =
+        writeTinyScene(dir, {{"bounds", {{"cloths.0.material.stretch", {280.0, 400.0}}}}});
     const std::string out = dir.file("bounded");
-    const auto r = runWeft({"optimize", scene, "--max-evaluations", "25", "--out", out, "--quiet", "--threads", "1"});
+    const auto r = runWeft(
+        {"optimize", scene, "--max-evaluations", "25", "--out", out, "--quiet", "--threads", "1"});
     ASSERT_EQ(r.exitCode, 0) << describe(r);
     const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
     EXPECT_NEAR(result["final_parameters"]["cloths.0.material.stretch"].get<double>(), 280.0, 1e-6);

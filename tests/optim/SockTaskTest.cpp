@@ -54,7 +54,8 @@ TEST(SockTask, SceneHasFourSplineEndEffectorsOnTheCuffAndKeypointsOnTheFoot) {
   for (const nlohmann::json& entry : points)
     for (const nlohmann::json& position : entry["positions"]) {
       const Vec3 p(position[0].get<double>(), position[1].get<double>(), position[2].get<double>());
-      const double d = std::min(capsuleDistance(scene.obstacles[0], p), capsuleDistance(scene.obstacles[1], p));
+      const double d =
+          std::min(capsuleDistance(scene.obstacles[0], p), capsuleDistance(scene.obstacles[1], p));
       EXPECT_GE(d, -1e-6) << position.dump();
       EXPECT_LE(d, scene.obstacles[1].thickness + 1e-6) << position.dump();
     }
@@ -88,7 +89,8 @@ TEST(SockTask, HangingTubeConvergesEveryStepBeforeItReachesTheFoot) {
     Simulator simulator(scene);
     for (int n = 0; n < 30; ++n) {
       const StepStats& stats = simulator.step();
-      EXPECT_TRUE(stats.converged) << method << " step " << stats.step << " residual " << stats.residual;
+      EXPECT_TRUE(stats.converged)
+          << method << " step " << stats.step << " residual " << stats.residual;
     }
   }
 }
@@ -120,12 +122,13 @@ TEST(SockTask, SplineGradientsMatchFiniteDifferencesWithTheSockOnTheFoot) {
   // set is the same under their finite-difference probes (checked for three). Moving the top
   // end effector vertically (attachments.1 tangents.0.1) lifts nodes off the foot within the
   // probe: that derivative is not checked.
-  const Scene scene = test::loadAssetScene("sock", {{"time.steps", "10"},
-                                                    {"time.dt", "0.002"},
-                                                    {"cloths.0.material.density", "2.0"},
-                                                    {"cloths.0.mesh.transform.translate", "[0,0.038,0.08]"},
-                                                    {"task.loss.keypoints.points.0.step", "5"},
-                                                    {"task.loss.keypoints.points.1.step", "10"}});
+  const Scene scene =
+      test::loadAssetScene("sock", {{"time.steps", "10"},
+                                    {"time.dt", "0.002"},
+                                    {"cloths.0.material.density", "2.0"},
+                                    {"cloths.0.mesh.transform.translate", "[0,0.038,0.08]"},
+                                    {"task.loss.keypoints.points.0.step", "5"},
+                                    {"task.loss.keypoints.points.1.step", "10"}});
   int active = 0;
   test::contactSet(scene, &active);
   EXPECT_GT(active, 50);
@@ -137,8 +140,10 @@ TEST(SockTask, SplineGradientsMatchFiniteDifferencesWithTheSockOnTheFoot) {
   paths.insert(paths.end(), {a2 + "tangents.0.0", a2 + "tangents.1.2", a2 + "points.1.2"});
   GradientCheckOptions options;
   options.eps = 1e-3;
-  test::expectContactSetUnchanged(scene, {a0 + "tangents.0.1", a0 + "points.1.0", a2 + "tangents.1.2"}, options.eps);
-  const GradientCheckReport report = checkGradient(scene, ParameterSet::fromPaths(scene, paths), options);
+  test::expectContactSetUnchanged(
+      scene, {a0 + "tangents.0.1", a0 + "points.1.0", a2 + "tangents.1.2"}, options.eps);
+  const GradientCheckReport report =
+      checkGradient(scene, ParameterSet::fromPaths(scene, paths), options);
   ASSERT_EQ(report.entries.size(), paths.size());
   test::expectGradientAgreement(report, 1e-4, 1e-6);
 }

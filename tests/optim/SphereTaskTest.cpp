@@ -71,7 +71,7 @@ TEST(SphereTask, FrictionGradientMatchesFiniteDifferencesWhileTheClothSlides) {
   const Scene scene = test::loadAssetScene("sphere_sysid", {{"time.steps", "40"}});
   int active = 0;
   test::contactSet(scene, &active);
-  EXPECT_GT(active, 100);  // stick and slip contacts on the sphere
+  EXPECT_GT(active, 100);        // stick and slip contacts on the sphere
   GradientCheckOptions options;  // eps 1e-4, Newton to 1e-8 m/s^2, adjoint to 1e-8
   test::expectContactSetUnchanged(scene, {"obstacles.0.friction"}, options.eps);
   const GradientCheckReport report = checkGradient(scene, ParameterSet::fromTask(scene), options);
@@ -96,7 +96,8 @@ TEST(SphereTask, LbfgsbRecoversTheHiddenFrictionAtAReducedSize) {
   nlohmann::json hidden = doc;
   hidden["obstacles"][0]["friction"] = kHiddenFriction;
   hidden.erase("task");
-  doc["task"]["loss"]["trajectory"]["target"] = test::writeTargetTrajectory(hidden, dir.file("target.npy"));
+  doc["task"]["loss"]["trajectory"]["target"] =
+      test::writeTargetTrajectory(hidden, dir.file("target.npy"));
   const Scene scene = withTightForwardSolver(test::parse(doc, dir.file("sphere.json")), 1e-8);
 
   SimulationObjective objective(scene, ParameterSet::fromTask(scene));
@@ -106,10 +107,12 @@ TEST(SphereTask, LbfgsbRecoversTheHiddenFrictionAtAReducedSize) {
   settings.maxEvaluations = 10;
   LbfgsbOptimizer optimizer(settings);
   const ParameterSpace& space = objective.space();
-  const OptimizationResult r = optimizer.minimize(objective, space.toCoordinates(space.initialValues()),
-                                                  space.lowerCoordinates(), space.upperCoordinates());
+  const OptimizationResult r =
+      optimizer.minimize(objective, space.toCoordinates(space.initialValues()),
+                         space.lowerCoordinates(), space.upperCoordinates());
   const double mu = space.toValues(r.x)[0];
-  EXPECT_NEAR(mu, kHiddenFriction, 0.02 * kHiddenFriction) << r.stopReason << ", " << r.evaluations << " evaluations";
+  EXPECT_NEAR(mu, kHiddenFriction, 0.02 * kHiddenFriction)
+      << r.stopReason << ", " << r.evaluations << " evaluations";
   EXPECT_LT(r.loss, 1e-3 * optimizer.log().entries().front().loss);
 }
 

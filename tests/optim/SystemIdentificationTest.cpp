@@ -20,10 +20,11 @@ struct Recovery {
 };
 
 // Optimises the task of `document` (target written from `targetDocument`) over `parameters`.
-Recovery recover(const test::TempDir& dir, const nlohmann::json& document, const nlohmann::json& targetDocument,
-                 const std::vector<std::string>& parameters) {
+Recovery recover(const test::TempDir& dir, const nlohmann::json& document,
+                 const nlohmann::json& targetDocument, const std::vector<std::string>& parameters) {
   nlohmann::json doc = document;
-  test::addTask(doc, "trajectory", test::writeTargetTrajectory(targetDocument, dir.file("target.npy")), parameters);
+  test::addTask(doc, "trajectory",
+                test::writeTargetTrajectory(targetDocument, dir.file("target.npy")), parameters);
   // The same tight forward solver as the target's: the loss then has an exact zero at the
   // generating parameters, and the adjoint gradient is that of the computed loss.
   const Scene scene = withTightForwardSolver(test::parse(doc), 1e-8);
@@ -33,8 +34,8 @@ Recovery recover(const test::TempDir& dir, const nlohmann::json& document, const
   LbfgsbOptimizer optimizer(settings);
   const ParameterSpace& space = objective.space();
   Recovery r;
-  r.result = optimizer.minimize(objective, space.toCoordinates(space.initialValues()), space.lowerCoordinates(),
-                                space.upperCoordinates());
+  r.result = optimizer.minimize(objective, space.toCoordinates(space.initialValues()),
+                                space.lowerCoordinates(), space.upperCoordinates());
   r.values = space.toValues(r.result.x);
   EXPECT_EQ(r.result.steps, 2LL * scene.time.steps * r.result.evaluations);
   return r;
@@ -46,7 +47,8 @@ TEST(SystemIdentification, RecoversStretchStiffness) {
   nlohmann::json target = doc;
   target["cloths"][0]["material"]["stretch"] = 250.0;
   const Recovery r = recover(dir, doc, target, {"cloths.0.material.stretch"});
-  EXPECT_NEAR(r.values[0], 250.0, 2.5) << r.result.stopReason << ", " << r.result.evaluations << " evaluations";
+  EXPECT_NEAR(r.values[0], 250.0, 2.5)
+      << r.result.stopReason << ", " << r.result.evaluations << " evaluations";
   EXPECT_LT(r.result.loss, 1e-6);
 }
 
@@ -79,7 +81,8 @@ TEST(SystemIdentification, RecoversObstacleFrictionThroughTheContactAdjoint) {
   nlohmann::json target = doc;
   target["obstacles"][0]["friction"] = 0.25;
   const Recovery r = recover(dir, doc, target, {"obstacles.0.friction"});
-  EXPECT_NEAR(r.values[0], 0.25, 0.0025) << r.result.stopReason << ", " << r.result.evaluations << " evaluations";
+  EXPECT_NEAR(r.values[0], 0.25, 0.0025)
+      << r.result.stopReason << ", " << r.result.evaluations << " evaluations";
   EXPECT_LT(r.result.loss, 1e-8);
 }
 

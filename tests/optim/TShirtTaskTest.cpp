@@ -32,8 +32,12 @@ using Kind = SceneParameter::Kind;
 
 // What targets/tshirt.npy was recorded with (scripts/make-tshirt.py HIDDEN, app/CMakeLists.txt).
 const std::map<std::string, double> kHidden = {
-    {"cloths.0.material.stretch", 300.0}, {"wind.phase", 1.0},       {"wind.frequency", 1.5},
-    {"wind.direction.0", 0.4},            {"wind.direction.1", 0.6}, {"wind.direction.2", 0.5},
+    {"cloths.0.material.stretch", 300.0},
+    {"wind.phase", 1.0},
+    {"wind.frequency", 1.5},
+    {"wind.direction.0", 0.4},
+    {"wind.direction.1", 0.6},
+    {"wind.direction.2", 0.5},
 };
 // A start 8-15% off every hidden value, the reduced tests' (each sign of error present).
 const std::map<std::string, double> kPerturbed = {
@@ -57,7 +61,8 @@ Scene reducedTShirt(const test::TempDir& dir, int steps) {
   nlohmann::json doc = withValues(coarse, kPerturbed).document;
   nlohmann::json hidden = withValues(coarse, kHidden).document;
   hidden.erase("task");
-  doc["task"]["loss"]["trajectory"]["target"] = test::writeTargetTrajectory(hidden, dir.file("tshirt-target.npy"));
+  doc["task"]["loss"]["trajectory"]["target"] =
+      test::writeTargetTrajectory(hidden, dir.file("tshirt-target.npy"));
   return test::parse(doc, dir.file("tshirt.json"));
 }
 
@@ -98,7 +103,8 @@ void expectForceCarryingContactsUnchanged(const Scene& scene, double eps) {
       Eigen::VectorXd moved = values;
       moved[i] += sign * (values[i] != 0.0 ? eps * std::abs(values[i]) : eps);
       EXPECT_TRUE(carrying(parameters.withValues(scene, moved)) == base)
-          << parameters[i].path << (sign > 0 ? " + d" : " - d") << ": a stick or slip contact changes";
+          << parameters[i].path << (sign > 0 ? " + d" : " - d")
+          << ": a stick or slip contact changes";
     }
 }
 
@@ -107,7 +113,7 @@ TEST(TShirtTask, SceneIsThePapersTShirtWithSixParameters) {
   EXPECT_NEAR(scene.time.dt, 1.0 / 90.0, 1e-15);  // Fig. 7, Table 4: h = 1/90 s, 250 steps
   EXPECT_EQ(scene.time.steps, 250);
   ASSERT_EQ(scene.cloths.size(), 1u);
-  EXPECT_EQ(scene.vertexCount(), 1448);  // the paper's 1426 (4278 DoFs)
+  EXPECT_EQ(scene.vertexCount(), 1448);   // the paper's 1426 (4278 DoFs)
   EXPECT_TRUE(scene.hasSelfCollision());  // the front and back layers collide (Sec. 6.1)
   EXPECT_TRUE(scene.obstacles.empty());
   // The paper's sinusoidal wind, the same on every node per unit area (no falloff), with the
@@ -125,8 +131,9 @@ TEST(TShirtTask, SceneIsThePapersTShirtWithSixParameters) {
   ASSERT_EQ(parameters.size(), 6);
   std::multiset<Kind> kinds;
   for (const SceneParameter& p : parameters.parameters()) kinds.insert(p.kind);
-  EXPECT_EQ(kinds, (std::multiset<Kind>{Kind::Stretch, Kind::WindPhase, Kind::WindFrequency,
-                                         Kind::WindDirection, Kind::WindDirection, Kind::WindDirection}));
+  EXPECT_EQ(kinds,
+            (std::multiset<Kind>{Kind::Stretch, Kind::WindPhase, Kind::WindFrequency,
+                                 Kind::WindDirection, Kind::WindDirection, Kind::WindDirection}));
   test::expectHiddenValuesInsideBoxesAndAwayFromStart(scene, parameters, kHidden);
 }
 
@@ -140,7 +147,8 @@ TEST(TShirtTask, GarmentIsOneSewnSurfaceWithFourOpeningsAndFacingLayers) {
     // lying on each other (the seams are welded, not coincident vertices).
     std::map<std::pair<int, int>, int> directed;
     for (int t = 0; t < mesh.triangleCount(); ++t)
-      for (int k = 0; k < 3; ++k) ++directed[{mesh.triangles(t, k), mesh.triangles(t, (k + 1) % 3)}];
+      for (int k = 0; k < 3; ++k)
+        ++directed[{mesh.triangles(t, k), mesh.triangles(t, (k + 1) % 3)}];
     std::map<int, int> next;  // boundary edges, in their direction
     for (const auto& [edge, count] : directed) {
       ASSERT_EQ(count, 1) << edge.first << "-" << edge.second << " twice in one direction";
@@ -167,12 +175,14 @@ TEST(TShirtTask, GarmentIsOneSewnSurfaceWithFourOpeningsAndFacingLayers) {
       high.push_back(hi);
     }
     ASSERT_EQ(low.size(), 4u);
-    const Eigen::Vector3d meshLow = mesh.vertices.colwise().minCoeff(), meshHigh = mesh.vertices.colwise().maxCoeff();
+    const Eigen::Vector3d meshLow = mesh.vertices.colwise().minCoeff(),
+                          meshHigh = mesh.vertices.colwise().maxCoeff();
     int hem = 0, neck = 0, cuffs = 0;
     for (std::size_t k = 0; k < low.size(); ++k) {
       hem += high[k].y() - low[k].y() < 1e-9 && std::abs(low[k].y() - meshLow.y()) < 1e-9;
       neck += std::abs(high[k].y() - meshHigh.y()) < 1e-9;
-      cuffs += std::abs(low[k].x() - meshLow.x()) < 1e-9 || std::abs(high[k].x() - meshHigh.x()) < 1e-9;
+      cuffs +=
+          std::abs(low[k].x() - meshLow.x()) < 1e-9 || std::abs(high[k].x() - meshHigh.x()) < 1e-9;
     }
     EXPECT_EQ(hem, 1);
     EXPECT_EQ(neck, 1);
@@ -232,7 +242,8 @@ TEST(TShirtTask, WindPressesTheLayersTogether) {
   // sticking contact as the gusts swing the shirt. Without the wind the same shirt hangs with
   // its layers apart: the contacts are the wind's doing, as in the paper's T-shirt.
   const Scene windy = withValues(
-      test::loadAssetScene("tshirt", {{"cloths.0.mesh.file", "../meshes/tshirt-coarse.obj"}, {"time.steps", "36"}}),
+      test::loadAssetScene(
+          "tshirt", {{"cloths.0.mesh.file", "../meshes/tshirt-coarse.obj"}, {"time.steps", "36"}}),
       kHidden);
   EXPECT_GT(layerContacts(windy), 100);  // measured: 194 pair-steps
   nlohmann::json still = windy.document;

@@ -34,8 +34,9 @@ inline std::string assetScene(const std::string& name) {
 }
 
 // The asset scene `name` with `overrides` applied exactly as `weft ... --set PATH=VALUE` does.
-inline Scene loadAssetScene(const std::string& name,
-                            const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
+inline Scene loadAssetScene(
+    const std::string& name,
+    const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
   std::vector<SceneOverride> list;
   for (const auto& [path, value] : overrides) list.push_back({path, value});
   return loadScene(assetScene(name), list);
@@ -50,7 +51,8 @@ inline std::vector<ContactKey> contactSet(const Scene& scene, int* active = null
   int stickOrSlip = 0;
   for (std::size_t n = 0; n < pass.trajectory.contacts.size(); ++n)
     for (const ContactPoint& p : pass.trajectory.contacts[n].points) {
-      keys.emplace_back(static_cast<int>(n), p.node, p.obstacle, p.partner, static_cast<int>(p.branch));
+      keys.emplace_back(static_cast<int>(n), p.node, p.obstacle, p.partner,
+                        static_cast<int>(p.branch));
       if (p.branch == ContactBranch::Stick || p.branch == ContactBranch::Slip) ++stickOrSlip;
     }
   std::sort(keys.begin(), keys.end());
@@ -78,8 +80,9 @@ inline void expectContactSetUnchanged(const Scene& scene, const std::vector<std:
 
 // A system-identification task is well posed for its test: every parameter has a finite box
 // that holds the hidden value, and the scene's start is more than 15 % away from it.
-inline void expectHiddenValuesInsideBoxesAndAwayFromStart(const Scene& scene, const ParameterSet& parameters,
-                                                          const std::map<std::string, double>& hiddenByPath) {
+inline void expectHiddenValuesInsideBoxesAndAwayFromStart(
+    const Scene& scene, const ParameterSet& parameters,
+    const std::map<std::string, double>& hiddenByPath) {
   const SimulationObjective objective(scene, parameters);
   const Eigen::VectorXd start = parameters.values(scene);
   for (int i = 0; i < parameters.size(); ++i) {
@@ -96,7 +99,8 @@ inline void expectHiddenValuesInsideBoxesAndAwayFromStart(const Scene& scene, co
 // L-BFGS-B from the scene's start, at most `maxEvaluations` evaluations, recovers the hidden
 // values: the loss falls below `lossFraction` of its initial value and every parameter ends
 // within 2 % of its hidden value (or the fraction `tolerances` gives for its path).
-inline void expectLbfgsbRecoversHiddenValues(const Scene& scene, const std::map<std::string, double>& hiddenByPath,
+inline void expectLbfgsbRecoversHiddenValues(const Scene& scene,
+                                             const std::map<std::string, double>& hiddenByPath,
                                              int maxEvaluations, double lossFraction,
                                              const std::map<std::string, double>& tolerances = {}) {
   SimulationObjective objective(scene, ParameterSet::fromTask(scene));
@@ -104,10 +108,12 @@ inline void expectLbfgsbRecoversHiddenValues(const Scene& scene, const std::map<
   settings.maxEvaluations = maxEvaluations;
   LbfgsbOptimizer optimizer(settings);
   const ParameterSpace& space = objective.space();
-  const OptimizationResult r = optimizer.minimize(objective, space.toCoordinates(space.initialValues()),
-                                                  space.lowerCoordinates(), space.upperCoordinates());
+  const OptimizationResult r =
+      optimizer.minimize(objective, space.toCoordinates(space.initialValues()),
+                         space.lowerCoordinates(), space.upperCoordinates());
   const double initial = optimizer.log().entries().front().loss;
-  EXPECT_LT(r.loss, lossFraction * initial) << r.stopReason << ", " << r.evaluations << " evaluations";
+  EXPECT_LT(r.loss, lossFraction * initial)
+      << r.stopReason << ", " << r.evaluations << " evaluations";
   const Eigen::VectorXd values = space.toValues(r.x);
   for (int i = 0; i < values.size(); ++i) {
     const std::string& path = space.parameters()[i].path;

@@ -44,7 +44,8 @@ Eigen::SparseMatrix<double> gridMatrix(int n, bool block, double shift = 0.0, un
   return a;
 }
 
-double relativeResidual(const Eigen::SparseMatrix<double>& a, const Eigen::MatrixXd& x, const Eigen::MatrixXd& b) {
+double relativeResidual(const Eigen::SparseMatrix<double>& a, const Eigen::MatrixXd& x,
+                        const Eigen::MatrixXd& b) {
   return (a * x - b).norm() / b.norm();
 }
 
@@ -111,7 +112,8 @@ TEST(SparseCholesky, NodeGraphOrderingFindsAsLittleFillAsOrderingTheWholeMatrix)
   const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm(toCoordinateMajor);
   Eigen::SparseMatrix<double> a;
   a = nodeMajor.twistedBy(perm);
-  SparseCholesky whole(SparseCholesky::Use::Preconditioner), byNodes(SparseCholesky::Use::Preconditioner);
+  SparseCholesky whole(SparseCholesky::Use::Preconditioner),
+      byNodes(SparseCholesky::Use::Preconditioner);
   ASSERT_TRUE(whole.factorize(a));
   byNodes.orderByNodes(gridMatrix(n, false));
   ASSERT_TRUE(byNodes.factorize(a));
@@ -124,7 +126,8 @@ TEST(SparseCholesky, NodeGraphOrderingFindsAsLittleFillAsOrderingTheWholeMatrix)
 }
 
 TEST(SparseCholesky, RefactorisesNewValuesOnTheSamePattern) {
-  for (SparseCholesky::Use use : {SparseCholesky::Use::Solve, SparseCholesky::Use::Preconditioner}) {
+  for (SparseCholesky::Use use :
+       {SparseCholesky::Use::Solve, SparseCholesky::Use::Preconditioner}) {
     SparseCholesky cholesky(use);
     ASSERT_TRUE(cholesky.factorize(gridMatrix(12, true, 0.0, 1)));
     const Eigen::SparseMatrix<double> second = gridMatrix(12, true, 5.0, 2);
@@ -137,7 +140,8 @@ TEST(SparseCholesky, RefactorisesNewValuesOnTheSamePattern) {
 }
 
 TEST(SparseCholesky, RefusesAnIndefiniteMatrix) {
-  for (SparseCholesky::Use use : {SparseCholesky::Use::Solve, SparseCholesky::Use::Preconditioner}) {
+  for (SparseCholesky::Use use :
+       {SparseCholesky::Use::Solve, SparseCholesky::Use::Preconditioner}) {
     SparseCholesky cholesky(use);
     ASSERT_TRUE(cholesky.factorize(gridMatrix(8, true)));
     Eigen::SparseMatrix<double> indefinite = gridMatrix(8, true);

@@ -20,9 +20,11 @@ TEST(FrameBuilder, DescribesObstaclesMarkersAndHandleCurves) {
       {{"vertices", {20, 24}},
        {"kind", "handle"},
        {"trajectory",
-        {{"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.5}, {"offset", {0, 0.3, 0.2}}}}}}}});
-  doc["obstacles"] = {{{"sphere", {{"center", {0, 0.2, 0.4}}, {"radius", 0.1}}}, {"friction", 0.3}},
-                      {{"plane", {{"point", {0, -1, 0}}, {"normal", {0, 1, 0}}}}, {"friction", 0.3}}};
+        {{"keyframes",
+          {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.5}, {"offset", {0, 0.3, 0.2}}}}}}}});
+  doc["obstacles"] = {
+      {{"sphere", {{"center", {0, 0.2, 0.4}}, {"radius", 0.1}}}, {"friction", 0.3}},
+      {{"plane", {{"point", {0, -1, 0}}, {"normal", {0, 1, 0}}}}, {"friction", 0.3}}};
   const Scene scene = parse(doc);
   const ClothModel model = buildClothModel(scene);
   FrameBuilder builder(scene, model);
@@ -44,9 +46,11 @@ TEST(FrameBuilder, DescribesObstaclesMarkersAndHandleCurves) {
 
   // One curve: the handle centroid's path over the whole run, ending 0.3 up and 0.2 forward.
   ASSERT_EQ(frame.curves.size(), 1u);
-  const Vec3 centroid = 0.5 * (model.rest.vertices.row(20) + model.rest.vertices.row(24)).transpose();
+  const Vec3 centroid =
+      0.5 * (model.rest.vertices.row(20) + model.rest.vertices.row(24)).transpose();
   EXPECT_TRUE(frame.curves[0].points.front().isApprox(centroid.cast<float>(), 1e-5f));
-  EXPECT_TRUE(frame.curves[0].points.back().isApprox((centroid + Vec3(0, 0.3, 0.2)).cast<float>(), 1e-5f));
+  EXPECT_TRUE(
+      frame.curves[0].points.back().isApprox((centroid + Vec3(0, 0.3, 0.2)).cast<float>(), 1e-5f));
   EXPECT_GT(frame.curves[0].points.size(), 100u);
 }
 
@@ -66,7 +70,9 @@ TEST(FrameBuilder, MovingObstaclesAreDrawnWhereTheyAreAtEachState) {
   const render::Vec3f x = frame.obstacles[1].rotation.col(0);
   EXPECT_NEAR(x.x(), std::sqrt(0.5f), 1e-5f);
   EXPECT_NEAR(x.z(), -std::sqrt(0.5f), 1e-5f);
-  EXPECT_TRUE(builder.frame(model.rest.vertices, 0).obstacles[0].center.isApprox(render::Vec3f(0, 0, 0.5f)));
+  EXPECT_TRUE(builder.frame(model.rest.vertices, 0)
+                  .obstacles[0]
+                  .center.isApprox(render::Vec3f(0, 0, 0.5f)));
 }
 
 TEST(FrameBuilder, ShowsTaskTargetsAsGhostsOrPoints) {
@@ -78,7 +84,8 @@ TEST(FrameBuilder, ShowsTaskTargetsAsGhostsOrPoints) {
   std::vector<double> states;
   for (int s = 0; s < 3; ++s)
     for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) states.push_back(model.rest.vertices(i, c) + (c == 1 ? 0.1 * s : 0.0));
+      for (int c = 0; c < 3; ++c)
+        states.push_back(model.rest.vertices(i, c) + (c == 1 ? 0.1 * s : 0.0));
   writeNpy(dir.file("target.npy"), {3, std::size_t(n), 3}, states.data());
   doc["task"] = {{"loss",
                   {{"trajectory", {{"target", dir.file("target.npy")}}},

@@ -241,9 +241,11 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
                    "must be > 0");
   expectInputError([&] { test::parse(with("/solver/backward/preconditioner", "jacobi")); },
                    "solver.backward.preconditioner", "must be one of auto, p, hessian");
-  EXPECT_EQ(test::parse(with("/solver/backward/preconditioner", "hessian")).solver.backward.preconditioner, "hessian");
-  expectInputError([&] { test::parse(with("/solver/backward/history", -1)); }, "solver.backward.history",
-                   "must be an integer in [0, 64]");
+  EXPECT_EQ(test::parse(with("/solver/backward/preconditioner", "hessian"))
+                .solver.backward.preconditioner,
+            "hessian");
+  expectInputError([&] { test::parse(with("/solver/backward/history", -1)); },
+                   "solver.backward.history", "must be an integer in [0, 64]");
   EXPECT_EQ(test::parse(with("/solver/backward/history", 0)).solver.backward.history, 0);
   EXPECT_EQ(test::parse(good).solver.backward.history, 8);
   expectInputError(

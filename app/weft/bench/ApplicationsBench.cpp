@@ -1,10 +1,10 @@
 // `weft bench applications [--tasks a,b] [--seeds N] [--budget STEPS] [--quick] [--out DIR]
 //                          [--threads N] [--resume] [--paper-meshes [DIR]]`: DiffCloth's comparison
-// of gradient-based and gradient-free optimisation (Sec. 5.2 and Fig. 4, the Flying Napkin; Sec. 6, Tables 2-3;
-// Appendix C, Tables 5-6). Every task scene is optimised by L-BFGS-B (adjoint gradients),
-// CMA-ES and the (1+1)-ES (values alone) from the same random starting point per seed, each run
-// with the same budget of simulated steps (a forward step 1, a backward step 1 more, as the
-// paper counts them). Writes, staged, into DIR (default out/bench-applications):
+// of gradient-based and gradient-free optimisation (Sec. 5.2 and Fig. 4, the Flying Napkin; Sec. 6,
+// Tables 2-3; Appendix C, Tables 5-6). Every task scene is optimised by L-BFGS-B (adjoint
+// gradients), CMA-ES and the (1+1)-ES (values alone) from the same random starting point per seed,
+// each run with the same budget of simulated steps (a forward step 1, a backward step 1 more, as
+// the paper counts them). Writes, staged, into DIR (default out/bench-applications):
 //   applications.csv  task,method,seed,evaluation,steps,wall_s,loss: every evaluation of every run
 //   applications.md   the Table 2 analogue (final loss and loss at L-BFGS-B's convergence step
 //                     count, as % of the minimum initial loss), the Table 3 / Fig. 4 analogue
@@ -48,8 +48,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <limits>
+#include <map>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -212,7 +212,6 @@ long long convergenceSteps(const LossCurve& envelope, double initial) {
   return stepsToReach(envelope, final + kConvergedFraction * std::max(0.0, initial - final));
 }
 
-
 namespace fs = std::filesystem;
 
 std::string joinCsv(const std::vector<std::string>& fields) {
@@ -252,12 +251,15 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
     if (f.size() != kRunColumns.size())
       throw InputError(path, where, "expected " + std::to_string(kRunColumns.size()) + " fields");
     if (f[0] != task.name || f[1] != kMethods[method].name || f[2] != std::to_string(seed))
-      throw InputError(path, where, "a row of another run (" + f[0] + ", " + f[1] + ", seed " + f[2] + ")");
+      throw InputError(path, where,
+                       "a row of another run (" + f[0] + ", " + f[1] + ", seed " + f[2] + ")");
     char* end = nullptr;
     const long long steps = std::strtoll(f[4].c_str(), &end, 10);
-    if (f[4].empty() || *end) throw InputError(path, where, "steps is not an integer: '" + f[4] + "'");
+    if (f[4].empty() || *end)
+      throw InputError(path, where, "steps is not an integer: '" + f[4] + "'");
     const double wall = std::strtod(f[5].c_str(), &end);
-    if (f[5].empty() || *end) throw InputError(path, where, "wall_s is not a number: '" + f[5] + "'");
+    if (f[5].empty() || *end)
+      throw InputError(path, where, "wall_s is not a number: '" + f[5] + "'");
     const double loss = std::strtod(f[6].c_str(), &end);
     if (f[6].empty() || *end) throw InputError(path, where, "loss is not a number: '" + f[6] + "'");
     if (!run.curve.steps.empty() && steps < run.curve.steps.back())
@@ -274,14 +276,18 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
 nlohmann::json runSettings(const CommandLine& cl, long long budgetOption, bool quick,
                            const std::string& paperMeshes) {
   return {{"format", "weft bench applications runs 1"},
-          {"budget", cl.has("--budget") ? nlohmann::json(budgetOption) : nlohmann::json("task default")},
+          {"budget",
+           cl.has("--budget") ? nlohmann::json(budgetOption) : nlohmann::json("task default")},
           {"quick", quick},
-          {"paper_meshes", paperMeshes.empty() ? nlohmann::json(nullptr) : nlohmann::json(paperMeshes)}};
+          {"paper_meshes",
+           paperMeshes.empty() ? nlohmann::json(nullptr) : nlohmann::json(paperMeshes)}};
 }
 
 std::string describeSetting(const std::string& key, const nlohmann::json& v) {
   if (key == "budget")
-    return v.is_number() ? "--budget " + v.dump() : v.is_null() ? "no budget" : "each task's default budget";
+    return v.is_number() ? "--budget " + v.dump()
+           : v.is_null() ? "no budget"
+                         : "each task's default budget";
   if (key == "quick") return v == nlohmann::json(true) ? "--quick" : "no --quick";
   if (key == "paper_meshes")
     return v.is_string() ? "--paper-meshes " + v.get<std::string>() : "the tasks' own meshes";
@@ -321,8 +327,11 @@ int openRunStore(const std::string& store, const std::string& finished, bool res
     checkStoredSettings(finished + "/settings.json", settings);
     fs::create_directories(store, ec);
     for (const auto& entry : fs::directory_iterator(finished, ec))
-      if (entry.is_regular_file()) fs::copy_file(entry.path(), fs::path(store) / entry.path().filename(), ec);
-    if (ec) throw InputError(store, "--resume", "cannot copy the runs of " + finished + ": " + ec.message());
+      if (entry.is_regular_file())
+        fs::copy_file(entry.path(), fs::path(store) / entry.path().filename(), ec);
+    if (ec)
+      throw InputError(store, "--resume",
+                       "cannot copy the runs of " + finished + ": " + ec.message());
   }
   if (fs::exists(settingsFile, ec)) {
     checkStoredSettings(settingsFile, settings);
@@ -389,9 +398,9 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                               " simulated steps)");
     results.push_back(std::move(result));
   }
-  const int storedRuns = openRunStore(
-      store, finalDir + "/runs", resume,
-      runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir));
+  const int storedRuns =
+      openRunStore(store, finalDir + "/runs", resume,
+                   runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir));
   if (storedRuns > 0)
     std::fprintf(stderr, "applications: %d stored run(s) in %s\n", storedRuns, store.c_str());
 
@@ -399,15 +408,19 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   for (TaskResult& result : results) {
     const ApplicationTask* task = result.task;
     const std::string file = assetFile(task->scene);
-    const paper::PaperMesh* paperMesh = paperDir.empty() ? nullptr : paper::paperMeshFor(task->name);
+    const paper::PaperMesh* paperMesh =
+        paperDir.empty() ? nullptr : paper::paperMeshFor(task->name);
     // Loaded only when some run of the task is still to do.
     std::optional<Scene> scene;
     std::optional<ParameterSet> parameters;
     std::optional<SimulationObjective> probe;
     const auto prepare = [&]() {
       if (scene) return;
-      if (!result.paperScene) scene = loadScene(file, {});
-      else scene = parseScene(result.paperScene->document, file, fs::path(file).parent_path().string());
+      if (!result.paperScene)
+        scene = loadScene(file, {});
+      else
+        scene =
+            parseScene(result.paperScene->document, file, fs::path(file).parent_path().string());
       for (const std::string& w : scene->warnings)
         std::fprintf(stderr, "warning: %s: %s\n", task->name, w.c_str());
       parameters = ParameterSet::fromTask(*scene);
@@ -415,8 +428,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     };
     if (paperMesh) {
       std::fprintf(stderr, "applications: %s on %s...\n", task->name, paperMesh->file);
-      result.paperScene =
-          paper::makePaperScene(file, *paperMesh, paperDir, store + "/targets", /*reuseTarget=*/true);
+      result.paperScene = paper::makePaperScene(file, *paperMesh, paperDir, store + "/targets",
+                                                /*reuseTarget=*/true);
       result.garmentVertices = result.paperScene->vertices;
     }
     for (int seed = 1; seed <= seeds; ++seed) {
@@ -490,8 +503,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                     "CMA-ES steps to threshold", "(1+1)-ES steps to threshold", "CMA-ES speedup",
                     "(1+1)-ES speedup"});
   BenchTable passes({"task", "DoF", "time steps", "h [s]", "forward s", "backward s",
-                     "CPU s (both)", "iter. conv. %", "unconverged forward steps",
-                     "adjoint growth", "L-BFGS-B s per evaluation (runs)"});
+                     "CPU s (both)", "iter. conv. %", "unconverged forward steps", "adjoint growth",
+                     "L-BFGS-B s per evaluation (runs)"});
   BenchTable beside({"task", "source", "parameters", "seeds", "L-BFGS-B final %", "CMA-ES final %",
                      "CMA-ES equal-step %", "(1+1)-ES final %", "(1+1)-ES equal-step %",
                      "L-BFGS-B conv. steps", "CMA-ES conv. steps", "(1+1)-ES conv. steps",
@@ -556,7 +569,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     double lbfgsbSeconds = 0.0;
     std::size_t lbfgsbEvaluations = 0;
     for (const Run& run : r.runs)
-      if (run.method == 0) lbfgsbSeconds += run.seconds, lbfgsbEvaluations += run.curve.steps.size();
+      if (run.method == 0)
+        lbfgsbSeconds += run.seconds, lbfgsbEvaluations += run.curve.steps.size();
     passes.add({r.task->name, std::to_string(3 * r.garmentVertices), std::to_string(t.steps),
                 formatNumber(t.timeStep, 4),
                 t.measured ? formatNumber(t.forwardSeconds, 3) : "failed: " + t.failure,
@@ -581,9 +595,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       beside.add({p->title, "DiffCloth", std::to_string(p->parameters), std::to_string(p->seeds),
                   formatNumber(p->finalPercent[0], 4), formatNumber(p->finalPercent[1], 4),
                   formatNumber(p->equalStepPercent[0], 4), formatNumber(p->finalPercent[2], 4),
-                  formatNumber(p->equalStepPercent[1], 4),
-                  std::to_string(p->convergenceSteps[0]), std::to_string(p->convergenceSteps[1]),
-                  std::to_string(p->convergenceSteps[2]),
+                  formatNumber(p->equalStepPercent[1], 4), std::to_string(p->convergenceSteps[0]),
+                  std::to_string(p->convergenceSteps[1]), std::to_string(p->convergenceSteps[2]),
                   ratio(p->convergenceSteps[1], p->convergenceSteps[0]),
                   formatNumber(p->iterativeConvergedPercent, 4), formatNumber(p->forwardSeconds, 4),
                   formatNumber(p->backwardSeconds, 4)});
@@ -661,7 +674,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     if (!r.paperScene) {
       if (!paperDir.empty())
         meshNotes += "- " + std::string(r.task->name) + ": the task's own mesh (" +
-                     std::to_string(r.garmentVertices) + " vertices; no paper mesh for this task)\n";
+                     std::to_string(r.garmentVertices) +
+                     " vertices; no paper mesh for this task)\n";
       continue;
     }
     const paper::PaperScene& p = *r.paperScene;
@@ -706,7 +720,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         std::to_string(seeds) + " seed(s) per task (1.." + std::to_string(seeds) + "), " +
         formatNumber(benchSeconds, 4) + " s in this invocation (" + std::to_string(newRuns) +
         " run(s) made, " + std::to_string(resumedRuns) +
-        " read back from stored run files; a run's wall s is its own). Each seed draws one starting point (uniform within a quarter of each "
+        " read back from stored run files; a run's wall s is its own). Each seed draws one "
+        "starting point (uniform within a quarter of each "
         "parameter's box width "
         "around the scene's values; box widths capped at 2 optimiser units), shared by the three "
         "methods; "
@@ -723,7 +738,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     if (paperDir.empty()) {
       md << "Meshes: every task on its own mesh (assets/meshes, or a grid).\n\n";
     } else {
-      md << "## Meshes\n\nGarment tasks on the DiffCloth release's own garment meshes (`--paper-meshes "
+      md << "## Meshes\n\nGarment tasks on the DiffCloth release's own garment meshes "
+            "(`--paper-meshes "
          << paperDir
          << "`): each is rotated into the task's frame, scaled uniformly so that its largest "
             "bounding-box extent equals that of the task's own garment, and translated so that the "
@@ -753,12 +769,14 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     passes.writeMarkdown(
         md, "Seconds per pass (DiffCloth Table 4)",
         "One gradient evaluation at the scene's own parameter values, run by this invocation: "
-        "forward s and backward s are the wall seconds of its forward pass and of its backward pass "
+        "forward s and backward s are the wall seconds of its forward pass and of its backward "
+        "pass "
         "(adjoint and parameter gradient), CPU s the process CPU time of both; iter. conv. %: the "
         "share of its backward steps whose iterative solve converged without the direct fallback "
         "(Table 3). L-BFGS-B s per evaluation: the mean over the stored L-BFGS-B runs (forward and "
         "backward together, wall, under whatever load the runs met). DoF: 3 x the cloth's nodes. "
-        "Adjoint growth: max |z_n| over the first nonzero |z_n| of the backward pass; the iterative "
+        "Adjoint growth: max |z_n| over the first nonzero |z_n| of the backward pass; the "
+        "iterative "
         "solve's gradient error is of the order of tolerance x sqrt(growth) / 100 "
         "(diff/AdjointGrowth.h).");
     md << "\n";
@@ -786,8 +804,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   std::printf(
       "bench applications: %zu task(s) x %d methods x %d seed(s), %d run(s) made, %d resumed, "
       "%s meshes, %.1f s -> %s/applications.{csv,md}, loss_<task>.png, runs/\n",
-      results.size(), kMethodCount, seeds, newRuns, resumedRuns,
-      paperDir.empty() ? "own" : "paper", benchSeconds, outDir.c_str());
+      results.size(), kMethodCount, seeds, newRuns, resumedRuns, paperDir.empty() ? "own" : "paper",
+      benchSeconds, outDir.c_str());
   return 0;
 }
 

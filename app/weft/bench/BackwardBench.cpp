@@ -6,10 +6,10 @@
 // LU counted. Reports seconds (total, per step, linear solve vs rest), the fallback rate, the
 // speedup over direct and the gradient's relative error against the direct solve's gradient.
 
-#include "BenchAssets.h"
-#include "BenchTable.h"
 #include "../CommandLine.h"
 #include "../Commands.h"
+#include "BenchAssets.h"
+#include "BenchTable.h"
 
 #include <weft/core/ProcessCpuTime.h>
 #include <weft/diff/AdjointSystem.h>
@@ -62,14 +62,19 @@ std::vector<BackwardCase> backwardCases(const std::vector<std::string>& names) {
   auto grid = [](int n) { return "[" + std::to_string(n) + "," + std::to_string(n) + "]"; };
   // The hanging napkin (its two top corners held at every resolution); the target run blows
   // harder.
-  auto hangingNapkin = [grid](const std::string& title, const std::string& scene, const std::string& targetWind) {
-    return BackwardCase{title, assetFile(scene), 200,
+  auto hangingNapkin = [grid](const std::string& title, const std::string& scene,
+                              const std::string& targetWind) {
+    return BackwardCase{title,
+                        assetFile(scene),
+                        200,
                         [grid](int n) {
-                          return std::vector<SceneOverride>{{"cloths.0.mesh.grid.resolution", grid(n)},
-                                                            {"cloths.0.attachments.0.vertices", "[0," + std::to_string(n) + "]"}};
+                          return std::vector<SceneOverride>{
+                              {"cloths.0.mesh.grid.resolution", grid(n)},
+                              {"cloths.0.attachments.0.vertices", "[0," + std::to_string(n) + "]"}};
                         },
                         {"wind.strength", targetWind},
-                        {"wind.strength", "wind.direction.0", "cloths.0.material.stretch", "cloths.0.material.density"},
+                        {"wind.strength", "wind.direction.0", "cloths.0.material.stretch",
+                         "cloths.0.material.density"},
                         [](int) { return 1e-8; }};
   };
   std::vector<BackwardCase> cases;
@@ -79,13 +84,19 @@ std::vector<BackwardCase> backwardCases(const std::vector<std::string>& names) {
     else if (name == "wind_reference")
       // The same napkin with the DiffCloth authors' own parameters (a 6-unit cloth, stretch 100,
       // density 0.054): the scene their published backward timings come from.
-      cases.push_back(hangingNapkin("Wind (reference parameters)", "scenes/wind_reference.json", "0.13575"));
+      cases.push_back(
+          hangingNapkin("Wind (reference parameters)", "scenes/wind_reference.json", "0.13575"));
     else if (name == "slope")
-      cases.push_back({"Slope", assetFile("scenes/slope.json"), 300,
-                       [grid](int n) { return std::vector<SceneOverride>{{"cloths.0.mesh.grid.resolution", grid(n)}}; },
-                       {"obstacles.0.friction", "0.25"},
-                       {"obstacles.0.friction", "cloths.0.material.stretch", "cloths.0.material.density"},
-                       [](int n) { return n >= 48 ? 5e-7 : 1e-7; }});
+      cases.push_back(
+          {"Slope",
+           assetFile("scenes/slope.json"),
+           300,
+           [grid](int n) {
+             return std::vector<SceneOverride>{{"cloths.0.mesh.grid.resolution", grid(n)}};
+           },
+           {"obstacles.0.friction", "0.25"},
+           {"obstacles.0.friction", "cloths.0.material.stretch", "cloths.0.material.density"},
+           [](int n) { return n >= 48 ? 5e-7 : 1e-7; }});
   }
   return cases;
 }
@@ -102,13 +113,16 @@ double peakRssMegabytes() {
 // step of a forward run: one factorClampedHessian with its symbolic analysis, the median of five
 // more on the kept analysis, and the median of 30 GMRES iterations' work with P (a product with K
 // and a solve with P). Contact (Delta R) is left out: it adds to both sides alike.
-int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vector<int>& resolutions, int threads,
-                        StagedDirectory& out, const std::string& outDir) {
+int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vector<int>& resolutions,
+                        int threads, StagedDirectory& out, const std::string& outDir) {
   using Clock = std::chrono::steady_clock;
-  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  auto since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
   BenchTable table({"scene", "quads", "vertices", "first_factor_ms", "factor_ms", "iteration_ms",
-                    "measured_iterations", "flop_ratio", "estimated_iterations", "estimate_over_measured",
-                    "hessian_iteration_ms", "measured_hessian_iteration_cost", "estimated_hessian_iteration_cost"});
+                    "measured_iterations", "flop_ratio", "estimated_iterations",
+                    "estimate_over_measured", "hessian_iteration_ms",
+                    "measured_hessian_iteration_cost", "estimated_hessian_iteration_cost"});
   for (const BackwardCase& c : cases)
     for (int n : resolutions) {
       std::vector<SceneOverride> overrides = c.resolution(n);
@@ -121,7 +135,8 @@ int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vecto
       if (!system.hasDeltaP()) continue;
       auto start = Clock::now();
       if (!system.factorClampedHessian()) {
-        std::fprintf(stderr, "calibrate: %s %dx%d: the clamped Hessian did not factorise\n", c.name.c_str(), n, n);
+        std::fprintf(stderr, "calibrate: %s %dx%d: the clamped Hessian did not factorise\n",
+                     c.name.c_str(), n, n);
         continue;
       }
       const double first = since(start);
@@ -151,29 +166,37 @@ int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vecto
       }
       const double f = median(factor), it = median(iteration), hit = median(hessianIteration);
       const double measured = f / it, ratio = system.hessianFlopRatio();
-      table.add({c.name, std::to_string(n), std::to_string(m), formatNumber(1e3 * first), formatNumber(1e3 * f),
-                 formatNumber(1e3 * it, 3), formatNumber(measured, 3), formatNumber(ratio, 3),
-                 formatNumber(system.hessianFactorCost(), 3), formatNumber(system.hessianFactorCost() / measured, 3),
-                 formatNumber(1e3 * hit, 3), formatNumber(hit / it, 3), formatNumber(system.hessianIterationCost(), 3)});
+      table.add({c.name, std::to_string(n), std::to_string(m), formatNumber(1e3 * first),
+                 formatNumber(1e3 * f), formatNumber(1e3 * it, 3), formatNumber(measured, 3),
+                 formatNumber(ratio, 3), formatNumber(system.hessianFactorCost(), 3),
+                 formatNumber(system.hessianFactorCost() / measured, 3), formatNumber(1e3 * hit, 3),
+                 formatNumber(hit / it, 3), formatNumber(system.hessianIterationCost(), 3)});
     }
   const std::string preamble =
       "AdjointSystem::hessianFactorCost against timings, " + std::to_string(threads) +
       " thread(s). Machine: " + machineDescription() +
-      ". At the middle step of each scene's forward run: first_factor = the first factorClampedHessian "
-      "(assembly, symbolic analysis, numeric factorisation), factor = the median of five more (analysis kept), "
-      "iteration = the median of 30 products with K plus solves with P (one GMRES iteration's work with P). "
+      ". At the middle step of each scene's forward run: first_factor = the first "
+      "factorClampedHessian "
+      "(assembly, symbolic analysis, numeric factorisation), factor = the median of five more "
+      "(analysis kept), "
+      "iteration = the median of 30 products with K plus solves with P (one GMRES iteration's work "
+      "with P). "
       "measured_iterations = factor / iteration; flop_ratio = the factorisation's flops over an "
       "iteration's; estimated_iterations = hessianFactorCost() = kFactorCostScale (" +
       formatNumber(AdjointSystem::kFactorCostScale, 3) +
-      ") x sqrt(flop_ratio). hessian_iteration = the median of 30 products with K plus solves with the "
+      ") x sqrt(flop_ratio). hessian_iteration = the median of 30 products with K plus solves with "
+      "the "
       "clamped Hessian's factor (one iteration's work with H); measured_hessian_iteration_cost = "
-      "hessian_iteration / iteration, estimated_hessian_iteration_cost = hessianIterationCost() (operation "
+      "hessian_iteration / iteration, estimated_hessian_iteration_cost = hessianIterationCost() "
+      "(operation "
       "counts), what the automatic preconditioner charges a run of Hessian steps per iteration.";
   table.writeCsv(out.file("calibrate.csv"));
-  table.writeMarkdown(out.file("calibrate.md"), "Factorisation cost of the clamped Hessian (weft bench backward --calibrate)",
+  table.writeMarkdown(out.file("calibrate.md"),
+                      "Factorisation cost of the clamped Hessian (weft bench backward --calibrate)",
                       preamble);
   out.commit();
-  std::printf("bench backward --calibrate: %zu rows -> %s/calibrate.{csv,md}\n", table.rows().size(), outDir.c_str());
+  std::printf("bench backward --calibrate: %zu rows -> %s/calibrate.{csv,md}\n",
+              table.rows().size(), outDir.c_str());
   return 0;
 }
 
@@ -187,11 +210,13 @@ struct Method {
 
 int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
   const bool quick = cl.has("--quick");
-  const std::vector<BackwardCase> cases = backwardCases(benchNames(cl, "--scenes", "wind,slope", {"wind", "wind_reference", "slope"}));
+  const std::vector<BackwardCase> cases =
+      backwardCases(benchNames(cl, "--scenes", "wind,slope", {"wind", "wind_reference", "slope"}));
   const int threads = cl.integer("--threads", 1, 1, 1024);
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
-  const std::vector<int> resolutions = benchResolutions(cl, quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48});
+  const std::vector<int> resolutions =
+      benchResolutions(cl, quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48});
   if (cl.has("--calibrate")) return calibrateFactorCost(cases, resolutions, threads, out, outDir);
   const std::vector<Method> methods = {{"direct", "direct", 1e-4},
                                        {"fixed_point 1e-4", "fixed_point", 1e-4},
@@ -202,38 +227,65 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
                                        {"gmres+hessian 1e-6", "gmres", 1e-6, "hessian"},
                                        {"gmres+auto 1e-4", "gmres", 1e-4, "auto"},
                                        {"gmres+auto 1e-6", "gmres", 1e-6, "auto"}};
-  BenchTable table({"scene", "quads", "vertices", "steps", "method", "tolerance", "backward_s", "ms_per_step",
-                    "solve_ms_per_step", "rest_ms_per_step", "iterations_per_step", "max_iterations",
-                    "not_converged", "fallbacks", "fail_percent", "speedup_vs_direct", "gradient_rel_error",
-                    "forward_ms_per_step", "forward_unconverged", "peak_rss_mb", "delta_p_ms_per_step",
-                    "delta_r_ms_per_step", "fallback_ms_per_step", "cpu_ms_per_step", "cpu_speedup_vs_direct",
-                    "adjoint_growth", "hessian_iterations_per_step", "hessian_factorizations"});
+  BenchTable table({"scene",
+                    "quads",
+                    "vertices",
+                    "steps",
+                    "method",
+                    "tolerance",
+                    "backward_s",
+                    "ms_per_step",
+                    "solve_ms_per_step",
+                    "rest_ms_per_step",
+                    "iterations_per_step",
+                    "max_iterations",
+                    "not_converged",
+                    "fallbacks",
+                    "fail_percent",
+                    "speedup_vs_direct",
+                    "gradient_rel_error",
+                    "forward_ms_per_step",
+                    "forward_unconverged",
+                    "peak_rss_mb",
+                    "delta_p_ms_per_step",
+                    "delta_r_ms_per_step",
+                    "fallback_ms_per_step",
+                    "cpu_ms_per_step",
+                    "cpu_speedup_vs_direct",
+                    "adjoint_growth",
+                    "hessian_iterations_per_step",
+                    "hessian_factorizations"});
   std::vector<PlotSeries> plot;
 
-  const std::filesystem::path scratch =
-      std::filesystem::temp_directory_path() / ("weft-bench-backward-" + std::to_string(::getpid()));
+  const std::filesystem::path scratch = std::filesystem::temp_directory_path() /
+                                        ("weft-bench-backward-" + std::to_string(::getpid()));
   std::filesystem::create_directories(scratch);
 
   for (const BackwardCase& c : cases) {
     const std::size_t firstSeries = plot.size();
-    for (const Method& method : methods) plot.push_back(PlotSeries{c.name + " " + method.label, {}, {}});
+    for (const Method& method : methods)
+      plot.push_back(PlotSeries{c.name + " " + method.label, {}, {}});
     const int steps = quick ? 30 : c.steps;
     for (int n : resolutions) {
       std::vector<SceneOverride> base = c.resolution(n);
       base.push_back({"time.steps", std::to_string(steps)});
 
-      // Target: the same scene with one parameter changed; the loss is the trajectory distance to it.
+      // Target: the same scene with one parameter changed; the loss is the trajectory distance to
+      // it.
       std::fprintf(stderr, "backward: %s %dx%d target run...\n", c.name.c_str(), n, n);
       std::vector<SceneOverride> perturbed = base;
       perturbed.push_back(c.targetChange);
       // The target is data only (the loss's reference), so it is simulated with the scene's own
       // solver settings: at 48^2 the tight solve would take minutes and change nothing measured.
       const ForwardPass target = runForwardPass(loadScene(c.file, perturbed));
-      const std::string targetPath = (scratch / (c.name + "_target_" + std::to_string(n) + ".npy")).string();
+      const std::string targetPath =
+          (scratch / (c.name + "_target_" + std::to_string(n) + ".npy")).string();
       const int vertices = target.trajectory.nodeCount();
       {
         const std::vector<double> data = target.trajectory.flattenedPositions();
-        writeNpy(targetPath, {target.trajectory.positions.size(), static_cast<std::size_t>(vertices), 3}, data.data());
+        writeNpy(targetPath,
+                 {target.trajectory.positions.size(), static_cast<std::size_t>(vertices), 3},
+                 data.data());
       }
 
       // A step whose residual cannot reach the tolerance (at the floor) stops after 1000 solves,
@@ -250,9 +302,11 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
       std::fprintf(stderr, "backward: %s %dx%d forward run...\n", c.name.c_str(), n, n);
       const auto fwdStart = std::chrono::steady_clock::now();
       const ForwardPass forward = runForwardPass(scene);
-      const double forwardSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - fwdStart).count();
+      const double forwardSeconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - fwdStart).count();
       if (forward.unconvergedSteps > 0)
-        std::fprintf(stderr, "warning: %d forward steps did not reach %g\n", forward.unconvergedSteps, forwardTolerance);
+        std::fprintf(stderr, "warning: %d forward steps did not reach %g\n",
+                     forward.unconvergedSteps, forwardTolerance);
 
       Eigen::VectorXd directGradient;
       double directSeconds = 0.0, directCpuSeconds = 0.0;
@@ -266,30 +320,51 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
         settings.fallback = "direct";
         const auto start = std::chrono::steady_clock::now();
         const double cpuStart = processCpuSeconds();
-        const GradientResult g = backpropagate(scene, forward.trajectory, loss, parameters, settings);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const GradientResult g =
+            backpropagate(scene, forward.trajectory, loss, parameters, settings);
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double cpuSeconds = processCpuSeconds() - cpuStart;
-        if (m == 0) directGradient = g.gradient, directSeconds = seconds, directCpuSeconds = cpuSeconds;
-        const double relError = (g.gradient - directGradient).norm() / std::max(directGradient.norm(), 1e-300);
+        if (m == 0)
+          directGradient = g.gradient, directSeconds = seconds, directCpuSeconds = cpuSeconds;
+        const double relError =
+            (g.gradient - directGradient).norm() / std::max(directGradient.norm(), 1e-300);
         const AdjointSolverStats& s = g.solver;
         const double perStep = 1e3 * seconds / steps;
         const double solvePerStep = 1e3 * s.seconds / steps;
         const bool iterative = method.method != "direct";
-        const std::string methodName = method.preconditioner == "p" ? method.method : method.method + "+" + method.preconditioner;
-        table.add({c.name, std::to_string(n), std::to_string(vertices), std::to_string(steps), methodName,
-                   iterative ? formatNumber(method.tolerance, 1) : "-", formatNumber(seconds), formatNumber(perStep),
-                   formatNumber(solvePerStep), formatNumber(perStep - solvePerStep),
-                   iterative ? formatNumber(double(s.iterations) / std::max(1, s.solves)) : "-",
-                   std::to_string(s.maxIterations), std::to_string(s.notConverged), std::to_string(s.fallbacks),
-                   formatNumber(100.0 * s.fallbacks / std::max(1, s.solves), 3),
-                   formatNumber(directSeconds / seconds, 3), formatNumber(relError, 3),
-                   formatNumber(1e3 * forwardSeconds / steps), std::to_string(forward.unconvergedSteps),
-                   formatNumber(peakRssMegabytes()), formatNumber(1e3 * g.deltaPSeconds / steps),
-                   formatNumber(1e3 * g.deltaRSeconds / steps), formatNumber(1e3 * s.fallbackSeconds / steps),
-                   formatNumber(1e3 * cpuSeconds / steps), formatNumber(directCpuSeconds / cpuSeconds, 3),
-                   formatNumber(s.adjointGrowth, 3),
-                   iterative ? formatNumber(double(s.hessianIterations) / std::max(1, s.solves)) : "-",
-                   std::to_string(s.hessianFactorizations)});
+        const std::string methodName = method.preconditioner == "p"
+                                           ? method.method
+                                           : method.method + "+" + method.preconditioner;
+        table.add(
+            {c.name,
+             std::to_string(n),
+             std::to_string(vertices),
+             std::to_string(steps),
+             methodName,
+             iterative ? formatNumber(method.tolerance, 1) : "-",
+             formatNumber(seconds),
+             formatNumber(perStep),
+             formatNumber(solvePerStep),
+             formatNumber(perStep - solvePerStep),
+             iterative ? formatNumber(double(s.iterations) / std::max(1, s.solves)) : "-",
+             std::to_string(s.maxIterations),
+             std::to_string(s.notConverged),
+             std::to_string(s.fallbacks),
+             formatNumber(100.0 * s.fallbacks / std::max(1, s.solves), 3),
+             formatNumber(directSeconds / seconds, 3),
+             formatNumber(relError, 3),
+             formatNumber(1e3 * forwardSeconds / steps),
+             std::to_string(forward.unconvergedSteps),
+             formatNumber(peakRssMegabytes()),
+             formatNumber(1e3 * g.deltaPSeconds / steps),
+             formatNumber(1e3 * g.deltaRSeconds / steps),
+             formatNumber(1e3 * s.fallbackSeconds / steps),
+             formatNumber(1e3 * cpuSeconds / steps),
+             formatNumber(directCpuSeconds / cpuSeconds, 3),
+             formatNumber(s.adjointGrowth, 3),
+             iterative ? formatNumber(double(s.hessianIterations) / std::max(1, s.solves)) : "-",
+             std::to_string(s.hessianFactorizations)});
         plot[firstSeries + m].x.push_back(n);
         plot[firstSeries + m].y.push_back(perStep);
       }
@@ -300,43 +375,66 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
 
   const std::string machine = machineDescription();
   std::string names;
-  for (const BackwardCase& c : cases) names += (names.empty() ? "" : ", ") + c.name + " (" + c.file + ")";
+  for (const BackwardCase& c : cases)
+    names += (names.empty() ? "" : ", ") + c.name + " (" + c.file + ")";
   const std::string preamble =
-      "DiffCloth Table 1: " + names + ", " + std::to_string(threads) + " thread(s) (omp_get_max_threads = " +
-      std::to_string(omp_get_max_threads()) + "). Machine: " + machine +
-      ". Wind: the hanging napkin in wind, h = 1/90 s, no contact; loss = trajectory distance to the same scene "
-      "at wind.strength 1.5; parameters wind.strength, wind.direction.0, stretch, density. Wind (reference "
-      "parameters): the same with the DiffCloth authors' public scene parameters (6-unit cloth, stretch 100, "
+      "DiffCloth Table 1: " + names + ", " + std::to_string(threads) +
+      " thread(s) (omp_get_max_threads = " + std::to_string(omp_get_max_threads()) +
+      "). Machine: " + machine +
+      ". Wind: the hanging napkin in wind, h = 1/90 s, no contact; loss = trajectory distance to "
+      "the same scene "
+      "at wind.strength 1.5; parameters wind.strength, wind.direction.0, stretch, density. Wind "
+      "(reference "
+      "parameters): the same with the DiffCloth authors' public scene parameters (6-unit cloth, "
+      "stretch 100, "
       "density 0.054, constant wind), target at 1.5 times its wind strength. Slope: the ribbon on "
-      "the 20 degree plane, h = 1/100 s, every node in contact (slip), self-collision on; loss = trajectory "
-      "distance to the same scene at friction 0.25; parameters obstacles.0.friction, stretch, density. One "
-      "forward run per scene and resolution (Wind: Newton-PCG to 1e-8 m/s^2; Slope: the scene's Newton contact "
-      "solve to 1e-7, 5e-7 from 48^2 on, above the round-off floor of the sliding ribbon's residual; at most "
-      "1000 solves per step) is recorded once; forward_unconverged counts its steps that stopped at that cap. solve = "
-      "time in the per-step adjoint linear solve (AdjointSolver, including any fallback), rest = the other "
-      "backward work (Delta P, the contact Jacobians, parameter partials). Split of those: delta_p = preparing "
-      "Delta P (the projections' derivatives at x_{n+1}; its products are inside the solve, which is "
-      "matrix-free), delta_r = preparing the contact part Delta R (law Jacobians, frames, coupling LU), both "
-      "part of rest; fallback = the direct LU after a failed iterative solve, part of solve. All these are "
-      "wall-clock; cpu_ms_per_step is the process's CPU time for the same backward pass (one thread: the "
-      "time it actually computed, without waiting for a shared core) and cpu_speedup_vs_direct its ratio "
-      "to the direct row's. The target run (data only) uses the scene's own solver settings. fail % = steps where the iterative "
+      "the 20 degree plane, h = 1/100 s, every node in contact (slip), self-collision on; loss = "
+      "trajectory "
+      "distance to the same scene at friction 0.25; parameters obstacles.0.friction, stretch, "
+      "density. One "
+      "forward run per scene and resolution (Wind: Newton-PCG to 1e-8 m/s^2; Slope: the scene's "
+      "Newton contact "
+      "solve to 1e-7, 5e-7 from 48^2 on, above the round-off floor of the sliding ribbon's "
+      "residual; at most "
+      "1000 solves per step) is recorded once; forward_unconverged counts its steps that stopped "
+      "at that cap. solve = "
+      "time in the per-step adjoint linear solve (AdjointSolver, including any fallback), rest = "
+      "the other "
+      "backward work (Delta P, the contact Jacobians, parameter partials). Split of those: delta_p "
+      "= preparing "
+      "Delta P (the projections' derivatives at x_{n+1}; its products are inside the solve, which "
+      "is "
+      "matrix-free), delta_r = preparing the contact part Delta R (law Jacobians, frames, coupling "
+      "LU), both "
+      "part of rest; fallback = the direct LU after a failed iterative solve, part of solve. All "
+      "these are "
+      "wall-clock; cpu_ms_per_step is the process's CPU time for the same backward pass (one "
+      "thread: the "
+      "time it actually computed, without waiting for a shared core) and cpu_speedup_vs_direct its "
+      "ratio "
+      "to the direct row's. The target run (data only) uses the scene's own solver settings. fail "
+      "% = steps where the iterative "
       "method did not converge within its cap (200 iterations) and fell back to the direct LU. "
-      "gradient_rel_error = |g - g_direct| / |g_direct|. peak_rss_mb = the process's peak resident set "
-      "(getrusage maxrss) after that row: cumulative over all rows so far. adjoint_growth = max |z_n| over "
-      "the first nonzero |z_n| of the pass (diff/AdjointGrowth.h): an iterative solve's gradient error "
+      "gradient_rel_error = |g - g_direct| / |g_direct|. peak_rss_mb = the process's peak resident "
+      "set "
+      "(getrusage maxrss) after that row: cumulative over all rows so far. adjoint_growth = max "
+      "|z_n| over "
+      "the first nonzero |z_n| of the pass (diff/AdjointGrowth.h): an iterative solve's gradient "
+      "error "
       "is of the order of tolerance x sqrt(adjoint_growth) / 100. hessian_iterations_per_step = of "
-      "iterations_per_step, those preconditioned by the clamped Hessian; hessian_factorizations = its "
+      "iterations_per_step, those preconditioned by the clamped Hessian; hessian_factorizations = "
+      "its "
       "factorisations over the pass (gmres+hessian: one per step; gmres+auto: where it chose to).";
   table.writeCsv(out.file("backward.csv"));
-  table.writeMarkdown(out.file("backward.md"), "Backward pass: adjoint solvers (weft bench backward)", preamble);
+  table.writeMarkdown(out.file("backward.md"),
+                      "Backward pass: adjoint solvers (weft bench backward)", preamble);
   std::string reason;
-  if (!plotSeries(out.file("backward.png"), "Backward (Table 1): time per step vs resolution", "quads per side",
-                  "backward ms per step", plot, true, true, reason))
+  if (!plotSeries(out.file("backward.png"), "Backward (Table 1): time per step vs resolution",
+                  "quads per side", "backward ms per step", plot, true, true, reason))
     std::fprintf(stderr, "warning: %s\n", reason.c_str());
   out.commit();
-  std::printf("bench backward: %zu rows over %zu resolutions -> %s/backward.{csv,md,png}\n", table.rows().size(),
-              resolutions.size(), outDir.c_str());
+  std::printf("bench backward: %zu rows over %zu resolutions -> %s/backward.{csv,md,png}\n",
+              table.rows().size(), resolutions.size(), outDir.c_str());
   return 0;
 }
 

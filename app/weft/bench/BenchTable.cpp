@@ -34,7 +34,8 @@ void BenchTable::writeMarkdown(const std::string& path, const std::string& title
   if (!out) throw InputError(path, "output", "write failed");
 }
 
-void BenchTable::writeMarkdown(std::ostream& out, const std::string& title, const std::string& preamble) const {
+void BenchTable::writeMarkdown(std::ostream& out, const std::string& title,
+                               const std::string& preamble) const {
   out << "## " << title << "\n\n" << preamble << "\n\n|";
   for (const auto& c : columns_) out << " " << c << " |";
   out << "\n|";
@@ -48,8 +49,8 @@ void BenchTable::writeMarkdown(std::ostream& out, const std::string& title, cons
 }
 
 bool plotSeries(const std::string& png, const std::string& title, const std::string& xLabel,
-                const std::string& yLabel, const std::vector<PlotSeries>& series, bool logX, bool logY,
-                std::string& reason) {
+                const std::string& yLabel, const std::vector<PlotSeries>& series, bool logX,
+                bool logY, std::string& reason) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
     reason = "gnuplot is not installed (apt-get install gnuplot-nox); no plot written";
     return false;
@@ -66,7 +67,8 @@ bool plotSeries(const std::string& png, const std::string& title, const std::str
     if (logY) gp << "set logscale y\nset format y '%.0e'\n";
     gp << "plot ";
     for (std::size_t s = 0; s < series.size(); ++s)
-      gp << (s ? ", " : "") << "'-' using 1:2 with " << series[s].style << " title '" << series[s].title << "'";
+      gp << (s ? ", " : "") << "'-' using 1:2 with " << series[s].style << " title '"
+         << series[s].title << "'";
     gp << "\n";
     for (const auto& s : series) {
       for (std::size_t i = 0; i < s.x.size(); ++i)
@@ -100,11 +102,13 @@ std::string machineDescription() {
       break;
     }
   std::ostringstream s;
-  s << u.sysname << " " << u.machine << ", " << std::thread::hardware_concurrency() << " cores, " << cpu;
+  s << u.sysname << " " << u.machine << ", " << std::thread::hardware_concurrency() << " cores, "
+    << cpu;
   return s.str();
 }
 
-std::vector<std::string> benchNames(const CommandLine& cl, const std::string& option, const std::string& fallback,
+std::vector<std::string> benchNames(const CommandLine& cl, const std::string& option,
+                                    const std::string& fallback,
                                     const std::vector<std::string>& known) {
   const std::string text = cl.value(option, fallback);
   std::vector<std::string> out;
@@ -133,7 +137,9 @@ std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallba
     char* end = nullptr;
     const long n = std::strtol(item.c_str(), &end, 10);
     if (item.empty() || *end != '\0' || n < 1 || n > 1024)
-      cl.fail("--resolutions", "expects quads per side as a comma-separated list, e.g. 12,24,48; got '" + text + "'");
+      cl.fail(
+          "--resolutions",
+          "expects quads per side as a comma-separated list, e.g. 12,24,48; got '" + text + "'");
     out.push_back(static_cast<int>(n));
     begin = comma + 1;
   }

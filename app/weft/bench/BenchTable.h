@@ -16,9 +16,11 @@ class BenchTable {
   void add(std::vector<std::string> row) { rows_.push_back(std::move(row)); }
   const std::vector<std::vector<std::string>>& rows() const { return rows_; }
   void writeCsv(const std::string& path) const;
-  void writeMarkdown(const std::string& path, const std::string& title, const std::string& preamble) const;
+  void writeMarkdown(const std::string& path, const std::string& title,
+                     const std::string& preamble) const;
   // The same section into a stream, for a Markdown file holding several tables.
-  void writeMarkdown(std::ostream& out, const std::string& title, const std::string& preamble) const;
+  void writeMarkdown(std::ostream& out, const std::string& title,
+                     const std::string& preamble) const;
 
  private:
   std::vector<std::string> columns_;
@@ -40,8 +42,8 @@ struct PlotSeries {
 // Writes `png` with gnuplot (log-log when asked). Returns false, with a reason, when gnuplot is
 // missing or fails; the CSV and Markdown are still written by the caller.
 bool plotSeries(const std::string& png, const std::string& title, const std::string& xLabel,
-                const std::string& yLabel, const std::vector<PlotSeries>& series, bool logX, bool logY,
-                std::string& reason);
+                const std::string& yLabel, const std::vector<PlotSeries>& series, bool logX,
+                bool logY, std::string& reason);
 
 std::string formatNumber(double v, int precision = 4);
 // "Linux x86_64, 2 cores, <cpu model>" for the record of where a benchmark ran.
@@ -52,7 +54,8 @@ std::string machineDescription();
 std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallback);
 // A comma-separated list of names given to `option` (or `fallback`), each one of `known`; an
 // unknown name is an InputError naming the option.
-std::vector<std::string> benchNames(const CommandLine& cl, const std::string& option, const std::string& fallback,
+std::vector<std::string> benchNames(const CommandLine& cl, const std::string& option,
+                                    const std::string& fallback,
                                     const std::vector<std::string>& known);
 
 }  // namespace weft::cli

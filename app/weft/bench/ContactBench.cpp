@@ -75,7 +75,8 @@ struct RunResult {
 
 RunResult runScene(const std::string& file, int quads, int steps, const std::string& contact) {
   const std::string res = "[" + std::to_string(quads) + "," + std::to_string(quads) + "]";
-  std::vector<SceneOverride> overrides = {{"cloths.0.mesh.grid.resolution", res}, {"time.steps", std::to_string(steps)}};
+  std::vector<SceneOverride> overrides = {{"cloths.0.mesh.grid.resolution", res},
+                                          {"time.steps", std::to_string(steps)}};
   if (contact != "scene") overrides.push_back({"solver.contact", "\"" + contact + "\""});
   Scene scene = loadScene(file, overrides);
   RunResult r;
@@ -90,7 +91,8 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
     for (int s = 0; s < steps; ++s) {
       const auto stepStart = std::chrono::steady_clock::now();
       const StepStats& st = sim.step();
-      stepSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - stepStart).count());
+      stepSeconds.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - stepStart).count());
       const int c = st.takeoff + st.stick + st.slip;
       contacts += c;
       r.maxContacts = std::max(r.maxContacts, c);
@@ -156,13 +158,15 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
   struct Case {
     const char* name;
     std::string file;
-    int steps;  // long enough for the cloth to reach its contact-rich phase; Slope: the scene's own 300
+    int steps;  // long enough for the cloth to reach its contact-rich phase; Slope: the scene's own
+                // 300
   };
   const std::vector<Case> allCases = {{"sphere", assetFile("scenes/sphere.json"), 150},
                                       {"slope", assetFile("scenes/slope.json"), 300},
                                       {"crumple", assetFile("scenes/crumple.json"), 150}};
   std::vector<Case> cases;
-  for (const std::string& name : benchNames(cl, "--scenes", "sphere,slope,crumple", {"sphere", "slope", "crumple"}))
+  for (const std::string& name :
+       benchNames(cl, "--scenes", "sphere,slope,crumple", {"sphere", "slope", "crumple"}))
     for (const Case& c : allCases)
       if (name == c.name) cases.push_back(c);
   const std::vector<int> resolutions =
@@ -189,50 +193,51 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
     PlotSeries self{std::string(c.name) + " self-collision ms", {}, {}};
     std::vector<double> allContacts, allSolve;
     for (int q : resolutions)
-    for (const std::string& contact : contactMethods) {
-      const int steps = quick ? quickSteps : c.steps;
-      std::fprintf(stderr, "contact: %s %dx%d (%s), %d steps\n", c.name, q, q, contact.c_str(), steps);
-      resetPeakMemory();
-      const RunResult r = runScene(c.file, q, steps, contact);
-      const double peak = peakResets ? peakMemoryMb() : 0.0;
-      const double contactMs = 1e3 * (r.detection + r.selfCollision + r.contactSolve);
-      // Positions and velocities of every state (2 x 3 doubles per vertex per state); the
-      // recorded contacts come on top.
-      const double trajectoryMb = 48.0 * r.vertices * (steps + 1) / (1024.0 * 1024.0);
-      table.add({c.name,
-                 contact,
-                 std::to_string(q),
-                 std::to_string(r.vertices),
-                 std::to_string(r.steps),
-                 formatNumber(1e3 * r.secondsPerStep),
-                 formatNumber(1e3 * r.medianStepSeconds),
-                 formatNumber(1e3 * r.pd),
-                 formatNumber(1e3 * r.detection),
-                 formatNumber(1e3 * r.selfCollision),
-                 formatNumber(1e3 * r.contactSolve),
-                 formatNumber(r.meanContacts),
-                 std::to_string(r.maxContacts),
-                 std::to_string(r.endTakeoff),
-                 std::to_string(r.endStick),
-                 std::to_string(r.endSlip),
-                 formatNumber(r.meanContacts > 0 ? 1e6 * r.contactSolve / r.meanContacts : 0.0),
-                 formatNumber(1e9 * r.solvePerContactSweep),
-                 formatNumber(r.pdIterations),
-                 std::to_string(r.convergedSteps),
-                 peakResets ? formatNumber(peak) : "n/a",
-                 formatNumber(trajectoryMb),
-                 std::to_string(r.failedStep)});
-      if (r.meanContacts > 0) {
-        cost.x.push_back(r.meanContacts);
-        cost.y.push_back(std::max(contactMs, 1e-6));
+      for (const std::string& contact : contactMethods) {
+        const int steps = quick ? quickSteps : c.steps;
+        std::fprintf(stderr, "contact: %s %dx%d (%s), %d steps\n", c.name, q, q, contact.c_str(),
+                     steps);
+        resetPeakMemory();
+        const RunResult r = runScene(c.file, q, steps, contact);
+        const double peak = peakResets ? peakMemoryMb() : 0.0;
+        const double contactMs = 1e3 * (r.detection + r.selfCollision + r.contactSolve);
+        // Positions and velocities of every state (2 x 3 doubles per vertex per state); the
+        // recorded contacts come on top.
+        const double trajectoryMb = 48.0 * r.vertices * (steps + 1) / (1024.0 * 1024.0);
+        table.add({c.name,
+                   contact,
+                   std::to_string(q),
+                   std::to_string(r.vertices),
+                   std::to_string(r.steps),
+                   formatNumber(1e3 * r.secondsPerStep),
+                   formatNumber(1e3 * r.medianStepSeconds),
+                   formatNumber(1e3 * r.pd),
+                   formatNumber(1e3 * r.detection),
+                   formatNumber(1e3 * r.selfCollision),
+                   formatNumber(1e3 * r.contactSolve),
+                   formatNumber(r.meanContacts),
+                   std::to_string(r.maxContacts),
+                   std::to_string(r.endTakeoff),
+                   std::to_string(r.endStick),
+                   std::to_string(r.endSlip),
+                   formatNumber(r.meanContacts > 0 ? 1e6 * r.contactSolve / r.meanContacts : 0.0),
+                   formatNumber(1e9 * r.solvePerContactSweep),
+                   formatNumber(r.pdIterations),
+                   std::to_string(r.convergedSteps),
+                   peakResets ? formatNumber(peak) : "n/a",
+                   formatNumber(trajectoryMb),
+                   std::to_string(r.failedStep)});
+        if (r.meanContacts > 0) {
+          cost.x.push_back(r.meanContacts);
+          cost.y.push_back(std::max(contactMs, 1e-6));
+        }
+        if (r.selfCollision > 0) {
+          self.x.push_back(r.vertices);
+          self.y.push_back(1e3 * r.selfCollision);
+        }
+        allContacts.insert(allContacts.end(), r.stepContacts.begin(), r.stepContacts.end());
+        allSolve.insert(allSolve.end(), r.stepSolveSeconds.begin(), r.stepSolveSeconds.end());
       }
-      if (r.selfCollision > 0) {
-        self.x.push_back(r.vertices);
-        self.y.push_back(1e3 * r.selfCollision);
-      }
-      allContacts.insert(allContacts.end(), r.stepContacts.begin(), r.stepContacts.end());
-      allSolve.insert(allSolve.end(), r.stepSolveSeconds.begin(), r.stepSolveSeconds.end());
-    }
     costPlot.push_back(cost);
     if (!self.x.empty()) modulePlot.push_back(self);
     growth << "| " << c.name << " | " << formatNumber(logLogSlope(allContacts, allSolve), 3)
@@ -248,10 +253,12 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
       " thread(s). contact: the contact solve (solver.contact; scene = the scene file's own: "
       "newton for slope, pd for sphere and crumple). ms_per_step is the mean over the run's steps, "
       "ms_median_step the median step (without the one-off work the mean spreads over the run: "
-      "the first factorisations, the landing). The other ms_* are milliseconds per step by module: ms_pd is the PD solve with the "
+      "the first factorisations, the landing). The other ms_* are milliseconds per step by module: "
+      "ms_pd is the PD solve with the "
       "energies and forces it evaluates, ms_detection obstacle contact detection, "
       "ms_self_collision node-node self-collision detection, ms_contact_solve the "
-      "Signorini-Coulomb solve (and, for newton, its linearisation). Contacts count node-obstacle contacts and "
+      "Signorini-Coulomb solve (and, for newton, its linearisation). Contacts count node-obstacle "
+      "contacts and "
       "self-collision pairs per step; ns_per_contact_sweep is the contact solve's time per "
       "contact per Gauss-Seidel sweep (its unit cost, apart from how many sweeps the PD "
       "iterations ask for). peak_mb: peak resident memory of the run (the process's VmHWM, reset "

@@ -36,8 +36,8 @@
 namespace weft::cli::paper {
 
 struct PaperMesh {
-  const char* task;  // the applications task it replaces the garment of
-  const char* file;  // below the paper-mesh folder
+  const char* task;     // the applications task it replaces the garment of
+  const char* file;     // below the paper-mesh folder
   double rotateDeg[3];  // applied before the fit (scene transform convention: X, then Y, then Z)
   const char* why;
 };
@@ -53,7 +53,9 @@ inline const std::vector<PaperMesh>& paperMeshes() {
       {"hat", "agenthat2-579.obj", {0, 0, 0}, "upright as given"},
       {"sock", "sock1055-2081.obj", {-90, 0, 0}, "cuff turned from +Y to face -Z (the foot)"},
       {"dress", "skirt1252.obj", {0, 0, 0}, "upright as given; a skirt, as the task's"},
-      {"flag", "flag001.obj", {23.983, -34.507, 59.247},
+      {"flag",
+       "flag001.obj",
+       {23.983, -34.507, 59.247},
        "pole (straighter short side) along +Y, fly along +X"},
   };
   return table;
@@ -76,7 +78,8 @@ inline std::string defaultPaperMeshDirectory(const std::string& repository) {
 inline std::string missingPaperMeshes(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return "no such folder (the DiffCloth garment meshes, see ../shared/meshes/README.md)";
+  if (!fs::is_directory(dir, ec))
+    return "no such folder (the DiffCloth garment meshes, see ../shared/meshes/README.md)";
   std::string missing;
   for (const PaperMesh& m : paperMeshes())
     if (!fs::is_regular_file(fs::path(dir) / m.file, ec))
@@ -85,9 +88,9 @@ inline std::string missingPaperMeshes(const std::string& dir) {
 }
 
 struct IndexRemap {
-  std::string path;    // JSON path of the list
-  int count = 0;       // entries after remapping
-  int original = 0;    // entries before
+  std::string path;          // JSON path of the list
+  int count = 0;             // entries after remapping
+  int original = 0;          // entries before
   double maxDistance = 0.0;  // m, from an original vertex's rest position to its new vertex
 };
 
@@ -189,7 +192,8 @@ inline PaperScene makePaperScene(const std::string& sceneFile, const PaperMesh& 
   namespace fs = std::filesystem;
   const Scene original = loadScene(sceneFile);
   if (original.cloths.size() != 1)
-    throw InputError(sceneFile, "cloths", "paper meshes replace the garment of one-cloth scenes only");
+    throw InputError(sceneFile, "cloths",
+                     "paper meshes replace the garment of one-cloth scenes only");
   const NodeMatrix& from = original.cloths[0].mesh.vertices;
 
   PaperScene out;
@@ -261,8 +265,9 @@ inline PaperScene makePaperScene(const std::string& sceneFile, const PaperMesh& 
     const std::size_t base = old.data.size() - 3 * n;  // the last state of a trajectory
     Vec3 shift = Vec3::Zero();
     for (std::size_t i = 0; i < n; ++i)
-      shift += Vec3(old.data[base + 3 * i], old.data[base + 3 * i + 1], old.data[base + 3 * i + 2]) -
-               from.row(static_cast<Eigen::Index>(i)).transpose();
+      shift +=
+          Vec3(old.data[base + 3 * i], old.data[base + 3 * i + 1], old.data[base + 3 * i + 2]) -
+          from.row(static_cast<Eigen::Index>(i)).transpose();
     shift /= static_cast<double>(n);
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 d =

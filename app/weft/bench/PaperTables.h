@@ -8,16 +8,16 @@
 namespace weft::cli::paper {
 
 struct PublishedTaskFigures {
-  const char* task;      // weft's task name
-  const char* title;     // the paper's row name
-  int parameters;        // Table 2 "Param #"
-  int seeds;             // Table 2 "Seed #"
-  double minInitialLoss; // Table 2, in the paper's own loss units
+  const char* task;       // weft's task name
+  const char* title;      // the paper's row name
+  int parameters;         // Table 2 "Param #"
+  int seeds;              // Table 2 "Seed #"
+  double minInitialLoss;  // Table 2, in the paper's own loss units
   // Table 2, % of the minimum initial loss: L-BFGS-B, CMA-ES, (1+1)-ES final; CMA-ES and (1+1)-ES
   // at L-BFGS-B's convergence step count ("Equal Step #").
   double finalPercent[3];
   double equalStepPercent[2];
-  long long convergenceSteps[3];  // Table 3, L-BFGS-B (forward + backward), CMA-ES, (1+1)-ES
+  long long convergenceSteps[3];     // Table 3, L-BFGS-B (forward + backward), CMA-ES, (1+1)-ES
   double iterativeConvergedPercent;  // Table 3 "Iter. Conv. %"
   int dof;                           // Table 4
   int steps;                         // Table 4 "Time Steps"

@@ -31,11 +31,13 @@ void ActiveContactSet::reset(const std::vector<ContactConstraint>& obstacleConta
   h_ = h;
   smoothing_ = std::max(velocityTolerance, kMinimumSmoothing);
   // Remember how the last step left each node's obstacle contact, for guessBranches.
-  if (previous_.size() != static_cast<std::size_t>(x0.rows())) previous_.assign(x0.rows(), Previous{});
+  if (previous_.size() != static_cast<std::size_t>(x0.rows()))
+    previous_.assign(x0.rows(), Previous{});
   for (int node : rememberedNodes_) previous_[node] = Previous{};
   rememberedNodes_.clear();
   for (const Contact& c : contacts_)
-    if (c.b < 0 && c.branch != ContactBranch::TakeOff && previous_[c.a].branch == ContactBranch::None) {
+    if (c.b < 0 && c.branch != ContactBranch::TakeOff &&
+        previous_[c.a].branch == ContactBranch::None) {
       previous_[c.a] = Previous{c.branch, c.slipLimit};
       rememberedNodes_.push_back(c.a);
     }
@@ -43,12 +45,13 @@ void ActiveContactSet::reset(const std::vector<ContactConstraint>& obstacleConta
   rows_.clear();
   lastChange_ = 0.0;
   auto add = [&](const ContactConstraint& c, double effectiveMass) {
-    contacts_.push_back(Contact{c.node, c.partner, c.obstacle, c.normal, c.reference, c.friction, effectiveMass,
-                                ContactBranch::TakeOff, Vec3::Zero(), 0.0, Vec3::Zero(), 0, Vec3::Zero(), 0.0,
-                                c.sample, c.pathFraction});
+    contacts_.push_back(Contact{c.node, c.partner, c.obstacle, c.normal, c.reference, c.friction,
+                                effectiveMass, ContactBranch::TakeOff, Vec3::Zero(), 0.0,
+                                Vec3::Zero(), 0, Vec3::Zero(), 0.0, c.sample, c.pathFraction});
   };
   for (const ContactConstraint& c : obstacleContacts) add(c, mass[c.node]);
-  for (const ContactConstraint& c : pairs) add(c, mass[c.node] * mass[c.partner] / (mass[c.node] + mass[c.partner]));
+  for (const ContactConstraint& c : pairs)
+    add(c, mass[c.node] * mass[c.partner] / (mass[c.node] + mass[c.partner]));
 }
 
 Vec3 ActiveContactSet::relativeVelocity(const Contact& c, const NodeMatrix& x) const {
@@ -68,7 +71,8 @@ void ActiveContactSet::guessBranches(const NodeMatrix& x) {
                                                : ContactBranch::Slip;
     // A node that rested or slid on an obstacle last step most likely still does: start from
     // that branch (and friction) instead of stick, which saves a release round per step.
-    if (c.branch != ContactBranch::TakeOff && c.b < 0 && previous_[c.a].branch != ContactBranch::None) {
+    if (c.branch != ContactBranch::TakeOff && c.b < 0 &&
+        previous_[c.a].branch != ContactBranch::None) {
       c.branch = previous_[c.a].branch;
       c.slipLimit = previous_[c.a].slipLimit;
     }
@@ -107,8 +111,9 @@ void ActiveContactSet::buildRows() {
     touches.push_back(Touch{rows_[r].a, r, 1.0});
     if (rows_[r].b >= 0) touches.push_back(Touch{rows_[r].b, r, -1.0});
   }
-  std::sort(touches.begin(), touches.end(),
-            [](const Touch& p, const Touch& q) { return p.node != q.node ? p.node < q.node : p.row < q.row; });
+  std::sort(touches.begin(), touches.end(), [](const Touch& p, const Touch& q) {
+    return p.node != q.node ? p.node < q.node : p.row < q.row;
+  });
   std::vector<Eigen::Triplet<double>> entries;
   for (int r = 0; r < n; ++r) entries.emplace_back(r, r, kGramShift);
   for (std::size_t begin = 0; begin < touches.size();) {
@@ -116,8 +121,8 @@ void ActiveContactSet::buildRows() {
     while (end < touches.size() && touches[end].node == touches[begin].node) ++end;
     for (std::size_t i = begin; i < end; ++i)
       for (std::size_t j = begin; j < end; ++j) {
-        const double value =
-            touches[i].sign * touches[j].sign * rows_[touches[i].row].dir.dot(rows_[touches[j].row].dir);
+        const double value = touches[i].sign * touches[j].sign *
+                             rows_[touches[i].row].dir.dot(rows_[touches[j].row].dir);
         if (value != 0.0) entries.emplace_back(touches[i].row, touches[j].row, value);
       }
     begin = end;
@@ -125,7 +130,8 @@ void ActiveContactSet::buildRows() {
   gram_.resize(n, n);
   gram_.setFromTriplets(entries.begin(), entries.end());
   gramFactor_.compute(gram_);
-  if (gramFactor_.info() != Eigen::Success) throw std::runtime_error("contact constraint Gram matrix not factorised");
+  if (gramFactor_.info() != Eigen::Success)
+    throw std::runtime_error("contact constraint Gram matrix not factorised");
 }
 
 void ActiveContactSet::multipliers(const NodeMatrix& v, Eigen::VectorXd& lambda) const {
@@ -192,7 +198,8 @@ double ActiveContactSet::frictionPotential(const NodeMatrix& x) const {
   // Phi = sum mu r_N |u_T|: its gradient in x_a is mu r_N u_T / (|u_T| h) = -friction / h.
   double phi = 0.0;
   for (const Contact& c : contacts_)
-    if (c.branch == ContactBranch::Slip && c.slipLimit > 0.0) phi += c.slipLimit * slide(c, x).norm();
+    if (c.branch == ContactBranch::Slip && c.slipLimit > 0.0)
+      phi += c.slipLimit * slide(c, x).norm();
   return phi;
 }
 
@@ -213,15 +220,17 @@ void ActiveContactSet::addFrictionHessian(const NodeMatrix& d, NodeMatrix& out) 
     Vec3 rel = d.row(c.a).transpose();
     if (c.b >= 0) rel -= d.row(c.b).transpose();
     const Vec3 tangential = rel - c.normal.dot(rel) * c.normal;
-    const Vec3 f = (c.slipLimit / c.hessianNorm) *
-                   (tangential - (c.hessianSlide.dot(tangential) / (c.hessianNorm * c.hessianNorm)) * c.hessianSlide);
+    const Vec3 f =
+        (c.slipLimit / c.hessianNorm) *
+        (tangential -
+         (c.hessianSlide.dot(tangential) / (c.hessianNorm * c.hessianNorm)) * c.hessianSlide);
     out.row(c.a) += f.transpose();
     if (c.b >= 0) out.row(c.b) -= f.transpose();
   }
 }
 
-int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, double velocityTolerance,
-                             bool settled) {
+int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual,
+                             double velocityTolerance, bool settled) {
   // Multipliers: C^T lambda = -residual in the least-squares sense; h r = C^T lambda per contact.
   if (!rows_.empty()) {
     multipliers(residual, lambda_);
@@ -244,7 +253,8 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, do
     // Releasing (stick -> take-off or slip, slip -> take-off or stick) is judged on a settled
     // solve only, when the multipliers are the contact impulses; activating a contact that
     // penetrates is judged at every iterate.
-    const bool mayRelease = settled && c.flips < kFlipsBeforeHolding, mayChange = c.flips < kFlipsBeforeFreezing;
+    const bool mayRelease = settled && c.flips < kFlipsBeforeHolding,
+               mayChange = c.flips < kFlipsBeforeFreezing;
     switch (mayChange ? c.branch : ContactBranch::None) {
       case ContactBranch::TakeOff:
         if (c.normal.dot(c.velocity) < -velocityTolerance) {
@@ -293,10 +303,13 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual, do
       default:
         break;
     }
-    if (c.branch != before) ++changed, ++c.flips;
-    else if (settled && (c.flips >= kFlipsBeforeHolding) && violatesLaw(c, velocityTolerance)) ++blocked_;
+    if (c.branch != before)
+      ++changed, ++c.flips;
+    else if (settled && (c.flips >= kFlipsBeforeHolding) && violatesLaw(c, velocityTolerance))
+      ++blocked_;
     if (c.branch == ContactBranch::TakeOff) c.impulse.setZero();
-    if (c.branch == ContactBranch::Slip) c.impulse = normalImpulse * c.normal + frictionImpulse(c, x);
+    if (c.branch == ContactBranch::Slip)
+      c.impulse = normalImpulse * c.normal + frictionImpulse(c, x);
   }
   if (changed > 0) buildRows();
   return changed;
@@ -307,11 +320,15 @@ bool ActiveContactSet::violatesLaw(const Contact& c, double velocityTolerance) c
   const double rN = c.normal.dot(c.impulse), uN = c.normal.dot(c.velocity);
   const Vec3 rT = c.impulse - rN * c.normal;
   switch (c.branch) {
-    case ContactBranch::TakeOff: return uN < -velocityTolerance;
-    case ContactBranch::Stick: return rN < -impulseTolerance || rT.norm() > c.friction * rN + impulseTolerance;
+    case ContactBranch::TakeOff:
+      return uN < -velocityTolerance;
+    case ContactBranch::Stick:
+      return rN < -impulseTolerance || rT.norm() > c.friction * rN + impulseTolerance;
     case ContactBranch::Slip:
-      return rN < -impulseTolerance || std::abs(rT.norm() - c.friction * std::max(rN, 0.0)) > impulseTolerance;
-    default: return false;
+      return rN < -impulseTolerance ||
+             std::abs(rT.norm() - c.friction * std::max(rN, 0.0)) > impulseTolerance;
+    default:
+      return false;
   }
 }
 

@@ -44,8 +44,9 @@ class ActiveContactSet {
  public:
   // The step's contacts (obstacle contacts, then pairs) with the start-of-step positions x0,
   // which must stay alive and unchanged during the step.
-  void reset(const std::vector<ContactConstraint>& obstacleContacts, const std::vector<ContactConstraint>& pairs,
-             const NodeMatrix& x0, const Eigen::VectorXd& mass, double h, double velocityTolerance);
+  void reset(const std::vector<ContactConstraint>& obstacleContacts,
+             const std::vector<ContactConstraint>& pairs, const NodeMatrix& x0,
+             const Eigen::VectorXd& mass, double h, double velocityTolerance);
   bool empty() const { return contacts_.empty(); }
 
   // First branches from a predicted end-of-step position: contacts it would violate start in
@@ -75,7 +76,8 @@ class ActiveContactSet {
   // is then the largest friction change (as a velocity, m/s). `settled`: the elastic solve has
   // converged for the current branches; only then are slip contacts judged (slide, friction
   // direction and magnitude), otherwise they keep their friction (lastChange() = 0).
-  int update(const NodeMatrix& x, const NodeMatrix& residual, double velocityTolerance, bool settled);
+  int update(const NodeMatrix& x, const NodeMatrix& residual, double velocityTolerance,
+             bool settled);
   double lastChange() const { return lastChange_; }
   // Contacts that the last settled update found violating Eq. 8 but kept in their branch because
   // they had switched too often this step (the anti-cycling rule in update()); a step with any
@@ -90,13 +92,13 @@ class ActiveContactSet {
     Vec3 normal, reference;
     double friction, effectiveMass;
     ContactBranch branch;
-    Vec3 impulse;          // on node a (N s), friction included
-    double slipLimit;      // slip: mu r_N, the friction impulse's size (lagged)
-    Vec3 velocity;         // u at the last update (m/s)
-    int flips;             // branch switches this step
-    Vec3 hessianSlide;     // slip: u_T and max(|u_T|, eps) where the friction Hessian was prepared
+    Vec3 impulse;       // on node a (N s), friction included
+    double slipLimit;   // slip: mu r_N, the friction impulse's size (lagged)
+    Vec3 velocity;      // u at the last update (m/s)
+    int flips;          // branch switches this step
+    Vec3 hessianSlide;  // slip: u_T and max(|u_T|, eps) where the friction Hessian was prepared
     double hessianNorm;
-    Vec3 sample;           // detection's surface sample (recorded for the backward pass)
+    Vec3 sample;  // detection's surface sample (recorded for the backward pass)
     double pathFraction;
   };
   struct Row {

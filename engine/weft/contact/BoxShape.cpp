@@ -2,7 +2,8 @@
 
 namespace weft {
 
-void BoxShape::sampleFace(const Vec3& p, const Vec3& local, int axis, double side, SurfaceSample& out) const {
+void BoxShape::sampleFace(const Vec3& p, const Vec3& local, int axis, double side,
+                          SurfaceSample& out) const {
   out.distance = side * local[axis] - half_[axis];  // <= 0 inside
   out.normal = side * rotation_.col(axis);
   out.point = p - out.distance * out.normal;
@@ -45,7 +46,8 @@ bool BoxShape::sample(const Vec3& p, double reach, SurfaceSample& out) const {
 // one. The frame is still a function of the sample point for a fixed start (the face is
 // constant away from the switching boundaries and the point is p's projection onto it), which
 // is how the backward pass differentiates it.
-bool BoxShape::sampleMoved(const Vec3& p, const Vec3& from, double reach, SurfaceSample& out) const {
+bool BoxShape::sampleMoved(const Vec3& p, const Vec3& from, double reach,
+                           SurfaceSample& out) const {
   const Vec3 local = rotation_.transpose() * (p - center_);
   const Vec3 start = rotation_.transpose() * (from - center_);
   if ((local.cwiseAbs() - half_).maxCoeff() > 0.0 || (start.cwiseAbs() - half_).maxCoeff() <= 0.0)

@@ -25,11 +25,13 @@ class BoxShape final : public ObstacleShape {
   // Inside, having come from `from` outside the box: the face the segment from -> p crosses
   // into the box (p is projected onto that face's plane, the distance is the depth below it).
   // Otherwise as sample(p).
-  bool sampleMoved(const Vec3& p, const Vec3& from, double reach, SurfaceSample& out) const override;
+  bool sampleMoved(const Vec3& p, const Vec3& from, double reach,
+                   SurfaceSample& out) const override;
 
  private:
   // The face sample of a point inside the box: depth below face `axis` on side `side` (+1/-1).
-  void sampleFace(const Vec3& p, const Vec3& local, int axis, double side, SurfaceSample& out) const;
+  void sampleFace(const Vec3& p, const Vec3& local, int axis, double side,
+                  SurfaceSample& out) const;
   Vec3 center_, half_;
   Mat3 rotation_;
 };

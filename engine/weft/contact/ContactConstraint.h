@@ -19,11 +19,11 @@
 namespace weft {
 
 struct ContactConstraint {
-  int node = -1;      // the node (the lower index of a pair)
-  int partner = -1;   // the pair's other node, or -1
-  int obstacle = -1;  // the obstacle, or -1
-  Vec3 normal = Vec3::UnitY();     // unit: out of the obstacle, or from partner to node
-  Vec3 reference = Vec3::Zero();   // m/s, see above
+  int node = -1;                  // the node (the lower index of a pair)
+  int partner = -1;               // the pair's other node, or -1
+  int obstacle = -1;              // the obstacle, or -1
+  Vec3 normal = Vec3::UnitY();    // unit: out of the obstacle, or from partner to node
+  Vec3 reference = Vec3::Zero();  // m/s, see above
   double friction = 0.0;
   // Obstacle contacts: where detection sampled the surface, sample = x_n + pathFraction * (the
   // predicted displacement). The frame (normal, nearest point, surface velocity) is a function of

@@ -2,8 +2,8 @@
 
 namespace weft {
 
-ContactLawJacobian differentiateSignoriniCoulomb(ContactBranch branch, const Vec3& normal, double friction,
-                                                 const Vec3& free) {
+ContactLawJacobian differentiateSignoriniCoulomb(ContactBranch branch, const Vec3& normal,
+                                                 double friction, const Vec3& free) {
   ContactLawJacobian j;
   if (branch == ContactBranch::Stick) {
     j.velocity = -Mat3::Identity();
@@ -23,7 +23,8 @@ ContactLawJacobian differentiateSignoriniCoulomb(ContactBranch branch, const Vec
   const Vec3 t = tangential / slide;
   j.friction = wN * t;
   if (friction == 0.0) return j;
-  const Mat3 acrossSlide = Mat3::Identity() - t * t.transpose();  // (I - t t^T), d t / d w_T * |w_T|
+  const Mat3 acrossSlide =
+      Mat3::Identity() - t * t.transpose();  // (I - t t^T), d t / d w_T * |w_T|
   j.velocity += friction * (t * normal.transpose() + (wN / slide) * (acrossSlide - nn));
   // d t / d n = (I - t t^T) (d w_T / d n) / |w_T|.
   j.normal += friction * (t * free.transpose() + (wN / slide) * acrossSlide * tangentialByNormal);

@@ -29,7 +29,7 @@ struct ContactLawJacobian {
 // The Jacobian blocks of the law at free velocity `free` in `branch` (the branch the forward
 // solve chose; branch is not re-derived, so a contact exactly on a branch boundary keeps the
 // forward's choice).
-ContactLawJacobian differentiateSignoriniCoulomb(ContactBranch branch, const Vec3& normal, double friction,
-                                                 const Vec3& free);
+ContactLawJacobian differentiateSignoriniCoulomb(ContactBranch branch, const Vec3& normal,
+                                                 double friction, const Vec3& free);
 
 }  // namespace weft

@@ -5,8 +5,8 @@
 
 namespace weft {
 
-void ContactLayering::order(std::vector<ContactConstraint>& pairs, const std::vector<int>& obstacleNodes,
-                            std::vector<int>& layerStart) {
+void ContactLayering::order(std::vector<ContactConstraint>& pairs,
+                            const std::vector<int>& obstacleNodes, std::vector<int>& layerStart) {
   layerStart.assign(1, 0);
   const int count = static_cast<int>(pairs.size());
   if (count == 0) return;
@@ -18,7 +18,8 @@ void ContactLayering::order(std::vector<ContactConstraint>& pairs, const std::ve
       if (slot_[v] < 0) slot_[v] = static_cast<int>(touched_.size()), touched_.push_back(v);
   const int n = static_cast<int>(touched_.size());
   adjacencyStart_.assign(n + 1, 0);
-  for (const ContactConstraint& p : pairs) ++adjacencyStart_[slot_[p.node] + 1], ++adjacencyStart_[slot_[p.partner] + 1];
+  for (const ContactConstraint& p : pairs)
+    ++adjacencyStart_[slot_[p.node] + 1], ++adjacencyStart_[slot_[p.partner] + 1];
   std::partial_sum(adjacencyStart_.begin(), adjacencyStart_.end(), adjacencyStart_.begin());
   adjacency_.resize(2 * count);
   orderBuffer_.assign(adjacencyStart_.begin(), adjacencyStart_.end() - 1);
@@ -56,10 +57,12 @@ void ContactLayering::order(std::vector<ContactConstraint>& pairs, const std::ve
 
   // Visiting order by the nearer endpoint's level (stable: ties keep the detection order).
   pairKey_.resize(count);
-  for (int e = 0; e < count; ++e) pairKey_[e] = std::min(level_[pairs[e].node], level_[pairs[e].partner]);
+  for (int e = 0; e < count; ++e)
+    pairKey_[e] = std::min(level_[pairs[e].node], level_[pairs[e].partner]);
   orderBuffer_.resize(count);
   std::iota(orderBuffer_.begin(), orderBuffer_.end(), 0);
-  std::stable_sort(orderBuffer_.begin(), orderBuffer_.end(), [&](int a, int b) { return pairKey_[a] < pairKey_[b]; });
+  std::stable_sort(orderBuffer_.begin(), orderBuffer_.end(),
+                   [&](int a, int b) { return pairKey_[a] < pairKey_[b]; });
 
   // Greedy layers, then a counting sort by layer.
   pairLayer_.resize(count);

@@ -18,15 +18,18 @@ namespace weft {
 
 class ContactLayering {
  public:
-  explicit ContactLayering(int nodeCount) : level_(nodeCount, -1), last_(nodeCount, -1), slot_(nodeCount, -1) {}
+  explicit ContactLayering(int nodeCount)
+      : level_(nodeCount, -1), last_(nodeCount, -1), slot_(nodeCount, -1) {}
 
   // Reorders `pairs` layer by layer; layerStart gets the layer boundaries (size layers + 1).
   // `obstacleNodes`: nodes with an obstacle contact this step. No allocation once grown.
-  void order(std::vector<ContactConstraint>& pairs, const std::vector<int>& obstacleNodes, std::vector<int>& layerStart);
+  void order(std::vector<ContactConstraint>& pairs, const std::vector<int>& obstacleNodes,
+             std::vector<int>& layerStart);
 
  private:
   std::vector<int> level_, last_, slot_;  // per node, reset after use
-  std::vector<int> touched_, adjacencyStart_, adjacency_, queue_, pairKey_, pairLayer_, orderBuffer_;
+  std::vector<int> touched_, adjacencyStart_, adjacency_, queue_, pairKey_, pairLayer_,
+      orderBuffer_;
   std::vector<ContactConstraint> sorted_;
 };
 

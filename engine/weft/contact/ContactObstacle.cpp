@@ -13,24 +13,34 @@ RigidPose poseAt(const HandleTrajectory& motion, double t) {
   // target() is affine in the body point: read its linear part from the unit vectors.
   RigidPose pose;
   pose.translation = motion.target(Vec3::Zero(), t);
-  for (int k = 0; k < 3; ++k) pose.rotation.col(k) = motion.target(Vec3::Unit(k), t) - pose.translation;
+  for (int k = 0; k < 3; ++k)
+    pose.rotation.col(k) = motion.target(Vec3::Unit(k), t) - pose.translation;
   return pose;
 }
 
 std::unique_ptr<ObstacleShape> makeObstacleShape(const Obstacle& o) {
   switch (o.shape) {
-    case Obstacle::Shape::Plane: return std::make_unique<PlaneShape>(o.point, o.normal);
-    case Obstacle::Shape::Sphere: return std::make_unique<SphereShape>(o.center, o.radius);
-    case Obstacle::Shape::Capsule: return std::make_unique<CapsuleShape>(o.a, o.b, o.radius);
-    case Obstacle::Shape::Box: return std::make_unique<BoxShape>(o.center, o.halfExtents, o.rotation);
-    case Obstacle::Shape::Cylinder: return std::make_unique<CylinderShape>(o.a, o.b, o.radius);
-    case Obstacle::Shape::Mesh: return std::make_unique<MeshShape>(o.mesh, o.smoothNormals);
+    case Obstacle::Shape::Plane:
+      return std::make_unique<PlaneShape>(o.point, o.normal);
+    case Obstacle::Shape::Sphere:
+      return std::make_unique<SphereShape>(o.center, o.radius);
+    case Obstacle::Shape::Capsule:
+      return std::make_unique<CapsuleShape>(o.a, o.b, o.radius);
+    case Obstacle::Shape::Box:
+      return std::make_unique<BoxShape>(o.center, o.halfExtents, o.rotation);
+    case Obstacle::Shape::Cylinder:
+      return std::make_unique<CylinderShape>(o.a, o.b, o.radius);
+    case Obstacle::Shape::Mesh:
+      return std::make_unique<MeshShape>(o.mesh, o.smoothNormals);
   }
   return nullptr;
 }
 
 ContactObstacle::ContactObstacle(const Obstacle& o)
-    : shape_(makeObstacleShape(o)), motion_(o.motion), friction_(o.friction), thickness_(o.thickness) {}
+    : shape_(makeObstacleShape(o)),
+      motion_(o.motion),
+      friction_(o.friction),
+      thickness_(o.thickness) {}
 
 void ContactObstacle::beginStep(double t0, double t1) {
   h_ = t1 - t0;
@@ -47,7 +57,8 @@ bool ContactObstacle::sample(const Vec3& p, double reach, SurfaceSample& out) co
   return true;
 }
 
-bool ContactObstacle::sample(const Vec3& p, const Vec3& start, double reach, SurfaceSample& out) const {
+bool ContactObstacle::sample(const Vec3& p, const Vec3& start, double reach,
+                             SurfaceSample& out) const {
   if (!motion_) return shape_->sampleMoved(p, start, reach, out);
   if (!shape_->sampleMoved(end_.inverse(p), start_.inverse(start), reach, out)) return false;
   out.normal = end_.rotation * out.normal;

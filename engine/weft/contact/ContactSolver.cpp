@@ -20,8 +20,9 @@ constexpr int kLinearSweeps = 1000;
 }  // namespace
 
 void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleContacts,
-                                const std::vector<ContactConstraint>& pairs, const std::vector<int>& layerStart,
-                                const Eigen::VectorXd& lumped, const Eigen::VectorXd* lawMass) {
+                                const std::vector<ContactConstraint>& pairs,
+                                const std::vector<int>& layerStart, const Eigen::VectorXd& lumped,
+                                const Eigen::VectorXd* lawMass) {
   const Eigen::VectorXd& mass = lawMass ? *lawMass : lumped;
   for (const Slot& s : slots_) slotOf_[s.node] = -1;
   slots_.clear();
@@ -40,18 +41,18 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
     const bool sameNode = k > 0 && obstacleContacts[k - 1].node == c.node;
     if (!sameNode) groupStart_.push_back(static_cast<int>(contacts_.size()));
     coupled_ = coupled_ || sameNode;
-    contacts_.push_back(Contact{slotFor(c.node), -1, c.obstacle, c.normal, c.reference, c.friction, mass[c.node],
-                                lumped[c.node], Vec3::Zero(), ContactBranch::TakeOff, c.sample, c.pathFraction,
-                                Mat3::Zero()});
+    contacts_.push_back(Contact{slotFor(c.node), -1, c.obstacle, c.normal, c.reference, c.friction,
+                                mass[c.node], lumped[c.node], Vec3::Zero(), ContactBranch::TakeOff,
+                                c.sample, c.pathFraction, Mat3::Zero()});
   }
   groupStart_.push_back(static_cast<int>(contacts_.size()));
   pairBegin_ = static_cast<int>(contacts_.size());
   for (const ContactConstraint& c : pairs) {
     const double ma = mass[c.node], mb = mass[c.partner];
     const double la = lumped[c.node], lb = lumped[c.partner];
-    contacts_.push_back(Contact{slotFor(c.node), slotFor(c.partner), -1, c.normal, c.reference, c.friction,
-                                ma * mb / (ma + mb), la * lb / (la + lb), Vec3::Zero(), ContactBranch::TakeOff,
-                                c.sample, c.pathFraction, Mat3::Zero()});
+    contacts_.push_back(Contact{slotFor(c.node), slotFor(c.partner), -1, c.normal, c.reference,
+                                c.friction, ma * mb / (ma + mb), la * lb / (la + lb), Vec3::Zero(),
+                                ContactBranch::TakeOff, c.sample, c.pathFraction, Mat3::Zero()});
   }
   coupled_ = coupled_ || !pairs.empty();
   layerStart_ = layerStart;
@@ -72,7 +73,8 @@ double ContactSolver::update(Contact& c) {
   Slot& a = slots_[c.a];
   const Vec3 free = freeVelocity(c);
   Vec3 change;
-  c.branch = solveSignoriniCoulomb(c.normal, c.friction, free, change);  // DiffCloth Eq. 8 / Ly et al.
+  c.branch =
+      solveSignoriniCoulomb(c.normal, c.friction, free, change);  // DiffCloth Eq. 8 / Ly et al.
   const Vec3 impulse = c.effectiveMass * change;
   const Vec3 delta = impulse - c.impulse;
   c.impulse = impulse;
@@ -84,7 +86,8 @@ double ContactSolver::update(Contact& c) {
 int ContactSolver::solve(const NodeMatrix& freeMomentum, double tolerance, int maxSweeps) {
   const int slotCount = static_cast<int>(slots_.size());
 #pragma omp parallel for schedule(static) if (slotCount > kParallelMinimum)
-  for (int s = 0; s < slotCount; ++s) slots_[s].freeVelocity = freeMomentum.row(slots_[s].node).transpose() / slots_[s].mass;
+  for (int s = 0; s < slotCount; ++s)
+    slots_[s].freeVelocity = freeMomentum.row(slots_[s].node).transpose() / slots_[s].mass;
 
   const int groups = static_cast<int>(groupStart_.size()) - 1;
   int sweeps = 0;
@@ -93,11 +96,13 @@ int ContactSolver::solve(const NodeMatrix& freeMomentum, double tolerance, int m
     // Obstacle contacts: nodes are independent of each other.
 #pragma omp parallel for schedule(static) reduction(max : change) if (groups > kParallelMinimum)
     for (int g = 0; g < groups; ++g)
-      for (int k = groupStart_[g]; k < groupStart_[g + 1]; ++k) change = std::max(change, update(contacts_[k]));
+      for (int k = groupStart_[g]; k < groupStart_[g + 1]; ++k)
+        change = std::max(change, update(contacts_[k]));
     // Pairs, layer by layer: within a layer no node appears twice.
     for (std::size_t l = 0; l + 1 < layerStart_.size(); ++l) {
       const int begin = pairBegin_ + layerStart_[l], end = pairBegin_ + layerStart_[l + 1];
-#pragma omp parallel for schedule(static) reduction(max : change) if (end - begin > kParallelMinimum)
+#pragma omp parallel for schedule(static) reduction(max \
+                                                    : change) if (end - begin > kParallelMinimum)
       for (int k = begin; k < end; ++k) change = std::max(change, update(contacts_[k]));
     }
     ++sweeps;
@@ -121,12 +126,14 @@ int ContactSolver::linearize() {
     if (c.b >= 0 || c.branch == ContactBranch::TakeOff) continue;
     Mat3& pinned = slots_[c.a].pinned;
     // A second prescribed direction on the node (two obstacles): pin it whole.
-    if (c.branch == ContactBranch::Stick || !pinned.isZero(0.0)) pinned.setIdentity();
-    else pinned = c.normal * c.normal.transpose();
+    if (c.branch == ContactBranch::Stick || !pinned.isZero(0.0))
+      pinned.setIdentity();
+    else
+      pinned = c.normal * c.normal.transpose();
   }
   // A node on several obstacles: its contacts' linearised impulses solved together. In
-  // addLawJacobian's sweeps contact k of the node takes r_k = (m~_k / m) L_k (q + p + sum_{j != k} r_j)
-  // (p: the pairs' impulses on the node); contact by contact, that Gauss-Seidel iteration
+  // addLawJacobian's sweeps contact k of the node takes r_k = (m~_k / m) L_k (q + p + sum_{j != k}
+  // r_j) (p: the pairs' impulses on the node); contact by contact, that Gauss-Seidel iteration
   // diverges where a slip contact's Jacobian has a large gain, which happens when the branch was
   // decided at another free velocity than the one it is linearised at (an iterate whose sweeps
   // had not settled: at the Sock's ankle, a node on the leg and the foot capsules had a slip
@@ -150,7 +157,8 @@ int ContactSolver::linearize() {
       for (int j = 0; j < count; ++j)
         if (j != k) system.block<3, 3>(3 * k, 3 * j) = -a;
     }
-    groupResponse_[g] = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(system).solve(source);
+    groupResponse_[g] =
+        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(system).solve(source);
   }
   return changed;
 }
@@ -216,19 +224,23 @@ void ContactSolver::addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const {
     double change = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : change) if (groups > kParallelMinimum)
     for (int g = 0; g < groups; ++g)
-      change = std::max(change, groupStart_[g + 1] - groupStart_[g] == 1 ? update(groupStart_[g]) : updateGroup(g));
+      change = std::max(change, groupStart_[g + 1] - groupStart_[g] == 1 ? update(groupStart_[g])
+                                                                         : updateGroup(g));
     for (std::size_t l = 0; l + 1 < layerStart_.size(); ++l) {
       const int begin = pairBegin_ + layerStart_[l], end = pairBegin_ + layerStart_[l + 1];
-#pragma omp parallel for schedule(static) reduction(max : change) if (end - begin > kParallelMinimum)
+#pragma omp parallel for schedule(static) reduction(max \
+                                                    : change) if (end - begin > kParallelMinimum)
       for (int k = begin; k < end; ++k) change = std::max(change, update(k));
     }
     if (change <= kLinearTolerance * scale) break;
   }
-  for (std::size_t s = 0; s < slots_.size(); ++s) out.row(slots_[s].node) += linearTotal_[s].transpose();
+  for (std::size_t s = 0; s < slots_.size(); ++s)
+    out.row(slots_[s].node) += linearTotal_[s].transpose();
 }
 
 void ContactSolver::pinnedVelocity(const NodeMatrix& r, NodeMatrix& z) const {
-  for (const Slot& s : slots_) z.row(s.node) = (s.pinned * r.row(s.node).transpose()).transpose() / s.mass;
+  for (const Slot& s : slots_)
+    z.row(s.node) = (s.pinned * r.row(s.node).transpose()).transpose() / s.mass;
 }
 
 void ContactSolver::removePinned(NodeMatrix& v) const {

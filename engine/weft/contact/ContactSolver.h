@@ -40,9 +40,9 @@ class ContactSolver {
   // a larger one (Simulator::solveContactNewton). The caller's free momentum must then be
   // m~ v + (b - P x) / h. The record reports the lumped (reduced) mass either way, so that what
   // it holds (r, u and d = m u - r with the lumped m) reads as DiffCloth's convention.
-  void setContacts(const std::vector<ContactConstraint>& obstacleContacts, const std::vector<ContactConstraint>& pairs,
-                   const std::vector<int>& layerStart, const Eigen::VectorXd& mass,
-                   const Eigen::VectorXd* lawMass = nullptr);
+  void setContacts(const std::vector<ContactConstraint>& obstacleContacts,
+                   const std::vector<ContactConstraint>& pairs, const std::vector<int>& layerStart,
+                   const Eigen::VectorXd& mass, const Eigen::VectorXd* lawMass = nullptr);
   bool empty() const { return contacts_.empty(); }
   int contactCount() const { return static_cast<int>(contacts_.size()); }
 
@@ -85,7 +85,7 @@ class ContactSolver {
     Vec3 normal, reference;
     double friction, effectiveMass;  // effectiveMass: the law's (reduced) mass m~
     double recordMass;               // the lumped (reduced) mass, for the record
-    Vec3 impulse;  // on slot a (slot b receives the opposite)
+    Vec3 impulse;                    // on slot a (slot b receives the opposite)
     ContactBranch branch;
     Vec3 sample;  // detection's surface sample (recorded for the backward pass)
     double pathFraction;
@@ -93,17 +93,19 @@ class ContactSolver {
     ContactBranch linearized = ContactBranch::None;  // the branch at the last linearize()
   };
   Vec3 freeVelocity(const Contact& c) const;  // w: the contact's velocity without its own impulse
-  double update(Contact& c);  // one Gauss-Seidel update; returns |delta r| / m
+  double update(Contact& c);                  // one Gauss-Seidel update; returns |delta r| / m
 
   std::vector<int> slotOf_;  // per node
   std::vector<Slot> slots_;
   std::vector<Contact> contacts_;
-  std::vector<int> groupStart_;  // obstacle contacts of one node: [groupStart_[g], groupStart_[g + 1])
+  std::vector<int>
+      groupStart_;  // obstacle contacts of one node: [groupStart_[g], groupStart_[g + 1])
   std::vector<int> layerStart_;  // pairs: contacts_[pairBegin_ + layerStart_[l] ...]
   int pairBegin_ = 0;
   bool coupled_ = false;  // some node has more than one contact
   double lastChange_ = 0.0;
-  mutable std::vector<Vec3> linearImpulse_, linearTotal_;  // addLawJacobian's sweeps (per contact, slot)
+  mutable std::vector<Vec3> linearImpulse_,
+      linearTotal_;  // addLawJacobian's sweeps (per contact, slot)
   // Per group of obstacle contacts on one node (empty for a single contact): the 3k x 3 map from
   // the node's momentum to its k linearised impulses (linearize()).
   std::vector<Eigen::MatrixXd> groupResponse_;

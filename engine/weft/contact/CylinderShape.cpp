@@ -6,8 +6,12 @@
 namespace weft {
 
 CylinderShape::CylinderShape(const Vec3& a, const Vec3& b, double radius)
-    : middle_(0.5 * (a + b)), axis_((b - a).normalized()), halfLength_(0.5 * (b - a).norm()), radius_(radius) {
-  fallbackRadial_ = axis_.cross(std::abs(axis_.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).normalized();
+    : middle_(0.5 * (a + b)),
+      axis_((b - a).normalized()),
+      halfLength_(0.5 * (b - a).norm()),
+      radius_(radius) {
+  fallbackRadial_ =
+      axis_.cross(std::abs(axis_.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).normalized();
 }
 
 bool CylinderShape::sample(const Vec3& p, double reach, SurfaceSample& out) const {
@@ -37,7 +41,8 @@ bool CylinderShape::sample(const Vec3& p, double reach, SurfaceSample& out) cons
   return true;
 }
 
-bool CylinderShape::sampleMoved(const Vec3& p, const Vec3& from, double reach, SurfaceSample& out) const {
+bool CylinderShape::sampleMoved(const Vec3& p, const Vec3& from, double reach,
+                                SurfaceSample& out) const {
   const Vec3 offset = p - middle_, startOffset = from - middle_;
   const double axial = offset.dot(axis_), startAxial = startOffset.dot(axis_);
   const Vec3 radialVector = offset - axial * axis_, startRadial = startOffset - startAxial * axis_;

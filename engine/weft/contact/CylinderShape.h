@@ -19,7 +19,8 @@ class CylinderShape final : public ObstacleShape {
   bool sample(const Vec3& p, double reach, SurfaceSample& out) const override;
   // Inside, having come from `from` outside: the side or the cap the segment from -> p entered
   // through (the distance is the depth below it). Otherwise as sample(p).
-  bool sampleMoved(const Vec3& p, const Vec3& from, double reach, SurfaceSample& out) const override;
+  bool sampleMoved(const Vec3& p, const Vec3& from, double reach,
+                   SurfaceSample& out) const override;
 
  private:
   Vec3 middle_, axis_;  // axis_: unit, a -> b

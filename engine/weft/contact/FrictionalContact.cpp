@@ -18,19 +18,24 @@ double meanEdgeLength(const TriangleMesh& mesh) {
 
 using ContactKey = std::tuple<int, int, int>;  // node, partner, obstacle
 
-ContactKey keyOf(const ContactConstraint& c) { return {c.node, c.partner, c.obstacle}; }
+ContactKey keyOf(const ContactConstraint& c) {
+  return {c.node, c.partner, c.obstacle};
+}
 
 // Detection's order: by node, then partner (pairs) or obstacle (obstacle contacts).
-bool detectionOrder(const ContactConstraint& a, const ContactConstraint& b) { return keyOf(a) < keyOf(b); }
+bool detectionOrder(const ContactConstraint& a, const ContactConstraint& b) {
+  return keyOf(a) < keyOf(b);
+}
 
 // Appends the contacts of `found` that `set` lacks (the same node with the same obstacle or
 // partner) and whose constraint the displacement `actual` violates by more than `tolerance` (m):
-// it ends the step closer along the contact's normal than the constraint allows (ContactConstraint.h:
-// n . (x_{n+1} - c) >= skin, i.e. h n . (v - reference) >= 0). A contact the step does not
-// violate would be in take-off at its result and change nothing. Returns how many; `keys` is
-// scratch; `set` keeps its order, the new ones at its end.
-int appendViolated(const std::vector<ContactConstraint>& found, const NodeMatrix& actual, double h, double tolerance,
-                   std::vector<ContactConstraint>& set, std::vector<ContactKey>& keys) {
+// it ends the step closer along the contact's normal than the constraint allows
+// (ContactConstraint.h: n . (x_{n+1} - c) >= skin, i.e. h n . (v - reference) >= 0). A contact the
+// step does not violate would be in take-off at its result and change nothing. Returns how many;
+// `keys` is scratch; `set` keeps its order, the new ones at its end.
+int appendViolated(const std::vector<ContactConstraint>& found, const NodeMatrix& actual, double h,
+                   double tolerance, std::vector<ContactConstraint>& set,
+                   std::vector<ContactKey>& keys) {
   keys.clear();
   for (const ContactConstraint& c : set) keys.push_back(keyOf(c));
   std::sort(keys.begin(), keys.end());
@@ -52,8 +57,10 @@ FrictionalContact::FrictionalContact(const Scene& scene, const ClothModel& model
   for (const Obstacle& o : scene.obstacles) obstacles_.emplace_back(o);
   // The margin only decides how early a node joins the contact set (as take-off until it needs
   // a force); a fraction of the edge length covers the motion the prediction misses.
-  detector_ = std::make_unique<ObstacleContactDetector>(obstacles_, 0.25 * meanEdgeLength(model.rest));
-  if (scene.hasSelfCollision()) selfCollision_ = std::make_unique<SelfCollisionDetector>(scene, model);
+  detector_ =
+      std::make_unique<ObstacleContactDetector>(obstacles_, 0.25 * meanEdgeLength(model.rest));
+  if (scene.hasSelfCollision())
+    selfCollision_ = std::make_unique<SelfCollisionDetector>(scene, model);
 }
 
 void FrictionalContact::beginStep(double t0, double t1) {
@@ -80,7 +87,8 @@ void FrictionalContact::orderPairs() {
   layering_.order(pairs_, obstacleNodes_, layerStart_);
 }
 
-int FrictionalContact::addMissedContacts(const NodeMatrix& x, const NodeMatrix& predicted, const NodeMatrix& actual) {
+int FrictionalContact::addMissedContacts(const NodeMatrix& x, const NodeMatrix& predicted,
+                                         const NodeMatrix& actual) {
   // Paths are straight, so no point of a node's path strays further from its predicted path
   // than the end does. A pair's distance then changes by at most twice that, an obstacle
   // distance by at most that; detection took pairs within (1 + kMarginFraction) of their
@@ -90,17 +98,21 @@ int FrictionalContact::addMissedContacts(const NodeMatrix& x, const NodeMatrix& 
   if (hasObstacles() && stray >= detector_->margin()) {
     found_.clear();
     detector_->detect(x, actual, h_, found_);
-    const int obstacleAdded =
-        appendViolated(found_, actual, h_, kViolationTolerance * detector_->margin(), obstacleContacts_, keys_);
-    if (obstacleAdded > 0) std::sort(obstacleContacts_.begin(), obstacleContacts_.end(), detectionOrder);
+    const int obstacleAdded = appendViolated(
+        found_, actual, h_, kViolationTolerance * detector_->margin(), obstacleContacts_, keys_);
+    if (obstacleAdded > 0)
+      std::sort(obstacleContacts_.begin(), obstacleContacts_.end(), detectionOrder);
     added += obstacleAdded;
   }
-  if (hasSelfCollision() && 2.0 * stray >= SelfCollisionDetector::kMarginFraction * selfCollision_->smallestDistance()) {
+  if (hasSelfCollision() &&
+      2.0 * stray >= SelfCollisionDetector::kMarginFraction * selfCollision_->smallestDistance()) {
     found_.clear();
     selfCollision_->detect(x, actual, h_, found_);
-    const int pairsAdded = appendViolated(found_, actual, h_, kViolationTolerance * selfCollision_->smallestDistance(),
-                                          pairs_, keys_);
-    if (pairsAdded > 0) std::sort(pairs_.begin(), pairs_.end(), detectionOrder);  // (the layering starts from it)
+    const int pairsAdded =
+        appendViolated(found_, actual, h_, kViolationTolerance * selfCollision_->smallestDistance(),
+                       pairs_, keys_);
+    if (pairsAdded > 0)
+      std::sort(pairs_.begin(), pairs_.end(), detectionOrder);  // (the layering starts from it)
     added += pairsAdded;
   }
   // New obstacle contacts change which nodes the layering starts from, new pairs the layers.

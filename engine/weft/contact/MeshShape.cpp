@@ -6,19 +6,22 @@
 
 namespace weft {
 
-MeshShape::MeshShape(const TriangleMesh& mesh, bool smoothNormals) : mesh_(mesh), bvh_(mesh), smooth_(smoothNormals) {
+MeshShape::MeshShape(const TriangleMesh& mesh, bool smoothNormals)
+    : mesh_(mesh), bvh_(mesh), smooth_(smoothNormals) {
   const int n = mesh.triangleCount();
   faceNormals_.assign(n, Vec3::Zero());
   vertexNormals_.assign(mesh.vertexCount(), Vec3::Zero());
   for (int t = 0; t < n; ++t) {
-    const Vec3 p[3] = {mesh.vertices.row(mesh.triangles(t, 0)), mesh.vertices.row(mesh.triangles(t, 1)),
+    const Vec3 p[3] = {mesh.vertices.row(mesh.triangles(t, 0)),
+                       mesh.vertices.row(mesh.triangles(t, 1)),
                        mesh.vertices.row(mesh.triangles(t, 2))};
     const Vec3 cross = (p[1] - p[0]).cross(p[2] - p[0]);
     const double area2 = cross.norm();
     if (!(area2 > 0.0)) continue;
     faceNormals_[t] = cross / area2;
     for (int k = 0; k < 3; ++k) {
-      const Vec3 e1 = (p[(k + 1) % 3] - p[k]).normalized(), e2 = (p[(k + 2) % 3] - p[k]).normalized();
+      const Vec3 e1 = (p[(k + 1) % 3] - p[k]).normalized(),
+                 e2 = (p[(k + 2) % 3] - p[k]).normalized();
       const double angle = std::acos(std::clamp(e1.dot(e2), -1.0, 1.0));
       vertexNormals_[mesh.triangles(t, k)] += angle * faceNormals_[t];
     }
@@ -67,7 +70,8 @@ bool MeshShape::sample(const Vec3& p, double reach, SurfaceSample& out) const {
   Vec3 normal = faceNormals_[t];
   if (smooth_) {
     const Vec3& b = nearest.barycentric;
-    const Vec3 blend = b[0] * vertexNormals_[mesh_.triangles(t, 0)] + b[1] * vertexNormals_[mesh_.triangles(t, 1)] +
+    const Vec3 blend = b[0] * vertexNormals_[mesh_.triangles(t, 0)] +
+                       b[1] * vertexNormals_[mesh_.triangles(t, 1)] +
                        b[2] * vertexNormals_[mesh_.triangles(t, 2)];
     if (blend.norm() > 1e-12) normal = blend.normalized();
   }

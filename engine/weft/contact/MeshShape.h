@@ -26,9 +26,9 @@ class MeshShape final : public ObstacleShape {
   TriangleMesh mesh_;
   TriangleBvh bvh_;
   bool smooth_;
-  std::vector<Vec3> faceNormals_;                  // unit (zero for degenerate triangles)
-  std::vector<Vec3> vertexNormals_;                // angle-weighted pseudo-normals, unit
-  std::vector<std::array<Vec3, 3>> edgeNormals_;   // per triangle edge k (corner k -> k+1)
+  std::vector<Vec3> faceNormals_;                 // unit (zero for degenerate triangles)
+  std::vector<Vec3> vertexNormals_;               // angle-weighted pseudo-normals, unit
+  std::vector<std::array<Vec3, 3>> edgeNormals_;  // per triangle edge k (corner k -> k+1)
 };
 
 }  // namespace weft

@@ -31,8 +31,8 @@ void ObstacleContactDetector::detect(const NodeMatrix& x, const NodeMatrix& disp
       bool hit = false;
       int k = 0;
       for (; k <= segments && !hit; ++k)
-        hit =
-            obstacle.sample(start + (double(k) / segments) * path, start, reach, s) && s.distance < reach;
+        hit = obstacle.sample(start + (double(k) / segments) * path, start, reach, s) &&
+              s.distance < reach;
       if (!hit) continue;
       const double fraction = double(k - 1) / segments;
       ContactConstraint c;

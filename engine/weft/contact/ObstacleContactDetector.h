@@ -8,8 +8,8 @@
 // A node has at most one contact per obstacle, and may touch several obstacles.
 
 #include <weft/contact/ContactConstraint.h>
-#include <weft/contact/ParallelContactCollector.h>
 #include <weft/contact/ContactObstacle.h>
+#include <weft/contact/ParallelContactCollector.h>
 
 #include <vector>
 
@@ -24,7 +24,8 @@ class ObstacleContactDetector {
 
   // Appends the contacts, sorted by node then obstacle. Parallel over nodes, no allocation once
   // the buffers have grown.
-  void detect(const NodeMatrix& x, const NodeMatrix& displacement, double h, std::vector<ContactConstraint>& out);
+  void detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,
+              std::vector<ContactConstraint>& out);
   double margin() const { return margin_; }
 
  private:

@@ -9,7 +9,7 @@
 namespace weft {
 
 struct SurfaceSample {
-  double distance = 0.0;       // signed: negative inside the obstacle
+  double distance = 0.0;        // signed: negative inside the obstacle
   Vec3 normal = Vec3::UnitY();  // unit, pointing out of the obstacle
   Vec3 point = Vec3::Zero();    // closest surface point
 };
@@ -27,7 +27,8 @@ class ObstacleShape {
   // start-of-step position in the start-of-step body frame. Shapes whose inside normal is not
   // determined by p alone override it (BoxShape: the face the node came in through); the others
   // answer sample(p).
-  virtual bool sampleMoved(const Vec3& p, const Vec3& from, double reach, SurfaceSample& out) const {
+  virtual bool sampleMoved(const Vec3& p, const Vec3& from, double reach,
+                           SurfaceSample& out) const {
     (void)from;
     return sample(p, reach, out);
   }

@@ -25,7 +25,8 @@ SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothMode
     }
   }
   for (int i : nodes_)
-    smallestDistance_ = smallestDistance_ > 0.0 ? std::min(smallestDistance_, distance_[i]) : distance_[i];
+    smallestDistance_ =
+        smallestDistance_ > 0.0 ? std::min(smallestDistance_, distance_[i]) : distance_[i];
   // One-ring neighbours (nodes sharing a triangle), as sorted CSR lists: the rest-edge graph.
   std::vector<std::pair<int, int>> links;
   links.reserve(6 * model.rest.triangleCount());
@@ -79,13 +80,16 @@ SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothMode
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
   excludedStart_.assign(m + 1, 0);
-  for (int i = 0; i < m; ++i) excludedStart_[i + 1] = excludedStart_[i] + static_cast<int>(excluded[i].size());
+  for (int i = 0; i < m; ++i)
+    excludedStart_[i + 1] = excludedStart_[i] + static_cast<int>(excluded[i].size());
   excluded_.reserve(excludedStart_[m]);
-  for (const std::vector<int>& list : excluded) excluded_.insert(excluded_.end(), list.begin(), list.end());
+  for (const std::vector<int>& list : excluded)
+    excluded_.insert(excluded_.end(), list.begin(), list.end());
 }
 
 bool SelfCollisionDetector::excluded(int a, int b) const {
-  return std::binary_search(excluded_.begin() + excludedStart_[a], excluded_.begin() + excludedStart_[a + 1], b);
+  return std::binary_search(excluded_.begin() + excludedStart_[a],
+                            excluded_.begin() + excludedStart_[a + 1], b);
 }
 
 void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,

@@ -9,8 +9,9 @@
 // cloth's own stretching; a contact between them would fight it from the first step. Nodes of
 // different cloths, and nodes of one cloth far apart along its mesh (two layers of a cloth laid
 // folded), are never excluded however close they start: they are separate layers, and excluding
-// them by their rest distance alone would let them pass through each other. The frame comes from the pair's relative
-// position at the start of the step, n = (x_a - x_b)/|x_a - x_b|, a < b (ContactConstraint.h).
+// them by their rest distance alone would let them pass through each other. The frame comes from
+// the pair's relative position at the start of the step, n = (x_a - x_b)/|x_a - x_b|, a < b
+// (ContactConstraint.h).
 //
 // Broad phase: each node's swept box in a SpatialHashGrid, so the cost grows linearly with
 // the node count.
@@ -30,7 +31,8 @@ class SelfCollisionDetector {
 
   // Appends the step's pairs, sorted by (a, b) so that the result does not depend on the
   // thread count.
-  void detect(const NodeMatrix& x, const NodeMatrix& displacement, double h, std::vector<ContactConstraint>& out);
+  void detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,
+              std::vector<ContactConstraint>& out);
 
   // The scene's `radius` is the collision distance: node pairs are kept at least this far apart.
   double collisionDistance(int a, int b) const { return 0.5 * (distance_[a] + distance_[b]); }
@@ -50,10 +52,12 @@ class SelfCollisionDetector {
 
  private:
   const ClothModel& model_;
-  std::vector<double> distance_;   // per node: the cloth's radius, 0 for cloths without self-collision
-  std::vector<double> friction_;   // per node: the cloth's self-collision friction
-  std::vector<int> excludedStart_, excluded_;     // per node, the partners excluded() names (CSR, sorted)
-  std::vector<int> nodes_;                        // the nodes that collide
+  std::vector<double>
+      distance_;  // per node: the cloth's radius, 0 for cloths without self-collision
+  std::vector<double> friction_;  // per node: the cloth's self-collision friction
+  std::vector<int> excludedStart_,
+      excluded_;            // per node, the partners excluded() names (CSR, sorted)
+  std::vector<int> nodes_;  // the nodes that collide
   SpatialHashGrid grid_;
   std::vector<Vec3> lower_, upper_;
   std::vector<std::pair<int, int>> candidates_;

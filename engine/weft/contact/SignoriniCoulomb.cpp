@@ -4,14 +4,19 @@ namespace weft {
 
 const char* branchName(ContactBranch branch) {
   switch (branch) {
-    case ContactBranch::TakeOff: return "takeoff";
-    case ContactBranch::Stick: return "stick";
-    case ContactBranch::Slip: return "slip";
-    default: return "none";
+    case ContactBranch::TakeOff:
+      return "takeoff";
+    case ContactBranch::Stick:
+      return "stick";
+    case ContactBranch::Slip:
+      return "slip";
+    default:
+      return "none";
   }
 }
 
-ContactBranch solveSignoriniCoulomb(const Vec3& normal, double friction, const Vec3& free, Vec3& velocityChange) {
+ContactBranch solveSignoriniCoulomb(const Vec3& normal, double friction, const Vec3& free,
+                                    Vec3& velocityChange) {
   const double freeNormal = normal.dot(free);
   if (freeNormal >= 0.0) {  // Eq. 8a: separating without help, no force
     velocityChange.setZero();
@@ -20,7 +25,7 @@ ContactBranch solveSignoriniCoulomb(const Vec3& normal, double friction, const V
   const Vec3 tangential = free - freeNormal * normal;
   const double slide = tangential.norm();
   const double cone = friction * -freeNormal;  // mu r_N / m
-  if (slide <= cone) {  // Eq. 8b: the cone holds the node
+  if (slide <= cone) {                         // Eq. 8b: the cone holds the node
     velocityChange = -free;
     return ContactBranch::Stick;
   }

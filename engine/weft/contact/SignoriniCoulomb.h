@@ -14,6 +14,7 @@
 
 namespace weft {
 
-ContactBranch solveSignoriniCoulomb(const Vec3& normal, double friction, const Vec3& free, Vec3& velocityChange);
+ContactBranch solveSignoriniCoulomb(const Vec3& normal, double friction, const Vec3& free,
+                                    Vec3& velocityChange);
 
 }  // namespace weft

@@ -17,13 +17,15 @@ int cellCoordinate(double v, double inverseCell) {
 
 unsigned hashCell(const int c[3], unsigned mask) {
   return (static_cast<unsigned>(c[0]) * 73856093u ^ static_cast<unsigned>(c[1]) * 19349663u ^
-          static_cast<unsigned>(c[2]) * 83492791u) & mask;
+          static_cast<unsigned>(c[2]) * 83492791u) &
+         mask;
 }
 
 }  // namespace
 
-void SpatialHashGrid::overlappingPairs(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper,
-                                       double cellSize, std::vector<std::pair<int, int>>& out) {
+void SpatialHashGrid::overlappingPairs(const std::vector<Vec3>& lower,
+                                       const std::vector<Vec3>& upper, double cellSize,
+                                       std::vector<std::pair<int, int>>& out) {
   const int n = static_cast<int>(lower.size());
   // 1. Cells per box, and where each box's entries go. Should a few huge boxes (a blow-up in
   // progress) cover too many cells, coarser cells keep the table linear in the box count.
@@ -36,7 +38,8 @@ void SpatialHashGrid::overlappingPairs(const std::vector<Vec3>& lower, const std
     for (int i = 0; i < n && total <= budget; ++i) {
       long long count = 1;
       for (int k = 0; k < 3; ++k)
-        count *= static_cast<long long>(cellCoordinate(upper[i][k], inv)) - cellCoordinate(lower[i][k], inv) + 1;
+        count *= static_cast<long long>(cellCoordinate(upper[i][k], inv)) -
+                 cellCoordinate(lower[i][k], inv) + 1;
       total += count;
       itemStart_[i + 1] = static_cast<int>(std::min(total, budget + 1));
     }
@@ -53,7 +56,8 @@ void SpatialHashGrid::overlappingPairs(const std::vector<Vec3>& lower, const std
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     int lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = cellCoordinate(lower[i][k], inv), hi[k] = cellCoordinate(upper[i][k], inv);
+    for (int k = 0; k < 3; ++k)
+      lo[k] = cellCoordinate(lower[i][k], inv), hi[k] = cellCoordinate(upper[i][k], inv);
     for (int k = 0; k < 3; ++k) lowerCell_[3 * static_cast<std::size_t>(i) + k] = lo[k];
     int e = itemStart_[i];
     for (int x = lo[0]; x <= hi[0]; ++x)
@@ -90,18 +94,20 @@ void SpatialHashGrid::overlappingPairs(const std::vector<Vec3>& lower, const std
         const Entry& ep = entries_[p];
         for (int q = p + 1; q < bucketStart_[b + 1]; ++q) {
           const Entry& eq = entries_[q];
-          if (ep.cell[0] != eq.cell[0] || ep.cell[1] != eq.cell[1] || ep.cell[2] != eq.cell[2]) continue;
+          if (ep.cell[0] != eq.cell[0] || ep.cell[1] != eq.cell[1] || ep.cell[2] != eq.cell[2])
+            continue;
           // Reported from this cell only if it holds the intersection's lower corner: the larger
           // of the two boxes' lower cells in each axis (floor is monotonic).
           const int a = ep.item, c = eq.item;
           const int* cellA = lowerCell_.data() + 3 * static_cast<std::size_t>(a);
           const int* cellC = lowerCell_.data() + 3 * static_cast<std::size_t>(c);
-          if (std::max(cellA[0], cellC[0]) != ep.cell[0] || std::max(cellA[1], cellC[1]) != ep.cell[1] ||
+          if (std::max(cellA[0], cellC[0]) != ep.cell[0] ||
+              std::max(cellA[1], cellC[1]) != ep.cell[1] ||
               std::max(cellA[2], cellC[2]) != ep.cell[2])
             continue;
           const Vec3 &lowA = lower[a], &lowC = lower[c], &upA = upper[a], &upC = upper[c];
-          if (lowA.x() <= upC.x() && lowC.x() <= upA.x() && lowA.y() <= upC.y() && lowC.y() <= upA.y() &&
-              lowA.z() <= upC.z() && lowC.z() <= upA.z())
+          if (lowA.x() <= upC.x() && lowC.x() <= upA.x() && lowA.y() <= upC.y() &&
+              lowC.y() <= upA.y() && lowA.z() <= upC.z() && lowC.z() <= upA.z())
             local.emplace_back(std::min(a, c), std::max(a, c));
         }
       }

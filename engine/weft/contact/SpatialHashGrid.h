@@ -17,8 +17,8 @@ class SpatialHashGrid {
  public:
   // Finds the overlapping pairs (a < b) of the boxes [lower[i], upper[i]], in no particular
   // order. Parallel over hash buckets; the buffers are kept between calls.
-  void overlappingPairs(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper, double cellSize,
-                        std::vector<std::pair<int, int>>& out);
+  void overlappingPairs(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper,
+                        double cellSize, std::vector<std::pair<int, int>>& out);
   int lastEntryCount() const { return static_cast<int>(entries_.size()); }
   int lastBucketCount() const { return static_cast<int>(bucketStart_.size()) - 1; }
 
@@ -27,7 +27,7 @@ class SpatialHashGrid {
     int item;
     int cell[3];
   };
-  std::vector<int> itemStart_;          // entries of item i: [itemStart_[i], itemStart_[i + 1])
+  std::vector<int> itemStart_;  // entries of item i: [itemStart_[i], itemStart_[i + 1])
   std::vector<Entry> unsorted_, entries_;
   std::vector<unsigned> bucketOf_;
   std::vector<int> lowerCell_;  // the cell of each box's lower corner, 3 per box

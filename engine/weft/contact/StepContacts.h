@@ -25,9 +25,12 @@ struct StepContacts {
 // count from the record they leave.
 inline void countBranches(const StepContacts& contacts, StepStats& stats) {
   for (const ContactPoint& p : contacts.points) {
-    if (p.branch == ContactBranch::TakeOff) ++stats.takeoff;
-    else if (p.branch == ContactBranch::Stick) ++stats.stick;
-    else if (p.branch == ContactBranch::Slip) ++stats.slip;
+    if (p.branch == ContactBranch::TakeOff)
+      ++stats.takeoff;
+    else if (p.branch == ContactBranch::Stick)
+      ++stats.stick;
+    else if (p.branch == ContactBranch::Slip)
+      ++stats.slip;
   }
 }
 

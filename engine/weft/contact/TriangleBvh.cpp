@@ -70,7 +70,8 @@ Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
   return a + v * ab + w * ac;
 }
 
-TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : vertices_(mesh.vertices), triangles_(mesh.triangles) {
+TriangleBvh::TriangleBvh(const TriangleMesh& mesh)
+    : vertices_(mesh.vertices), triangles_(mesh.triangles) {
   const int n = mesh.triangleCount();
   if (n == 0) throw InputError("mesh obstacle", "mesh", "has no triangles");
   std::vector<Vec3> centroids(n);
@@ -78,7 +79,9 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : vertices_(mesh.vertices), t
   for (int t = 0; t < n; ++t) {
     order_[t] = t;
     centroids[t] = (vertices_.row(triangles_(t, 0)) + vertices_.row(triangles_(t, 1)) +
-                    vertices_.row(triangles_(t, 2))).transpose() / 3.0;
+                    vertices_.row(triangles_(t, 2)))
+                       .transpose() /
+                   3.0;
   }
   nodes_.reserve(2 * (n / kLeafSize + 1));
   build(0, n, centroids, 0);
@@ -108,7 +111,8 @@ int TriangleBvh::build(int first, int count, std::vector<Vec3>& centroids, int d
   int axis = 0;
   (cUpper - cLower).maxCoeff(&axis);
   const int half = count / 2;
-  std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+  std::nth_element(order_.begin() + first, order_.begin() + first + half,
+                   order_.begin() + first + count,
                    [&](int a, int b) { return centroids[a][axis] < centroids[b][axis]; });
   const int left = build(first, half, centroids, depth + 1);
   const int right = build(first + half, count - half, centroids, depth + 1);
@@ -131,13 +135,15 @@ bool TriangleBvh::nearest(const Vec3& p, double maxSquaredDistance, Nearest& out
         const int t = order_[i];
         Vec3 bary;
         TriangleFeature feature;
-        const Vec3 q = closestPointOnTriangle(p, vertices_.row(triangles_(t, 0)), vertices_.row(triangles_(t, 1)),
+        const Vec3 q = closestPointOnTriangle(p, vertices_.row(triangles_(t, 0)),
+                                              vertices_.row(triangles_(t, 1)),
                                               vertices_.row(triangles_(t, 2)), bary, feature);
         const double d = (p - q).squaredNorm();
         if (d < best) {
           best = d;
           found = true;
-          out.triangle = t, out.point = q, out.barycentric = bary, out.feature = feature, out.squaredDistance = d;
+          out.triangle = t, out.point = q, out.barycentric = bary, out.feature = feature,
+          out.squaredDistance = d;
         }
       }
       continue;
@@ -145,7 +151,8 @@ bool TriangleBvh::nearest(const Vec3& p, double maxSquaredDistance, Nearest& out
     // Visit the nearer child first (pushed last) so that `best` shrinks early.
     const Node& l = nodes_[node.left];
     const Node& r = nodes_[node.right];
-    const double dl = squaredDistanceToBox(p, l.lower, l.upper), dr = squaredDistanceToBox(p, r.lower, r.upper);
+    const double dl = squaredDistanceToBox(p, l.lower, l.upper),
+                 dr = squaredDistanceToBox(p, r.lower, r.upper);
     if (dl < dr) {
       stack[top++] = node.right;
       stack[top++] = node.left;

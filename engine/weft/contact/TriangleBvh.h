@@ -15,8 +15,8 @@ namespace weft {
 enum class TriangleFeature : int { Vertex0 = 0, Vertex1, Vertex2, Edge01, Edge12, Edge20, Face };
 
 // Closest point of triangle (a, b, c) to p, with its barycentric coordinates and feature.
-Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& barycentric,
-                            TriangleFeature& feature);
+Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+                            Vec3& barycentric, TriangleFeature& feature);
 
 class TriangleBvh {
  public:
@@ -41,7 +41,7 @@ class TriangleBvh {
  private:
   struct Node {
     Vec3 lower, upper;
-    int first = 0, count = 0;  // leaf: triangles order_[first, first + count)
+    int first = 0, count = 0;   // leaf: triangles order_[first, first + count)
     int left = -1, right = -1;  // inner node children
   };
   int build(int first, int count, std::vector<Vec3>& centroids, int depth);

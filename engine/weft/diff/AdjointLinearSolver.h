@@ -12,9 +12,9 @@ class AdjointSystem;
 
 struct LinearSolveResult {
   bool converged = false;
-  bool diverged = false;   // stopped early because the iteration was growing (fixed point)
-  int iterations = 0;      // preconditioner applications (iterative solvers); 0 for the direct one
-  double residual = 0.0;   // |g - K z|_2 / |g|_2 at the returned z
+  bool diverged = false;  // stopped early because the iteration was growing (fixed point)
+  int iterations = 0;     // preconditioner applications (iterative solvers); 0 for the direct one
+  double residual = 0.0;  // |g - K z|_2 / |g|_2 at the returned z
   int hessianIterations = 0;  // of `iterations`, with the clamped Hessian's factor (GmresSolver)
   int factorizations = 0;     // clamped-Hessian factorisations made for this solve (GmresSolver)
 };
@@ -28,6 +28,8 @@ class AdjointLinearSolver {
 };
 
 // |a|_2 of an m x 3 block taken as one 3m vector, and the matching dot product.
-inline double blockDot(const NodeMatrix& a, const NodeMatrix& b) { return (a.array() * b.array()).sum(); }
+inline double blockDot(const NodeMatrix& a, const NodeMatrix& b) {
+  return (a.array() * b.array()).sum();
+}
 
 }  // namespace weft

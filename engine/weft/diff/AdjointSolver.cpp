@@ -23,12 +23,13 @@ std::unique_ptr<AdjointLinearSolver> makeAdjointLinearSolver(const BackwardSetti
   // Each step starts from the previous step's z (Wind 12^2: 76 -> 63 iterations per step at 1e-4,
   // 109 -> 98 at 1e-6, preconditioned by P), or from the best combination of the last
   // settings.history solutions (SolutionHistory).
-  return std::make_unique<GmresSolver>(settings.tolerance, settings.maxIterations,
-                                       std::min(settings.maxIterations, 200), /*warmStart=*/true,
-                                       settings.preconditioner == "hessian" ? GmresSolver::Preconditioner::ClampedHessian
-                                       : settings.preconditioner == "p"     ? GmresSolver::Preconditioner::P
-                                                                            : GmresSolver::Preconditioner::Automatic,
-                                       settings.history);
+  return std::make_unique<GmresSolver>(
+      settings.tolerance, settings.maxIterations, std::min(settings.maxIterations, 200),
+      /*warmStart=*/true,
+      settings.preconditioner == "hessian" ? GmresSolver::Preconditioner::ClampedHessian
+      : settings.preconditioner == "p"     ? GmresSolver::Preconditioner::P
+                                           : GmresSolver::Preconditioner::Automatic,
+      settings.history);
 }
 
 AdjointSolver::AdjointSolver(const BackwardSettings& settings)
@@ -53,19 +54,22 @@ void AdjointSolver::solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatr
       ++stats_.fallbacks;
       const auto fallbackStart = std::chrono::steady_clock::now();
       r = direct_->solve(system, rhs, z);
-      stats_.fallbackSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - fallbackStart).count();
+      stats_.fallbackSeconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - fallbackStart).count();
     } else {
       char what[160];
-      std::snprintf(what, sizeof what,
-                    "adjoint solve (%s) did not converge: relative residual %.3g after %d iterations "
-                    "(solver.backward.fallback is \"none\")",
-                    primary_->name(), r.residual, r.iterations);
+      std::snprintf(
+          what, sizeof what,
+          "adjoint solve (%s) did not converge: relative residual %.3g after %d iterations "
+          "(solver.backward.fallback is \"none\")",
+          primary_->name(), r.residual, r.iterations);
       throw NumericalError(step, "backward", what);
     }
   }
   if (!r.converged) {
     char what[120];
-    std::snprintf(what, sizeof what, "direct sparse LU of K = P - Delta P failed (singular matrix, residual %.3g)",
+    std::snprintf(what, sizeof what,
+                  "direct sparse LU of K = P - Delta P failed (singular matrix, residual %.3g)",
                   r.residual);
     throw NumericalError(step, "backward", what);
   }

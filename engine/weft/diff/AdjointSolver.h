@@ -18,14 +18,14 @@ class AdjointSystem;
 
 struct AdjointSolverStats {
   int solves = 0;
-  long long iterations = 0;   // solves with P's factor by the chosen iterative method
-  int maxIterations = 0;      // the most any single step needed
+  long long iterations = 0;         // solves with P's factor by the chosen iterative method
+  int maxIterations = 0;            // the most any single step needed
   long long hessianIterations = 0;  // of `iterations`, preconditioned by the clamped Hessian
   int hessianFactorizations = 0;    // clamped-Hessian factorisations (GmresSolver "hessian"/"auto")
-  int notConverged = 0;       // steps where the chosen method failed (diverged or hit the cap)
-  int diverged = 0;           // of those, stopped early on residual growth
-  int fallbacks = 0;          // steps solved again by the direct LU
-  double maxResidual = 0.0;   // largest relative residual accepted
+  int notConverged = 0;      // steps where the chosen method failed (diverged or hit the cap)
+  int diverged = 0;          // of those, stopped early on residual growth
+  int fallbacks = 0;         // steps solved again by the direct LU
+  double maxResidual = 0.0;  // largest relative residual accepted
   double seconds = 0.0;
   double fallbackSeconds = 0.0;  // of `seconds`, spent in the direct fallback after a failed solve
   // Set by the backward pass (AdjointGrowth.h): max |z_n| over the first nonzero |z_n|; over

@@ -10,7 +10,8 @@
 
 namespace weft {
 
-AdjointSystem::AdjointSystem(const Scene& scene) : model_(buildClothModel(scene)), h_(scene.time.dt) {
+AdjointSystem::AdjointSystem(const Scene& scene)
+    : model_(buildClothModel(scene)), h_(scene.time.dt) {
   // The same families, in the same order, as the Simulator builds.
   auto add = [this](std::unique_ptr<ProjectiveConstraint> c) {
     if (c->rowCount() > 0) constraints_.push_back(std::move(c));
@@ -25,7 +26,8 @@ AdjointSystem::AdjointSystem(const Scene& scene) : model_(buildClothModel(scene)
     anyDerivative_ = anyDerivative_ || c->hasDerivative();
     rows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
-  if (!cholesky_.factorize(system_)) throw NumericalError(0, "backward", "system matrix P is not positive definite");
+  if (!cholesky_.factorize(system_))
+    throw NumericalError(0, "backward", "system matrix P is not positive definite");
   assembly_ = std::make_unique<HessianAssembly>(system_);
   hessianCholesky_.orderByNodes(system_);
 }
@@ -35,14 +37,18 @@ AdjointSystem::~AdjointSystem() = default;
 void AdjointSystem::prepare(const NodeMatrix& x, const ContactAdjoint* contact) {
   preparedX_ = x;  // kept for factorClampedHessian (same size every step: no allocation)
   for (auto& c : constraints_)
-    if (c->hasDerivative()) c->prepareDerivative(x, false);  // exact derivative (Eq. 18), not clamped
+    if (c->hasDerivative())
+      c->prepareDerivative(x, false);  // exact derivative (Eq. 18), not clamped
   contact_ = contact && contact->size() > 0 ? contact : nullptr;
 }
 
-void AdjointSystem::multiplyP(const NodeMatrix& in, NodeMatrix& out) const { out = system_ * in; }
+void AdjointSystem::multiplyP(const NodeMatrix& in, NodeMatrix& out) const {
+  out = system_ * in;
+}
 
 void AdjointSystem::multiplyDeltaP(const NodeMatrix& in, NodeMatrix& out) const {
-  // Delta P in = h^2 sum_i A_i^T w_i D_i A_i in (Eq. 19), with applyDerivative giving w_i D_i A_i in.
+  // Delta P in = h^2 sum_i A_i^T w_i D_i A_i in (Eq. 19), with applyDerivative giving w_i D_i A_i
+  // in.
   out.setZero(in.rows(), 3);
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
     if (!constraints_[c]->hasDerivative()) continue;
@@ -83,7 +89,9 @@ void AdjointSystem::multiplyCoupling(const NodeMatrix& in, NodeMatrix& out) cons
   out -= work_;
 }
 
-void AdjointSystem::solveP(NodeMatrix& inOut) { cholesky_.solveInPlace(inOut); }
+void AdjointSystem::solveP(NodeMatrix& inOut) {
+  cholesky_.solveInPlace(inOut);
+}
 
 bool AdjointSystem::factorClampedHessian() {
   if (preparedX_.rows() != nodeCount()) return false;
@@ -104,11 +112,14 @@ double AdjointSystem::hessianFlopRatio() const {
 double AdjointSystem::hessianIterationCost() const {
   const double product = 18.0 * static_cast<double>(system_.nonZeros());
   const double entriesP = cholesky_.factorEntries();
-  const double entriesH = hessianCholesky_.factorEntries() > 0.0 ? hessianCholesky_.factorEntries() : 9.0 * entriesP;
+  const double entriesH =
+      hessianCholesky_.factorEntries() > 0.0 ? hessianCholesky_.factorEntries() : 9.0 * entriesP;
   return (4.0 * entriesH + product) / (12.0 * entriesP + product);
 }
 
-double AdjointSystem::hessianFactorCost() const { return kFactorCostScale * std::sqrt(hessianFlopRatio()); }
+double AdjointSystem::hessianFactorCost() const {
+  return kFactorCostScale * std::sqrt(hessianFlopRatio());
+}
 
 void AdjointSystem::solveClampedHessian(NodeMatrix& inOut) {
   // NodeMatrix storage is column-major: its data is the flat 3m vector assembleK indexes.
@@ -133,7 +144,8 @@ Eigen::SparseMatrix<double> AdjointSystem::assembleSystem() const {
   b.setFromTriplets(bEntries.begin(), bEntries.end());
   Eigen::SparseMatrix<double> kMinusM = k;
   for (int d = 0; d < 3; ++d)
-    for (int i = 0; i < nodeCount(); ++i) kMinusM.coeffRef(d * nodeCount() + i, d * nodeCount() + i) -= model_.mass[i];
+    for (int i = 0; i < nodeCount(); ++i)
+      kMinusM.coeffRef(d * nodeCount() + i, d * nodeCount() + i) -= model_.mass[i];
   const Eigen::SparseMatrix<double> coupling = kMinusM * b;
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(k.nonZeros() + coupling.nonZeros() + minusG.size() + tTransposed.size());

@@ -40,7 +40,9 @@ class AdjointSystem {
   const ClothModel& model() const { return model_; }
   double dt() const { return h_; }
   int nodeCount() const { return model_.nodeCount(); }
-  const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const { return constraints_; }
+  const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const {
+    return constraints_;
+  }
   const Eigen::SparseMatrix<double>& systemMatrix() const { return system_; }  // P, one coordinate
 
   // Evaluates the projection derivatives (Delta P) at x (the recorded x_{n+1}) and takes the
@@ -51,11 +53,12 @@ class AdjointSystem {
   // K != P: the fixed point of Eq. 20/30 needs more than one solve.
   bool hasCoupling() const { return anyDerivative_ || contact_ != nullptr; }
 
-  void multiplyP(const NodeMatrix& in, NodeMatrix& out) const;         // out = P in
-  void multiplyDeltaP(const NodeMatrix& in, NodeMatrix& out) const;    // out = Delta P in
-  void multiplyK(const NodeMatrix& in, NodeMatrix& out) const;         // out = K in
-  void multiplyCoupling(const NodeMatrix& in, NodeMatrix& out) const;  // out = (P - K) in (Eq. 30's (Delta P + Delta R)^T)
-  void solveP(NodeMatrix& inOut);                                      // inOut = P^{-1} inOut (CHOLMOD factor)
+  void multiplyP(const NodeMatrix& in, NodeMatrix& out) const;       // out = P in
+  void multiplyDeltaP(const NodeMatrix& in, NodeMatrix& out) const;  // out = Delta P in
+  void multiplyK(const NodeMatrix& in, NodeMatrix& out) const;       // out = K in
+  void multiplyCoupling(const NodeMatrix& in, NodeMatrix& out)
+      const;                       // out = (P - K) in (Eq. 30's (Delta P + Delta R)^T)
+  void solveP(NodeMatrix& inOut);  // inOut = P^{-1} inOut (CHOLMOD factor)
   // A preconditioner closer to K than P (solver.backward.preconditioner "hessian"): H = P minus
   // Delta P with every projection derivative clamped as the Newton forward clamps it
   // (prepareDerivative(x, true)), i.e. h^2 times the implicit-Euler Hessian with each element's
@@ -110,7 +113,7 @@ class AdjointSystem {
   mutable NodeMatrix contactWbar_, contactSum_, work_;
   mutable Eigen::MatrixX3d contactY_;
   mutable std::unique_ptr<HessianAssembly> assembly_;  // assembleK's pattern and positions
-  Eigen::SparseMatrix<double> clamped_;                // H, assembled in place by factorClampedHessian
+  Eigen::SparseMatrix<double> clamped_;  // H, assembled in place by factorClampedHessian
 };
 
 }  // namespace weft

@@ -46,12 +46,15 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
     const auto contactDone = std::chrono::steady_clock::now();
     system.prepare(x1, touching ? contact.get() : nullptr);
     result.deltaRSeconds += std::chrono::duration<double>(contactDone - prepareStart).count();
-    result.deltaPSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - contactDone).count();
+    result.deltaPSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - contactDone).count();
     solver.solve(system, rhs, z, n + 1);
     growth.observe(z);
     // wbar = R'^T z: what the contact impulses pass on of z (zero without contact).
-    if (system.hasContact()) contact->applyTransposed(z, wbar, y);
-    else wbar.setZero();
+    if (system.hasContact())
+      contact->applyTransposed(z, wbar, y);
+    else
+      wbar.setZero();
     // Force-like parameters enter f as well as G1: their partials take S^T z = z + wbar.
     partials.accumulate(x0, v0, x1, t1, z + wbar, result.gradient);
     dLdx[n] += model.mass.asDiagonal() * z - dLdvNext / h;

@@ -32,7 +32,8 @@ struct GradientResult {
   double seconds = 0.0;
   // Of `seconds`: preparing Delta P (the projections' derivatives at x_{n+1}, Eq. 18) and the
   // contact part Delta R (ContactAdjoint::prepare: law Jacobians, frames, the coupling LU). The
-  // linear solves are solver.seconds; the rest (losses, partials, state gradients) is the remainder.
+  // linear solves are solver.seconds; the rest (losses, partials, state gradients) is the
+  // remainder.
   double deltaPSeconds = 0.0, deltaRSeconds = 0.0;
 };
 

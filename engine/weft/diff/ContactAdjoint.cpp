@@ -1,7 +1,7 @@
 #include <weft/diff/ContactAdjoint.h>
 
-#include <weft/core/Error.h>
 #include <weft/contact/ContactLawJacobian.h>
+#include <weft/core/Error.h>
 
 #include <cmath>
 #include <limits>
@@ -26,8 +26,8 @@ ContactAdjoint::ContactAdjoint(const Scene& scene, const ClothModel& model)
 
 ContactAdjoint::~ContactAdjoint() = default;
 
-void ContactAdjoint::frameOfObstacleContact(const ContactPoint& p, const NodeMatrix& x0, const Mat3& lawNormal,
-                                            Contact& c) const {
+void ContactAdjoint::frameOfObstacleContact(const ContactPoint& p, const NodeMatrix& x0,
+                                            const Mat3& lawNormal, Contact& c) const {
   const ContactObstacle& obstacle = obstacles_[p.obstacle];
   const Vec3 start = x0.row(p.node).transpose();
   // The reference velocity and normal as functions of the sample point, at fixed x_n (the same
@@ -75,7 +75,8 @@ void ContactAdjoint::frameOfPair(const ContactPoint& p, const NodeMatrix& x0, co
   c.frameX = h_ * (-c.d * referenceByDx + c.mass * lawNormal * normalByDx);
 }
 
-void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0, double t0, double t1, int step) {
+void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0, double t0,
+                             double t1, int step) {
   for (ContactObstacle& o : obstacles_) o.beginStep(t0, t1);
   contacts_.clear();
   for (const ContactPoint& p : contacts.points) {
@@ -88,11 +89,14 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
     c.friction = p.friction;
     c.velocityChange = p.impulse / p.effectiveMass;
     const Vec3 free = p.velocity - c.velocityChange;
-    const ContactLawJacobian law = differentiateSignoriniCoulomb(p.branch, p.normal, p.friction, free);
+    const ContactLawJacobian law =
+        differentiateSignoriniCoulomb(p.branch, p.normal, p.friction, free);
     c.d = c.mass * law.velocity;
     c.frictionRate = h_ * c.mass * law.friction;
-    if (p.partner < 0) frameOfObstacleContact(p, x0, law.normal, c);
-    else frameOfPair(p, x0, law.normal, c);
+    if (p.partner < 0)
+      frameOfObstacleContact(p, x0, law.normal, c);
+    else
+      frameOfPair(p, x0, law.normal, c);
     contacts_.push_back(c);
   }
 
@@ -105,7 +109,8 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
     if (c.b >= 0) coupled_ = coupled_ || ++touching[c.b] > 1;
   }
   if (!coupled_) return;
-  std::vector<std::vector<std::pair<int, double>>> sharing(model_.nodeCount());  // node -> (contact, sign)
+  std::vector<std::vector<std::pair<int, double>>> sharing(
+      model_.nodeCount());  // node -> (contact, sign)
   for (int k = 0; k < count; ++k) {
     sharing[contacts_[k].a].emplace_back(k, 1.0);
     if (contacts_[k].b >= 0) sharing[contacts_[k].b].emplace_back(k, -1.0);
@@ -140,12 +145,15 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
     tSolver_.compute(tTransposed_);
   }
   if (tSolver_.info() != Eigen::Success)
-    throw NumericalError(step, "backward",
-                         "the contacts sharing a node have no unique impulse split (singular contact coupling "
-                         "of " + std::to_string(count) + " contacts, also with the diagonal shifted by 1e-9)");
+    throw NumericalError(
+        step, "backward",
+        "the contacts sharing a node have no unique impulse split (singular contact coupling "
+        "of " +
+            std::to_string(count) + " contacts, also with the diagonal shifted by 1e-9)");
 }
 
-void ContactAdjoint::applyTransposed(const NodeMatrix& z, NodeMatrix& wbar, Eigen::MatrixX3d& y) const {
+void ContactAdjoint::applyTransposed(const NodeMatrix& z, NodeMatrix& wbar,
+                                     Eigen::MatrixX3d& y) const {
   const int count = size();
   y.resize(count, 3);
   for (int k = 0; k < count; ++k) {
@@ -168,9 +176,9 @@ void ContactAdjoint::applyTransposed(const NodeMatrix& z, NodeMatrix& wbar, Eige
   }
 }
 
-void ContactAdjoint::appendTransposedBlocks(std::vector<Eigen::Triplet<double>>& b,
-                                            std::vector<Eigen::Triplet<double>>& minusG,
-                                            std::vector<Eigen::Triplet<double>>& tTransposed) const {
+void ContactAdjoint::appendTransposedBlocks(
+    std::vector<Eigen::Triplet<double>>& b, std::vector<Eigen::Triplet<double>>& minusG,
+    std::vector<Eigen::Triplet<double>>& tTransposed) const {
   const int m = model_.nodeCount();
   for (int k = 0; k < size(); ++k) {
     const Contact& c = contacts_[k];
@@ -181,7 +189,8 @@ void ContactAdjoint::appendTransposedBlocks(std::vector<Eigen::Triplet<double>>&
       for (int d = 0; d < 3; ++d) {
         minusG.emplace_back(3 * k + d, d * m + node, -sign);
         for (int e = 0; e < 3; ++e)
-          if (c.d(e, d) != 0.0) b.emplace_back(d * m + node, 3 * k + e, sign * c.d(e, d) / model_.mass[node]);
+          if (c.d(e, d) != 0.0)
+            b.emplace_back(d * m + node, 3 * k + e, sign * c.d(e, d) / model_.mass[node]);
       }
     }
   }
@@ -194,19 +203,23 @@ void ContactAdjoint::appendTransposedBlocks(std::vector<Eigen::Triplet<double>>&
   }
 }
 
-void ContactAdjoint::addStateGradients(const Eigen::MatrixX3d& y, NodeMatrix& dLdx0, NodeMatrix& dLdv0) const {
+void ContactAdjoint::addStateGradients(const Eigen::MatrixX3d& y, NodeMatrix& dLdx0,
+                                       NodeMatrix& dLdv0) const {
   for (int k = 0; k < size(); ++k) {
     const Contact& c = contacts_[k];
     const Vec3 yk = y.row(k).transpose();
     const Vec3 byStart = c.frameX.transpose() * yk;
     dLdx0.row(c.a) += byStart.transpose();
-    if (c.b >= 0) dLdx0.row(c.b) -= byStart.transpose();
-    else dLdv0.row(c.a) += (c.frameV.transpose() * yk).transpose();
+    if (c.b >= 0)
+      dLdx0.row(c.b) -= byStart.transpose();
+    else
+      dLdv0.row(c.a) += (c.frameV.transpose() * yk).transpose();
   }
 }
 
-void ContactAdjoint::addParameterGradients(const std::vector<SceneParameter>& parameters, const Eigen::MatrixX3d& y,
-                                           const NodeMatrix& wbar, const NodeMatrix& x0, const NodeMatrix& v0,
+void ContactAdjoint::addParameterGradients(const std::vector<SceneParameter>& parameters,
+                                           const Eigen::MatrixX3d& y, const NodeMatrix& wbar,
+                                           const NodeMatrix& x0, const NodeMatrix& v0,
                                            const NodeMatrix& x1, Eigen::VectorXd& gradient) const {
   using Kind = SceneParameter::Kind;
   const Vec3 g = scene_.gravity ? *scene_.gravity : Vec3::Zero();
@@ -215,13 +228,15 @@ void ContactAdjoint::addParameterGradients(const std::vector<SceneParameter>& pa
     double d = 0.0;
     if (p.kind == Kind::ObstacleFriction) {
       for (int c = 0; c < size(); ++c)
-        if (contacts_[c].obstacle == p.index) d += y.row(c).dot(contacts_[c].frictionRate.transpose());
+        if (contacts_[c].obstacle == p.index)
+          d += y.row(c).dot(contacts_[c].frictionRate.transpose());
     } else if (p.kind == Kind::SelfCollisionFriction) {
       // A pair's coefficient is the mean of its two nodes' cloths' (SelfCollisionDetector).
       for (int c = 0; c < size(); ++c) {
         const Contact& ct = contacts_[c];
         if (ct.b < 0) continue;
-        const double share = 0.5 * ((model_.clothOf(ct.a) == p.cloth) + (model_.clothOf(ct.b) == p.cloth));
+        const double share =
+            0.5 * ((model_.clothOf(ct.a) == p.cloth) + (model_.clothOf(ct.b) == p.cloth));
         d += share * y.row(c).dot(ct.frictionRate.transpose());
       }
     } else if (p.kind == Kind::Density) {

@@ -61,7 +61,8 @@ class ContactAdjoint {
   //   [-G   T^T       ] [y] = [0],     B = M^-1 G^T D^T,
   // as triplets: B (3m x 3c), -G (3c x 3m) and T^T (3c x 3c), with node-space index
   // coordinate * m + node and contact-space index 3 * contact + coordinate.
-  void appendTransposedBlocks(std::vector<Eigen::Triplet<double>>& b, std::vector<Eigen::Triplet<double>>& minusG,
+  void appendTransposedBlocks(std::vector<Eigen::Triplet<double>>& b,
+                              std::vector<Eigen::Triplet<double>>& minusG,
                               std::vector<Eigen::Triplet<double>>& tTransposed) const;
 
   // dL/dx_n and dL/dv_n through the contact frames (gap, normal, surface velocity) given y.
@@ -71,15 +72,16 @@ class ContactAdjoint {
   // force-like parameters (stiffness, external forces, handles) need nothing here: their partials
   // are ParameterPartials' with S^T z = z + wbar in place of z (notes Sec. 3.4), which is what the
   // caller hands it; density's inertia term is corrected for that here.
-  void addParameterGradients(const std::vector<SceneParameter>& parameters, const Eigen::MatrixX3d& y,
-                             const NodeMatrix& wbar, const NodeMatrix& x0, const NodeMatrix& v0, const NodeMatrix& x1,
+  void addParameterGradients(const std::vector<SceneParameter>& parameters,
+                             const Eigen::MatrixX3d& y, const NodeMatrix& wbar,
+                             const NodeMatrix& x0, const NodeMatrix& v0, const NodeMatrix& x1,
                              Eigen::VectorXd& gradient) const;
 
  private:
   struct Contact {
-    int a = -1, b = -1;   // nodes (b = -1 for an obstacle contact)
+    int a = -1, b = -1;  // nodes (b = -1 for an obstacle contact)
     int obstacle = -1;
-    double mass = 0.0;    // effective mass m_c
+    double mass = 0.0;  // effective mass m_c
     double friction = 0.0;
     Mat3 d;               // m_c dL/dw
     Mat3 frameX;          // d (h r_c) / d x_n of node a (node b of a pair: minus this)
@@ -87,8 +89,10 @@ class ContactAdjoint {
     Vec3 frictionRate;    // d (h r_c) / d mu_c
     Vec3 velocityChange;  // the law's du = r_c / m_c
   };
-  void frameOfObstacleContact(const ContactPoint& p, const NodeMatrix& x0, const Mat3& lawNormal, Contact& c) const;
-  void frameOfPair(const ContactPoint& p, const NodeMatrix& x0, const Mat3& lawNormal, Contact& c) const;
+  void frameOfObstacleContact(const ContactPoint& p, const NodeMatrix& x0, const Mat3& lawNormal,
+                              Contact& c) const;
+  void frameOfPair(const ContactPoint& p, const NodeMatrix& x0, const Mat3& lawNormal,
+                   Contact& c) const;
 
   const Scene& scene_;
   const ClothModel& model_;

@@ -7,7 +7,8 @@
 
 namespace weft {
 
-LinearSolveResult DirectLuSolver::solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) {
+LinearSolveResult DirectLuSolver::solve(AdjointSystem& system, const NodeMatrix& rhs,
+                                        NodeMatrix& z) {
   LinearSolveResult result;
   const int m = static_cast<int>(rhs.rows());
   // K itself without contact; with contact the augmented system whose first 3m unknowns are z.

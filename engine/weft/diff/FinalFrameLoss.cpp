@@ -13,7 +13,8 @@ double FinalFrameLoss::value(const Trajectory& trajectory) const {
   return weight_ * sum;
 }
 
-void FinalFrameLoss::addGradient(const Trajectory& trajectory, std::vector<NodeMatrix>& gradient) const {
+void FinalFrameLoss::addGradient(const Trajectory& trajectory,
+                                 std::vector<NodeMatrix>& gradient) const {
   const NodeMatrix& x = trajectory.positions.back();
   NodeMatrix& g = gradient.back();
   if (vertices_.empty()) {

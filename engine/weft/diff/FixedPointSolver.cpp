@@ -6,7 +6,8 @@
 
 namespace weft {
 
-LinearSolveResult FixedPointSolver::solve(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) {
+LinearSolveResult FixedPointSolver::solve(AdjointSystem& system, const NodeMatrix& rhs,
+                                          NodeMatrix& z) {
   LinearSolveResult result;
   const double rhsNorm = rhs.norm();
   if (rhsNorm == 0.0) {

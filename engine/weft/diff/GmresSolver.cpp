@@ -9,9 +9,12 @@ namespace weft {
 
 const char* GmresSolver::name() const {
   switch (preconditioner_) {
-    case Preconditioner::P: return "gmres";
-    case Preconditioner::ClampedHessian: return "gmres (hessian)";
-    case Preconditioner::Automatic: return switched_ ? "gmres (auto: hessian)" : "gmres (auto: p)";
+    case Preconditioner::P:
+      return "gmres";
+    case Preconditioner::ClampedHessian:
+      return "gmres (hessian)";
+    case Preconditioner::Automatic:
+      return switched_ ? "gmres (auto: hessian)" : "gmres (auto: p)";
   }
   return "gmres";
 }
@@ -21,13 +24,15 @@ LinearSolveResult GmresSolver::solve(AdjointSystem& system, const NodeMatrix& rh
   stepHessianIterations_ = 0;
   if (history_.capacity() > 0) history_.guess(rhs, z);
   LinearSolveResult r = solveFrom(system, rhs, z);
-  if (history_.capacity() > 0) history_.add(z, rhs - gmres_.residual());  // K z, from the residual the solve ended with
+  if (history_.capacity() > 0)
+    history_.add(z, rhs - gmres_.residual());  // K z, from the residual the solve ended with
   r.hessianIterations = stepHessianIterations_;
   r.factorizations = factorizations_ - factorizationsBefore;
   return r;
 }
 
-LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix& rhs, NodeMatrix& z) {
+LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix& rhs,
+                                         NodeMatrix& z) {
   auto multiplyK = [&](const NodeMatrix& in, NodeMatrix& out) { system.multiplyK(in, out); };
   bool hessian = false;
   auto precondition = [&](const NodeMatrix& in, NodeMatrix& out) {
@@ -39,10 +44,11 @@ LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix
   };
   if (preconditioner_ != Preconditioner::Automatic || !system.hasDeltaP()) {
     // Without Delta P the clamped Hessian is P itself.
-    hessian = preconditioner_ == Preconditioner::ClampedHessian && system.hasDeltaP() && system.factorClampedHessian();
+    hessian = preconditioner_ == Preconditioner::ClampedHessian && system.hasDeltaP() &&
+              system.factorClampedHessian();
     factorizations_ += hessian;
-    const GmresResult r =
-        gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_, minIterations());
+    const GmresResult r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_,
+                                       restart_, warmStart_, minIterations());
     if (hessian) stepHessianIterations_ = r.iterations;
     return {r.converged, false, r.iterations, r.residual};
   }
@@ -60,8 +66,8 @@ LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix
       hessian = true;
       ++hessianRun_;
       ++hessianSteps_;
-      r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_, warmStart_,
-                       minIterations());
+      r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, maxIterations_, restart_,
+                       warmStart_, minIterations());
       lastIterations_ = r.iterations;
       runCost_ += system.hessianIterationCost() * r.iterations;
       ++runSteps_;
@@ -78,14 +84,18 @@ LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix
   // kAutomaticPriorReuse), before buying one: the ski-rental rule, never far from the better
   // choice made in hindsight.
   const bool reprobe = switched_;
-  const double stepsPerFactor = double(hessianSteps_ + kAutomaticPriorReuse) / double(factorizations_ + 1);
-  const double budget = reprobe ? runCost_ / std::max(1, runSteps_) : system.hessianFactorCost() / stepsPerFactor;
-  const int pBudget = std::max(kAutomaticPIterations, static_cast<int>(std::lround(std::min(budget, 1e6))));
+  const double stepsPerFactor =
+      double(hessianSteps_ + kAutomaticPriorReuse) / double(factorizations_ + 1);
+  const double budget =
+      reprobe ? runCost_ / std::max(1, runSteps_) : system.hessianFactorCost() / stepsPerFactor;
+  const int pBudget =
+      std::max(kAutomaticPIterations, static_cast<int>(std::lround(std::min(budget, 1e6))));
   hessianRun_ = 0;
-  r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, std::min(maxIterations_, pBudget), restart_,
-                   warmStart_, minIterations());
+  r = gmres_.solve(multiplyK, precondition, rhs, z, tolerance_, std::min(maxIterations_, pBudget),
+                   restart_, warmStart_, minIterations());
   switched_ = false;
-  if (!r.converged && r.iterations < maxIterations_ && (factorValid_ = system.factorClampedHessian())) {
+  if (!r.converged && r.iterations < maxIterations_ &&
+      (factorValid_ = system.factorClampedHessian())) {
     // P is slow here: continue from the z it reached, preconditioned by the Hessian. A new run of
     // Hessian steps starts, its cost counted from this factorisation.
     ++factorizations_;

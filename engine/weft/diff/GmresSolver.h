@@ -28,9 +28,9 @@
 // kAutomaticRefactor iterations, probing P again every kAutomaticReprobe steps (for as many
 // iterations as the run's steps have cost on average, at least kAutomaticPIterations: a
 // factorisation by hessianFactorCost, an iteration with H by hessianIterationCost) and
-// staying with P if it converged within them, and dropping back to P as soon as a fresh factor needs more than
-// kAutomaticPIterations (the hard iterations come from the contact part Delta R, which the
-// Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
+// staying with P if it converged within them, and dropping back to P as soon as a fresh factor
+// needs more than kAutomaticPIterations (the hard iterations come from the contact part Delta R,
+// which the Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
 // The choice depends on iteration and operation counts only, so repeated runs stay
 // bit-identical.
 // With warmStart each step starts from the previous step's solution, or with history > 0 from

@@ -22,9 +22,9 @@
 namespace weft {
 
 struct GradientCheckOptions {
-  double eps = 1e-4;                 // relative finite-difference step
-  double forwardTolerance = 1e-8;    // pd_tolerance (m/s^2) of every forward run, Newton-PCG
-  double backwardTolerance = 1e-8;   // relative residual of every adjoint solve
+  double eps = 1e-4;                // relative finite-difference step
+  double forwardTolerance = 1e-8;   // pd_tolerance (m/s^2) of every forward run, Newton-PCG
+  double backwardTolerance = 1e-8;  // relative residual of every adjoint solve
   std::optional<std::string> backwardMethod;  // overrides solver.backward.method
 };
 

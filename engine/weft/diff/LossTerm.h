@@ -16,7 +16,8 @@ class LossTerm {
   virtual const char* name() const = 0;
   virtual double value(const Trajectory& trajectory) const = 0;
   // gradient[n] += dL/dx_n for every state n (gradient has one m x 3 matrix per state).
-  virtual void addGradient(const Trajectory& trajectory, std::vector<NodeMatrix>& gradient) const = 0;
+  virtual void addGradient(const Trajectory& trajectory,
+                           std::vector<NodeMatrix>& gradient) const = 0;
 };
 
 }  // namespace weft

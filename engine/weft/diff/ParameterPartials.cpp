@@ -12,7 +12,11 @@ namespace weft {
 
 ParameterPartials::ParameterPartials(const Scene& scene, const ClothModel& model,
                                      const std::vector<SceneParameter>& parameters)
-    : scene_(scene), model_(model), parameters_(parameters), unit_(parameters.size()), h_(scene.time.dt) {
+    : scene_(scene),
+      model_(model),
+      parameters_(parameters),
+      unit_(parameters.size()),
+      h_(scene.time.dt) {
   using Kind = SceneParameter::Kind;
   for (std::size_t k = 0; k < parameters_.size(); ++k) {
     const SceneParameter& p = parameters_[k];
@@ -23,16 +27,17 @@ ParameterPartials::ParameterPartials(const Scene& scene, const ClothModel& model
       unit_[k].constraint = std::make_unique<StretchConstraint>(model_.rest.vertices, tris,
                                                                 std::vector<double>(t1 - t0, 1.0));
     else
-      unit_[k].constraint = std::make_unique<BendingConstraint>(buildHinges(model_.rest.vertices, tris, 1.0),
-                                                                model_.nodeCount());
+      unit_[k].constraint = std::make_unique<BendingConstraint>(
+          buildHinges(model_.rest.vertices, tris, 1.0), model_.nodeCount());
     unit_[k].gram = unit_[k].constraint->weightedGram();
   }
 }
 
 ParameterPartials::~ParameterPartials() = default;
 
-void ParameterPartials::accumulate(const NodeMatrix& x0, const NodeMatrix& v0, const NodeMatrix& x1, double t1,
-                                   const NodeMatrix& z, Eigen::VectorXd& gradient) const {
+void ParameterPartials::accumulate(const NodeMatrix& x0, const NodeMatrix& v0, const NodeMatrix& x1,
+                                   double t1, const NodeMatrix& z,
+                                   Eigen::VectorXd& gradient) const {
   using Kind = SceneParameter::Kind;
   const double h2 = h_ * h_;
   const Eigen::VectorXd& area = model_.lumpedArea;
@@ -130,7 +135,8 @@ void ParameterPartials::accumulate(const NodeMatrix& x0, const NodeMatrix& v0, c
   }
 }
 
-void ParameterPartials::accumulateInitial(const NodeMatrix& dLdv0, Eigen::VectorXd& gradient) const {
+void ParameterPartials::accumulateInitial(const NodeMatrix& dLdv0,
+                                          Eigen::VectorXd& gradient) const {
   for (std::size_t k = 0; k < parameters_.size(); ++k) {
     const SceneParameter& p = parameters_[k];
     if (p.kind != SceneParameter::Kind::InitialVelocity) continue;

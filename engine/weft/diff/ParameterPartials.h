@@ -6,10 +6,11 @@
 //
 // is the step's equation (the first-order condition of Eq. 3, written as Eq. 13 times M) and z
 // solves K^T z = dL/dx_{n+1} (Eq. 19). Partials, all analytic:
-//   stretch/bend k of cloth c: w = k * w_hat, so dG/dk = h^2 sum_{i in c} w_hat_i A_i^T (A_i x - p_i(x))
+//   stretch/bend k of cloth c: w = k * w_hat, so dG/dk = h^2 sum_{i in c} w_hat_i A_i^T (A_i x -
+//   p_i(x))
 //                              (the family's gradient, Eq. 17, at unit stiffness);
-//   density rho of cloth c:    M = rho * area, gravity m g: dG/drho = area (x_{n+1} - x_n - h v_n - h^2 g);
-//   wind (strength s, direction d, frequency f, phase phi), f_i = s area_i phi(t) d with
+//   density rho of cloth c:    M = rho * area, gravity m g: dG/drho = area (x_{n+1} - x_n - h v_n -
+//   h^2 g); wind (strength s, direction d, frequency f, phase phi), f_i = s area_i phi(t) d with
 //                              phi = (sin(2 pi f t + phi0) + 1)/2: dG/dtheta = -h^2 df/dtheta;
 //   constant nodal forces and gravity: dG/dF = -h^2 (selection);
 //   handle targets: an attachment row (node j, stiffness k) adds h^2 k (x_j - x_hat_j(t)) to G
@@ -35,7 +36,8 @@ namespace weft {
 
 class ParameterPartials {
  public:
-  ParameterPartials(const Scene& scene, const ClothModel& model, const std::vector<SceneParameter>& parameters);
+  ParameterPartials(const Scene& scene, const ClothModel& model,
+                    const std::vector<SceneParameter>& parameters);
   ~ParameterPartials();
 
   // gradient[k] += -z . dG/dtheta_k for the step from (x0, v0) to x1 ending at time t1.

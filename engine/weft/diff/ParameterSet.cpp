@@ -8,7 +8,8 @@ namespace weft {
 
 ParameterSet ParameterSet::fromPaths(const Scene& scene, const std::vector<std::string>& paths) {
   ParameterSet set;
-  for (const std::string& p : paths) set.parameters_.push_back(resolveSceneParameter(scene, p, "--param " + p));
+  for (const std::string& p : paths)
+    set.parameters_.push_back(resolveSceneParameter(scene, p, "--param " + p));
   return set;
 }
 
@@ -16,8 +17,8 @@ ParameterSet ParameterSet::fromTask(const Scene& scene) {
   ParameterSet set;
   if (!scene.task) return set;
   for (std::size_t i = 0; i < scene.task->parameters.size(); ++i)
-    set.parameters_.push_back(
-        resolveSceneParameter(scene, scene.task->parameters[i], "task.parameters." + std::to_string(i)));
+    set.parameters_.push_back(resolveSceneParameter(scene, scene.task->parameters[i],
+                                                    "task.parameters." + std::to_string(i)));
   return set;
 }
 

@@ -9,7 +9,8 @@ namespace weft {
 namespace {
 
 bool parseIndex(const std::string& s, int& out) {
-  if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+  if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos)
+    return false;
   out = std::atoi(s.c_str());
   return true;
 }
@@ -24,10 +25,13 @@ const char* kSupported =
 
 }  // namespace
 
-SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path, const std::string& where) {
+SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path,
+                                     const std::string& where) {
   auto fail = [&](const std::string& what) { throw InputError(scene.file, where, what); };
   const nlohmann::json* value = findJsonPath(scene.document, path);
-  if (!value) fail("parameter '" + path + "' names no value in the scene (write the value in the scene file)");
+  if (!value)
+    fail("parameter '" + path +
+         "' names no value in the scene (write the value in the scene file)");
   if (!value->is_number()) fail("parameter '" + path + "' is not a number in the scene");
 
   SceneParameter p;
@@ -43,14 +47,19 @@ SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path
     if (!parseIndex(parts[1], p.cloth) || p.cloth >= static_cast<int>(scene.cloths.size()))
       fail("parameter '" + path + "': no such cloth");
     if (n == 4 && parts[2] == "material") {
-      if (parts[3] == "stretch") p.kind = SceneParameter::Kind::Stretch;
-      else if (parts[3] == "bend") p.kind = SceneParameter::Kind::Bend;
-      else if (parts[3] == "density") p.kind = SceneParameter::Kind::Density;
-      else fail("parameter '" + path + "' is not differentiable; " + kSupported);
+      if (parts[3] == "stretch")
+        p.kind = SceneParameter::Kind::Stretch;
+      else if (parts[3] == "bend")
+        p.kind = SceneParameter::Kind::Bend;
+      else if (parts[3] == "density")
+        p.kind = SceneParameter::Kind::Density;
+      else
+        fail("parameter '" + path + "' is not differentiable; " + kSupported);
       return p;
     }
     if (n == 4 && parts[2] == "self_collision" && parts[3] == "friction") {
-      if (!scene.cloths[p.cloth].selfCollision) fail("parameter '" + path + "': the cloth has no self-collision");
+      if (!scene.cloths[p.cloth].selfCollision)
+        fail("parameter '" + path + "': the cloth has no self-collision");
       p.kind = SceneParameter::Kind::SelfCollisionFriction;
       return p;
     }
@@ -89,17 +98,20 @@ SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path
       }
     }
   } else if (n >= 2 && parts[0] == "wind" && scene.wind) {
-    if (n == 2 && parts[1] == "strength") p.kind = SceneParameter::Kind::WindStrength;
-    else if (n == 2 && parts[1] == "frequency") p.kind = SceneParameter::Kind::WindFrequency;
-    else if (n == 2 && parts[1] == "phase") p.kind = SceneParameter::Kind::WindPhase;
+    if (n == 2 && parts[1] == "strength")
+      p.kind = SceneParameter::Kind::WindStrength;
+    else if (n == 2 && parts[1] == "frequency")
+      p.kind = SceneParameter::Kind::WindFrequency;
+    else if (n == 2 && parts[1] == "phase")
+      p.kind = SceneParameter::Kind::WindPhase;
     else if (n == 3 && parts[1] == "direction") {
       p.kind = SceneParameter::Kind::WindDirection;
       p.component = component(parts[2]);
     } else {
       fail("parameter '" + path + "' is not differentiable; " + kSupported);
     }
-    if (scene.wind->constant &&
-        (p.kind == SceneParameter::Kind::WindFrequency || p.kind == SceneParameter::Kind::WindPhase))
+    if (scene.wind->constant && (p.kind == SceneParameter::Kind::WindFrequency ||
+                                 p.kind == SceneParameter::Kind::WindPhase))
       fail("parameter '" + path + "' has no effect: the wind model is \"constant\"");
     return p;
   } else if (n == 3 && parts[0] == "obstacles" && parts[2] == "friction") {
@@ -140,9 +152,11 @@ void collectParameterPaths(const Scene& scene, const nlohmann::json& node, const
   const std::string prefix = path.empty() ? "" : path + ".";
   if (node.is_object()) {
     for (const auto& [key, child] : node.items())
-      if (!(path.empty() && key == "task") && key != "mesh") collectParameterPaths(scene, child, prefix + key, out);
+      if (!(path.empty() && key == "task") && key != "mesh")
+        collectParameterPaths(scene, child, prefix + key, out);
   } else if (node.is_array() && (node.size() <= 3 || !node[0].is_number())) {
-    for (std::size_t i = 0; i < node.size(); ++i) collectParameterPaths(scene, node[i], prefix + std::to_string(i), out);
+    for (std::size_t i = 0; i < node.size(); ++i)
+      collectParameterPaths(scene, node[i], prefix + std::to_string(i), out);
   }
 }
 

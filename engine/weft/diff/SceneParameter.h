@@ -15,16 +15,16 @@ namespace weft {
 
 struct SceneParameter {
   enum class Kind {
-    Stretch,          // cloths.K.material.stretch: scales the cloth's stretch weights
-    Bend,             // cloths.K.material.bend: scales the cloth's bending weights
-    Density,          // cloths.K.material.density: scales mass, inertia and gravity
-    InitialVelocity,  // cloths.K.initial_velocity.i: enters v_0
-    NodalForce,       // cloths.K.forces.J.force.i: constant f_ext on the listed vertices
-    WindStrength,     // wind.strength
-    WindDirection,    // wind.direction.i
-    WindFrequency,    // wind.frequency
-    WindPhase,        // wind.phase
-    Gravity,          // gravity.i
+    Stretch,                // cloths.K.material.stretch: scales the cloth's stretch weights
+    Bend,                   // cloths.K.material.bend: scales the cloth's bending weights
+    Density,                // cloths.K.material.density: scales mass, inertia and gravity
+    InitialVelocity,        // cloths.K.initial_velocity.i: enters v_0
+    NodalForce,             // cloths.K.forces.J.force.i: constant f_ext on the listed vertices
+    WindStrength,           // wind.strength
+    WindDirection,          // wind.direction.i
+    WindFrequency,          // wind.frequency
+    WindPhase,              // wind.phase
+    Gravity,                // gravity.i
     ObstacleFriction,       // obstacles.J.friction (index = J): the slip branch's dr/dmu
     SelfCollisionFriction,  // cloths.K.self_collision.friction: pairs take the mean of both cloths'
     // Handles (moving attachments) and attachments, J = index in cloths.K.attachments:
@@ -53,7 +53,8 @@ struct SceneParameter {
 // the path names no number in the scene or a value the adjoint cannot differentiate yet.
 // `where` is what the message names: the option ("--param <path>") or the JSON path of the
 // task entry ("task.parameters.1").
-SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path, const std::string& where);
+SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path,
+                                     const std::string& where);
 
 // The parameter's current value, read from the scene document.
 double parameterValue(const Scene& scene, const SceneParameter& parameter);

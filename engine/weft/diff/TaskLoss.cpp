@@ -31,37 +31,44 @@ TargetFile readTarget(const Scene& scene, const std::string& where, const std::s
   }
   const std::size_t vertices = static_cast<std::size_t>(scene.vertexCount());
   std::size_t states = 0;
-  if (npy.shape.size() == 3 && npy.shape[1] == vertices && npy.shape[2] == 3) states = npy.shape[0];
-  else if (npy.shape.size() == 2 && npy.shape[0] == vertices && npy.shape[1] == 3) states = 1;
+  if (npy.shape.size() == 3 && npy.shape[1] == vertices && npy.shape[2] == 3)
+    states = npy.shape[0];
+  else if (npy.shape.size() == 2 && npy.shape[0] == vertices && npy.shape[1] == 3)
+    states = 1;
   else {
     std::string shape;
     for (std::size_t d : npy.shape) shape += (shape.empty() ? "" : ", ") + std::to_string(d);
     throw InputError(scene.file, where,
                      "target " + path + " has shape [" + shape + "]; expected [states, " +
-                         std::to_string(vertices) + ", 3] or [" + std::to_string(vertices) + ", 3]");
+                         std::to_string(vertices) + ", 3] or [" + std::to_string(vertices) +
+                         ", 3]");
   }
   TargetFile t;
   for (std::size_t s = 0; s < states; ++s) {
     NodeMatrix x(static_cast<int>(vertices), 3);
     for (std::size_t v = 0; v < vertices; ++v)
       for (int c = 0; c < 3; ++c) x(static_cast<int>(v), c) = npy.data[(s * vertices + v) * 3 + c];
-    if (!x.allFinite()) throw InputError(scene.file, where, "target " + path + " has non-finite values");
+    if (!x.allFinite())
+      throw InputError(scene.file, where, "target " + path + " has non-finite values");
     t.states.push_back(std::move(x));
   }
   return t;
 }
 
-std::vector<int> readVertices(const Scene& scene, const nlohmann::json& term, const std::string& where) {
+std::vector<int> readVertices(const Scene& scene, const nlohmann::json& term,
+                              const std::string& where) {
   std::vector<int> out;
   if (!term.contains("vertices")) return out;
   const nlohmann::json& list = term["vertices"];
   const int count = scene.vertexCount();
-  if (!list.is_array() || list.empty()) throw InputError(scene.file, where + ".vertices", "must be a non-empty list of vertex indices");
+  if (!list.is_array() || list.empty())
+    throw InputError(scene.file, where + ".vertices", "must be a non-empty list of vertex indices");
   for (std::size_t i = 0; i < list.size(); ++i) {
     const nlohmann::json& v = list[i];
     if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= count)
-      throw InputError(scene.file, where + ".vertices." + std::to_string(i),
-                       "must be a vertex index in [0, " + std::to_string(count) + ") (global, scene order)");
+      throw InputError(
+          scene.file, where + ".vertices." + std::to_string(i),
+          "must be a vertex index in [0, " + std::to_string(count) + ") (global, scene order)");
     out.push_back(v.get<int>());
   }
   return out;
@@ -142,8 +149,9 @@ TaskLoss::TaskLoss(const Scene& scene) {
       continue;
     }
     if (it.key() != "trajectory" && it.key() != "final")
-      throw InputError(scene.file, where,
-                       "unknown loss term '" + it.key() + "' (trajectory, final, keypoints or hemline)");
+      throw InputError(
+          scene.file, where,
+          "unknown loss term '" + it.key() + "' (trajectory, final, keypoints or hemline)");
     const double weight = term.value("weight", 1.0);
     std::vector<int> vertices = readVertices(scene, term, where);
     TargetFile target = readTarget(scene, where + ".target", term["target"].get<std::string>());
@@ -151,11 +159,14 @@ TaskLoss::TaskLoss(const Scene& scene) {
       const int needed = scene.time.steps + 1;
       if (static_cast<int>(target.states.size()) < needed)
         throw InputError(scene.file, where + ".target",
-                         "target has " + std::to_string(target.states.size()) + " states; the scene simulates " +
-                             std::to_string(scene.time.steps) + " steps and needs " + std::to_string(needed));
-      terms_.push_back(std::make_unique<TrajectoryLoss>(std::move(target.states), std::move(vertices), weight));
+                         "target has " + std::to_string(target.states.size()) +
+                             " states; the scene simulates " + std::to_string(scene.time.steps) +
+                             " steps and needs " + std::to_string(needed));
+      terms_.push_back(
+          std::make_unique<TrajectoryLoss>(std::move(target.states), std::move(vertices), weight));
     } else {
-      terms_.push_back(std::make_unique<FinalFrameLoss>(std::move(target.states.back()), std::move(vertices), weight));
+      terms_.push_back(std::make_unique<FinalFrameLoss>(std::move(target.states.back()),
+                                                        std::move(vertices), weight));
     }
   }
 }
@@ -167,7 +178,8 @@ double TaskLoss::value(const Trajectory& trajectory) const {
 }
 
 std::vector<NodeMatrix> TaskLoss::gradient(const Trajectory& trajectory) const {
-  std::vector<NodeMatrix> g(trajectory.positions.size(), NodeMatrix::Zero(trajectory.nodeCount(), 3));
+  std::vector<NodeMatrix> g(trajectory.positions.size(),
+                            NodeMatrix::Zero(trajectory.nodeCount(), 3));
   for (const auto& t : terms_) t->addGradient(trajectory, g);
   return g;
 }

@@ -4,7 +4,8 @@
 
 namespace weft {
 
-TrajectoryLoss::TrajectoryLoss(std::vector<NodeMatrix> target, std::vector<int> vertices, double weight)
+TrajectoryLoss::TrajectoryLoss(std::vector<NodeMatrix> target, std::vector<int> vertices,
+                               double weight)
     : target_(std::move(target)), vertices_(std::move(vertices)), weight_(weight) {}
 
 double TrajectoryLoss::value(const Trajectory& trajectory) const {
@@ -21,7 +22,8 @@ double TrajectoryLoss::value(const Trajectory& trajectory) const {
   return weight_ * sum;
 }
 
-void TrajectoryLoss::addGradient(const Trajectory& trajectory, std::vector<NodeMatrix>& gradient) const {
+void TrajectoryLoss::addGradient(const Trajectory& trajectory,
+                                 std::vector<NodeMatrix>& gradient) const {
   const int states = std::min(static_cast<int>(trajectory.positions.size()), targetStates());
   for (int n = 1; n < states; ++n) {
     const NodeMatrix& x = trajectory.positions[n];

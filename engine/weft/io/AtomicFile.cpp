@@ -22,7 +22,9 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
   if (!fs::is_directory(folder, ec)) throw InputError(path, "-", "the folder does not exist");
   std::string temp = (folder / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
   const int fd = ::mkstemp(temp.data());
-  if (fd < 0) throw InputError(path, "-", "cannot create a temporary file: " + std::string(std::strerror(errno)));
+  if (fd < 0)
+    throw InputError(path, "-",
+                     "cannot create a temporary file: " + std::string(std::strerror(errno)));
   auto fail = [&](const std::string& what) {
     const std::string reason = what + ": " + std::strerror(errno);
     ::close(fd);

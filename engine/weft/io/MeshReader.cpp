@@ -5,10 +5,10 @@
 
 #include <weft/core/Error.h>
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <tiny_obj_loader.h>
+#include <assimp/Importer.hpp>
 
 #include <algorithm>
 #include <array>
@@ -26,7 +26,8 @@ namespace {
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -124,7 +125,8 @@ void joinCoincidentCorners(TriangleMesh& part) {
   // assimp numbers the corners triangle by triangle, so this is the order of first use.
   part.vertices = kept.topRows(count);
   for (Eigen::Index t = 0; t < part.triangles.rows(); ++t)
-    for (int k = 0; k < 3; ++k) part.triangles(t, k) = joined[static_cast<std::size_t>(part.triangles(t, k))];
+    for (int k = 0; k < 3; ++k)
+      part.triangles(t, k) = joined[static_cast<std::size_t>(part.triangles(t, k))];
 }
 
 // Where each of the file's meshes sits: the global transform (the product of the node
@@ -134,7 +136,8 @@ void collectPlacements(const aiNode* node, const aiMatrix4x4& parent,
   const aiMatrix4x4 global = parent * node->mTransformation;
   for (unsigned i = 0; i < node->mNumMeshes; ++i)
     if (node->mMeshes[i] < placements.size()) placements[node->mMeshes[i]].push_back(global);
-  for (unsigned c = 0; c < node->mNumChildren; ++c) collectPlacements(node->mChildren[c], global, placements);
+  for (unsigned c = 0; c < node->mNumChildren; ++c)
+    collectPlacements(node->mChildren[c], global, placements);
 }
 
 TriangleMesh readWithAssimp(const std::string& path) {
@@ -187,8 +190,7 @@ TriangleMesh readWithAssimp(const std::string& path) {
 }  // namespace
 
 TriangleMesh readMesh(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(path, "mesh", "no such file");
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "mesh", "no such file");
   TriangleMesh mesh = lowerExtension(path) == ".obj" ? readObj(path) : readWithAssimp(path);
   if (mesh.vertexCount() == 0) throw InputError(path, "mesh", "the file holds no vertices");
   if (mesh.triangleCount() == 0) throw InputError(path, "mesh", "the file holds no faces");

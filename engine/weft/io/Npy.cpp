@@ -13,7 +13,8 @@ namespace weft {
 void writeNpy(const std::string& path, const std::vector<std::size_t>& shape, const double* data) {
   std::ostringstream dict;
   dict << "{'descr': '<f8', 'fortran_order': False, 'shape': (";
-  for (std::size_t i = 0; i < shape.size(); ++i) dict << shape[i] << (shape.size() == 1 || i + 1 < shape.size() ? ", " : "");
+  for (std::size_t i = 0; i < shape.size(); ++i)
+    dict << shape[i] << (shape.size() == 1 || i + 1 < shape.size() ? ", " : "");
   dict << "), }";
   std::string header = dict.str();
   // Magic (6) + version (2) + header length (2) + header, padded with spaces to 64 bytes + '\n'.
@@ -28,8 +29,10 @@ void writeNpy(const std::string& path, const std::vector<std::size_t>& shape, co
   const char lenBytes[2] = {static_cast<char>(len & 0xff), static_cast<char>(len >> 8)};
   out.write(lenBytes, 2);
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
-  const std::size_t count = std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
-  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(count * sizeof(double)));
+  const std::size_t count =
+      std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
+  out.write(reinterpret_cast<const char*>(data),
+            static_cast<std::streamsize>(count * sizeof(double)));
   if (!out) throw InputError(path, "output", "write failed");
 }
 
@@ -38,7 +41,8 @@ NpyArray readNpy(const std::string& path) {
   if (!in) throw InputError(path, "npy", "cannot open file");
   char magic[8];
   in.read(magic, 8);
-  if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0) throw InputError(path, "npy", "not a .npy file");
+  if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0)
+    throw InputError(path, "npy", "not a .npy file");
   std::size_t headerLen = 0;
   if (magic[6] == 1) {
     unsigned char b[2];
@@ -63,7 +67,8 @@ NpyArray readNpy(const std::string& path) {
   NpyArray array;
   std::string dims = m[1];
   std::regex num("[0-9]+");
-  for (auto it = std::sregex_iterator(dims.begin(), dims.end(), num); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(dims.begin(), dims.end(), num); it != std::sregex_iterator();
+       ++it)
     array.shape.push_back(std::stoull(it->str()));
   const std::size_t count =
       std::accumulate(array.shape.begin(), array.shape.end(), std::size_t{1}, std::multiplies<>());

@@ -19,11 +19,14 @@ StagedDirectory::StagedDirectory(std::string finalPath) : final_(std::move(final
     throw InputError("<command line>", "--out", final_ + " exists and is not a folder");
   const fs::path parent = fs::absolute(final_).parent_path();
   fs::create_directories(parent, ec);
-  if (ec) throw InputError("<command line>", "--out", "cannot create " + parent.string() + ": " + ec.message());
+  if (ec)
+    throw InputError("<command line>", "--out",
+                     "cannot create " + parent.string() + ": " + ec.message());
   staging_ = final_ + ".tmp-" + std::to_string(::getpid());
   fs::remove_all(staging_, ec);
   fs::create_directory(staging_, ec);
-  if (ec) throw InputError("<command line>", "--out", "cannot create " + staging_ + ": " + ec.message());
+  if (ec)
+    throw InputError("<command line>", "--out", "cannot create " + staging_ + ": " + ec.message());
 }
 
 StagedDirectory::~StagedDirectory() {
@@ -39,7 +42,8 @@ void StagedDirectory::commit() {
   const bool hadOld = fs::exists(final_, ec);
   if (hadOld) {
     fs::rename(final_, old, ec);
-    if (ec) throw InputError("<command line>", "--out", "cannot replace " + final_ + ": " + ec.message());
+    if (ec)
+      throw InputError("<command line>", "--out", "cannot replace " + final_ + ": " + ec.message());
   }
   fs::rename(staging_, final_, ec);
   if (ec) {

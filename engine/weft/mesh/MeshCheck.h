@@ -15,7 +15,7 @@ struct MeshReport {
   std::vector<int> degenerateTriangles;  // zero or near-zero area relative to its edges
   std::vector<int> unreferencedVertices;
   std::vector<std::pair<int, int>> nonManifoldEdges;  // edges shared by more than two triangles
-  std::vector<int> thinTriangles;        // smallest angle under 5 degrees (a warning only)
+  std::vector<int> thinTriangles;  // smallest angle under 5 degrees (a warning only)
 
   bool hasErrors() const {
     return !nonFiniteVertices.empty() || !badIndexTriangles.empty() ||

@@ -21,7 +21,9 @@ Eigen::VectorXd TriangleMesh::lumpedAreas() const {
   return areas;
 }
 
-double TriangleMesh::totalArea() const { return areaAt(vertices); }
+double TriangleMesh::totalArea() const {
+  return areaAt(vertices);
+}
 
 double TriangleMesh::areaAt(const NodeMatrix& positions) const {
   double sum = 0.0;

@@ -26,8 +26,8 @@ struct TriangleMesh {
 
 // An undirected edge with the (one or two, more if non-manifold) triangles that share it.
 struct MeshEdge {
-  int a, b;                 // a < b
-  std::vector<int> faces;   // triangles containing the edge
+  int a, b;                // a < b
+  std::vector<int> faces;  // triangles containing the edge
 };
 
 // Unique edges of the mesh, sorted by (a, b).

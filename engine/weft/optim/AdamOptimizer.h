@@ -13,7 +13,8 @@ class AdamOptimizer : public Optimizer {
   std::string name() const override { return "adam"; }
 
  protected:
-  std::string run(Eigen::VectorXd x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) override;
+  std::string run(Eigen::VectorXd x, const Eigen::VectorXd& lower,
+                  const Eigen::VectorXd& upper) override;
 };
 
 }  // namespace weft

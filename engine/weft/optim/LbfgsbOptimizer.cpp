@@ -8,7 +8,8 @@
 
 namespace weft {
 
-std::string LbfgsbOptimizer::run(Eigen::VectorXd x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+std::string LbfgsbOptimizer::run(Eigen::VectorXd x, const Eigen::VectorXd& lower,
+                                 const Eigen::VectorXd& upper) {
   LBFGSpp::LBFGSBParam<double> param;
   param.epsilon = settings().gradientTolerance;
   param.epsilon_rel = 0.0;  // absolute test only: optimiser coordinates are already scaled to O(1)
@@ -38,7 +39,8 @@ std::string LbfgsbOptimizer::run(Eigen::VectorXd x, const Eigen::VectorXd& lower
     return std::string("line search: ") + e.what();
   }
   const LogEntry& last = log().entries().back();
-  if (projectedGradientNorm(last.x, last.gradient, lower, upper) <= param.epsilon) return "converged: projected gradient";
+  if (projectedGradientNorm(last.x, last.gradient, lower, upper) <= param.epsilon)
+    return "converged: projected gradient";
   if (param.max_iterations > 0 && iterations_ >= param.max_iterations) return "max iterations";
   return "converged: loss change";
 }

@@ -13,7 +13,8 @@ class LbfgsbOptimizer : public Optimizer {
   std::string name() const override { return "lbfgsb"; }
 
  protected:
-  std::string run(Eigen::VectorXd x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) override;
+  std::string run(Eigen::VectorXd x, const Eigen::VectorXd& lower,
+                  const Eigen::VectorXd& upper) override;
 };
 
 }  // namespace weft

@@ -18,15 +18,16 @@ struct StopRequest {
 
 }  // namespace
 
-double projectedGradientNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& gradient, const Eigen::VectorXd& lower,
-                             const Eigen::VectorXd& upper) {
+double projectedGradientNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& gradient,
+                             const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
   // The same measure as L-BFGS-B's: |P(x - g) - x|_inf with P the projection onto the box.
   return ((x - gradient).cwiseMax(lower).cwiseMin(upper) - x).cwiseAbs().maxCoeff();
 }
 
 void Optimizer::admit(long long cost) const {
   const int done = static_cast<int>(log_.entries().size());
-  if (settings_.maxEvaluations > 0 && done >= settings_.maxEvaluations) throw StopRequest{"max evaluations"};
+  if (settings_.maxEvaluations > 0 && done >= settings_.maxEvaluations)
+    throw StopRequest{"max evaluations"};
   if (settings_.budget > 0 && log_.steps() + cost > settings_.budget) throw StopRequest{"budget"};
 }
 
@@ -59,8 +60,8 @@ double Optimizer::evaluateValue(const Eigen::VectorXd& x) {
   return record(std::move(e), cost);
 }
 
-OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::VectorXd& x0, const Eigen::VectorXd& lower,
-                                       const Eigen::VectorXd& upper) {
+OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::VectorXd& x0,
+                                       const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
   objective_ = &objective;
   log_.clear();
   iterations_ = 0;
@@ -78,8 +79,9 @@ OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::Vector
     result.loss = best.loss;
     result.hasGradient = best.hasGradient;
     result.gradient = best.gradient;
-    result.projectedGradientNorm = best.hasGradient ? projectedGradientNorm(best.x, best.gradient, lower, upper)
-                                                    : std::numeric_limits<double>::quiet_NaN();
+    result.projectedGradientNorm = best.hasGradient
+                                       ? projectedGradientNorm(best.x, best.gradient, lower, upper)
+                                       : std::numeric_limits<double>::quiet_NaN();
   } else {
     result.x = x0.cwiseMax(lower).cwiseMin(upper);
   }
@@ -89,7 +91,8 @@ OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::Vector
   return result;
 }
 
-std::unique_ptr<Optimizer> makeOptimizer(const std::string& method, const OptimizerSettings& settings) {
+std::unique_ptr<Optimizer> makeOptimizer(const std::string& method,
+                                         const OptimizerSettings& settings) {
   if (method == "lbfgsb") return std::make_unique<LbfgsbOptimizer>(settings);
   if (method == "adam") return std::make_unique<AdamOptimizer>(settings);
   if (method == "cmaes") return std::make_unique<CmaEsOptimizer>(settings);

@@ -19,21 +19,22 @@
 namespace weft {
 
 struct OptimizerSettings {
-  long long budget = 0;            // simulated steps, forward + backward; 0 = unlimited
-  int maxEvaluations = 0;          // 0 = unlimited
-  int maxIterations = 0;           // 0 = unlimited
-  double gradientTolerance = 1e-8; // projected gradient, infinity norm, optimiser coordinates
-  double lossTolerance = 1e-12;    // relative loss change between iterations
-  unsigned seed = 0;               // the evolution strategies' random stream (std::mt19937_64)
-  double learningRate = 0.05;      // Adam's step in optimiser coordinates
+  long long budget = 0;             // simulated steps, forward + backward; 0 = unlimited
+  int maxEvaluations = 0;           // 0 = unlimited
+  int maxIterations = 0;            // 0 = unlimited
+  double gradientTolerance = 1e-8;  // projected gradient, infinity norm, optimiser coordinates
+  double lossTolerance = 1e-12;     // relative loss change between iterations
+  unsigned seed = 0;                // the evolution strategies' random stream (std::mt19937_64)
+  double learningRate = 0.05;       // Adam's step in optimiser coordinates
 };
 
 struct OptimizationResult {
-  Eigen::VectorXd x;         // best point evaluated, optimiser coordinates
+  Eigen::VectorXd x;  // best point evaluated, optimiser coordinates
   double loss = 0.0;
   bool hasGradient = false;  // whether x was a gradient evaluation (never for CMA-ES, (1+1)-ES)
   Eigen::VectorXd gradient;  // at x, when hasGradient (else empty)
-  double projectedGradientNorm = 0.0;  // infinity norm of the bound-projected gradient at x (NaN without one)
+  double projectedGradientNorm =
+      0.0;  // infinity norm of the bound-projected gradient at x (NaN without one)
   int evaluations = 0;
   int iterations = 0;
   long long steps = 0;
@@ -51,15 +52,16 @@ class Optimizer {
 
   // x0 is projected into [lower, upper] first. Throws what the objective throws (InputError,
   // NumericalError); running out of budget or evaluations is a normal stop.
-  OptimizationResult minimize(Objective& objective, const Eigen::VectorXd& x0, const Eigen::VectorXd& lower,
-                              const Eigen::VectorXd& upper);
+  OptimizationResult minimize(Objective& objective, const Eigen::VectorXd& x0,
+                              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
   OptimizationLog& log() { return log_; }
   const OptimizationLog& log() const { return log_; }
   const OptimizerSettings& settings() const { return settings_; }
 
  protected:
   // The method itself: returns the stop reason. Iterations are counted in iterations_.
-  virtual std::string run(Eigen::VectorXd x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) = 0;
+  virtual std::string run(Eigen::VectorXd x, const Eigen::VectorXd& lower,
+                          const Eigen::VectorXd& upper) = 0;
   // One logged, budgeted evaluation with the gradient (costs stepsPerEvaluation). Throws
   // StopRequest when the budget or the evaluation cap would be exceeded; minimize() catches it.
   double evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& gradient);
@@ -80,10 +82,11 @@ class Optimizer {
 
 // Infinity norm of the gradient projected onto the box: components pushing outward at an active
 // bound do not count (the first-order optimality measure of bound-constrained problems).
-double projectedGradientNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& gradient, const Eigen::VectorXd& lower,
-                             const Eigen::VectorXd& upper);
+double projectedGradientNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& gradient,
+                             const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
 
 // "lbfgsb", "adam", "cmaes" or "es1p1"; nullptr for an unknown name.
-std::unique_ptr<Optimizer> makeOptimizer(const std::string& method, const OptimizerSettings& settings);
+std::unique_ptr<Optimizer> makeOptimizer(const std::string& method,
+                                         const OptimizerSettings& settings);
 
 }  // namespace weft

@@ -45,7 +45,8 @@ void applyDefaultBounds(SceneParameter& p) {
   }
 }
 
-ParameterSpace::ParameterSpace(const Scene& scene, const ParameterSet& set) : parameters_(set.parameters()) {
+ParameterSpace::ParameterSpace(const Scene& scene, const ParameterSet& set)
+    : parameters_(set.parameters()) {
   initial_ = set.values(scene);
   scale_.resize(size());
   for (int i = 0; i < size(); ++i) {
@@ -64,8 +65,8 @@ ParameterSpace::ParameterSpace(const Scene& scene, const ParameterSet& set) : pa
     const double v = initial_[i];
     if (!(v >= p.lower && v <= p.upper)) {
       std::ostringstream s;
-      s << "the starting value " << v << " of '" << p.path << "' lies outside its bounds [" << p.lower << ", "
-        << p.upper << "]";
+      s << "the starting value " << v << " of '" << p.path << "' lies outside its bounds ["
+        << p.lower << ", " << p.upper << "]";
       throw InputError(scene.file, where, s.str());
     }
     scale_[i] = v != 0.0 ? std::abs(v) : 1.0;
@@ -74,25 +75,31 @@ ParameterSpace::ParameterSpace(const Scene& scene, const ParameterSet& set) : pa
 
 Eigen::VectorXd ParameterSpace::toCoordinates(const Eigen::VectorXd& values) const {
   Eigen::VectorXd z(size());
-  for (int i = 0; i < size(); ++i) z[i] = parameters_[i].logScale ? std::log(values[i]) : values[i] / scale_[i];
+  for (int i = 0; i < size(); ++i)
+    z[i] = parameters_[i].logScale ? std::log(values[i]) : values[i] / scale_[i];
   return z;
 }
 
 Eigen::VectorXd ParameterSpace::toValues(const Eigen::VectorXd& z) const {
   Eigen::VectorXd v(size());
-  for (int i = 0; i < size(); ++i) v[i] = parameters_[i].logScale ? std::exp(z[i]) : z[i] * scale_[i];
+  for (int i = 0; i < size(); ++i)
+    v[i] = parameters_[i].logScale ? std::exp(z[i]) : z[i] * scale_[i];
   return v;
 }
 
-Eigen::VectorXd ParameterSpace::gradientToCoordinates(const Eigen::VectorXd& z, const Eigen::VectorXd& g) const {
+Eigen::VectorXd ParameterSpace::gradientToCoordinates(const Eigen::VectorXd& z,
+                                                      const Eigen::VectorXd& g) const {
   Eigen::VectorXd out(size());
-  for (int i = 0; i < size(); ++i) out[i] = g[i] * (parameters_[i].logScale ? std::exp(z[i]) : scale_[i]);
+  for (int i = 0; i < size(); ++i)
+    out[i] = g[i] * (parameters_[i].logScale ? std::exp(z[i]) : scale_[i]);
   return out;
 }
 
-Eigen::VectorXd ParameterSpace::gradientToValues(const Eigen::VectorXd& z, const Eigen::VectorXd& g) const {
+Eigen::VectorXd ParameterSpace::gradientToValues(const Eigen::VectorXd& z,
+                                                 const Eigen::VectorXd& g) const {
   Eigen::VectorXd out(size());
-  for (int i = 0; i < size(); ++i) out[i] = g[i] / (parameters_[i].logScale ? std::exp(z[i]) : scale_[i]);
+  for (int i = 0; i < size(); ++i)
+    out[i] = g[i] / (parameters_[i].logScale ? std::exp(z[i]) : scale_[i]);
   return out;
 }
 

@@ -32,7 +32,8 @@ class ParameterSpace {
   Eigen::VectorXd toCoordinates(const Eigen::VectorXd& values) const;
   Eigen::VectorXd toValues(const Eigen::VectorXd& z) const;
   // dL/dz from dL/dtheta at z.
-  Eigen::VectorXd gradientToCoordinates(const Eigen::VectorXd& z, const Eigen::VectorXd& dLdtheta) const;
+  Eigen::VectorXd gradientToCoordinates(const Eigen::VectorXd& z,
+                                        const Eigen::VectorXd& dLdtheta) const;
   // dL/dtheta from dL/dz at z.
   Eigen::VectorXd gradientToValues(const Eigen::VectorXd& z, const Eigen::VectorXd& dLdz) const;
 

@@ -25,7 +25,8 @@ double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& 
   const double forwardSeconds = secondsSince(start);
   forwardSeconds_ += forwardSeconds;
   ++forwardPasses_;
-  const GradientResult r = backpropagate(scene, forward.trajectory, loss_, parameters_, scene.solver.backward);
+  const GradientResult r =
+      backpropagate(scene, forward.trajectory, loss_, parameters_, scene.solver.backward);
   gradient = space_.gradientToCoordinates(z, r.gradient);
   backward_.solves += r.solver.solves;
   backward_.iterations += r.solver.iterations;

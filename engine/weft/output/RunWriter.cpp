@@ -25,8 +25,10 @@ void writeContactArrays(const std::string& folder, const Trajectory& trajectory,
   // Per state and node, for the renderer and the editor: the branch (0 none, 1 take-off,
   // 2 stick, 3 slip) and the total contact force (N, impulse / h). A node with several contacts
   // shows its obstacle contact if it has one, else its strongest pair; state 0 has no contacts.
-  const std::size_t states = trajectory.positions.size(), nodes = static_cast<std::size_t>(trajectory.nodeCount());
-  std::vector<double> branches(states * nodes, 0.0), forces(states * nodes * 3, 0.0), strength(nodes);
+  const std::size_t states = trajectory.positions.size(),
+                    nodes = static_cast<std::size_t>(trajectory.nodeCount());
+  std::vector<double> branches(states * nodes, 0.0), forces(states * nodes * 3, 0.0),
+      strength(nodes);
   for (std::size_t s = 1; s < states && s - 1 < trajectory.contacts.size(); ++s) {
     std::fill(strength.begin(), strength.end(), -1.0);
     for (const ContactPoint& p : trajectory.contacts[s - 1].points) {
@@ -52,7 +54,8 @@ void writeContactArrays(const std::string& folder, const Trajectory& trajectory,
 
 nlohmann::json summarize(const Scene& scene, const Trajectory& trajectory, const RunSummary& run) {
   nlohmann::json modules = nlohmann::json::object();
-  for (std::size_t i = 0; i < run.moduleNames.size(); ++i) modules[run.moduleNames[i]] = run.moduleSeconds[i];
+  for (std::size_t i = 0; i < run.moduleNames.size(); ++i)
+    modules[run.moduleNames[i]] = run.moduleSeconds[i];
   long long takeoff = 0, stick = 0, slip = 0, iterations = 0;
   int converged = 0, maxIterations = 0;
   double maxResidual = 0.0;
@@ -77,13 +80,14 @@ nlohmann::json summarize(const Scene& scene, const Trajectory& trajectory, const
   j["peak_memory_mb"] = peakMemoryMegabytes();
   j["modules"] = modules;
   j["contacts"] = {{"takeoff", takeoff}, {"stick", stick}, {"slip", slip}};
-  j["pd"] = {{"iterations_total", iterations},
-             {"iterations_mean", steps > 0 ? double(iterations) / steps : 0.0},
-             {"iterations_max", maxIterations},
-             {"converged_steps", converged},
-             {"max_residual", maxResidual},
-             {"tolerance", scene.solver.pdTolerance},
-             {"acceleration", scene.solver.acceleration == Acceleration::Anderson ? "anderson" : "none"}};
+  j["pd"] = {
+      {"iterations_total", iterations},
+      {"iterations_mean", steps > 0 ? double(iterations) / steps : 0.0},
+      {"iterations_max", maxIterations},
+      {"converged_steps", converged},
+      {"max_residual", maxResidual},
+      {"tolerance", scene.solver.pdTolerance},
+      {"acceleration", scene.solver.acceleration == Acceleration::Anderson ? "anderson" : "none"}};
   return j;
 }
 
@@ -91,7 +95,8 @@ void writeRun(const std::string& folder, const Scene& scene, const ClothModel& m
               const Trajectory& trajectory, const RunSummary& run) {
   const std::vector<double> flat = trajectory.flattenedPositions();
   writeNpy(folder + "/positions.npy",
-           {trajectory.positions.size(), static_cast<std::size_t>(trajectory.nodeCount()), 3}, flat.data());
+           {trajectory.positions.size(), static_cast<std::size_t>(trajectory.nodeCount()), 3},
+           flat.data());
 
   // Area of the cloths over their rest area per state (DiffCloth Fig. 5's area ratio: a contact
   // model that moves nodes without regard to friction makes it jump).
@@ -104,14 +109,17 @@ void writeRun(const std::string& folder, const Scene& scene, const ClothModel& m
     const std::string path = folder + "/stats.csv";
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
     if (!f) throw InputError(path, "output", "cannot open for writing");
-    std::fprintf(f.get(), "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged,"
-                          "contact_sweeps,contact_sweep_change,late_contacts,area_ratio");
-    for (const std::string& name : run.moduleNames) std::fprintf(f.get(), ",seconds_%s", name.c_str());
+    std::fprintf(
+        f.get(),
+        "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged,"
+        "contact_sweeps,contact_sweep_change,late_contacts,area_ratio");
+    for (const std::string& name : run.moduleNames)
+      std::fprintf(f.get(), ",seconds_%s", name.c_str());
     std::fprintf(f.get(), "\n");
     for (const StepStats& s : trajectory.steps) {
-      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d,%.9f", s.step, s.time, s.takeoff, s.stick, s.slip,
-                   s.pdIterations, s.residual, s.converged ? 1 : 0, s.contactSweeps, s.contactSweepChange,
-                   s.lateContacts, areaRatio.at(s.step));
+      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d,%.9f", s.step, s.time,
+                   s.takeoff, s.stick, s.slip, s.pdIterations, s.residual, s.converged ? 1 : 0,
+                   s.contactSweeps, s.contactSweepChange, s.lateContacts, areaRatio.at(s.step));
       for (double sec : s.moduleSeconds) std::fprintf(f.get(), ",%.6e", sec);
       std::fprintf(f.get(), "\n");
     }

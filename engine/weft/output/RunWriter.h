@@ -1,7 +1,8 @@
 #pragma once
 // Writes a simulated run in the `weft simulate` contract: positions.npy, stats.csv, rest.obj
 // and summary.json (plus scene.json, the scene as simulated; summary.json's scene_directory
-// resolves its relative paths), into a folder (normally a StagedDirectory, so nothing partial is left).
+// resolves its relative paths), into a folder (normally a StagedDirectory, so nothing partial is
+// left).
 
 #include <weft/physics/ClothModel.h>
 #include <weft/physics/Trajectory.h>
@@ -15,9 +16,9 @@
 namespace weft {
 
 struct RunSummary {
-  double seconds = 0.0;                 // wall time of the simulation
+  double seconds = 0.0;  // wall time of the simulation
   std::vector<std::string> moduleNames;
-  std::vector<double> moduleSeconds;    // totals, aligned with moduleNames
+  std::vector<double> moduleSeconds;  // totals, aligned with moduleNames
   int threads = 1;
 };
 

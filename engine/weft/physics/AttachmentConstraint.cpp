@@ -5,7 +5,8 @@
 
 namespace weft {
 
-AttachmentConstraint::AttachmentConstraint(const char* name, std::vector<Row> rows, const NodeMatrix& initial)
+AttachmentConstraint::AttachmentConstraint(const char* name, std::vector<Row> rows,
+                                           const NodeMatrix& initial)
     : name_(name), rows_(std::move(rows)) {
   const int n = static_cast<int>(rows_.size());
   weights_.resize(n);
@@ -35,7 +36,8 @@ double AttachmentConstraint::project(const NodeMatrix& x, NodeMatrix& wp) const 
   return energy;
 }
 
-AttachmentConstraint makeAttachmentConstraint(const Scene& scene, const ClothModel& model, bool handles) {
+AttachmentConstraint makeAttachmentConstraint(const Scene& scene, const ClothModel& model,
+                                              bool handles) {
   std::vector<AttachmentConstraint::Row> rows;
   for (std::size_t c = 0; c < scene.cloths.size(); ++c) {
     for (const Attachment& a : scene.cloths[c].attachments) {
@@ -44,7 +46,8 @@ AttachmentConstraint makeAttachmentConstraint(const Scene& scene, const ClothMod
         rows.push_back({model.vertexOffset[c] + v, a.stiffness, handles ? &a.trajectory : nullptr});
     }
   }
-  return AttachmentConstraint(handles ? "handles" : "attachments", std::move(rows), model.rest.vertices);
+  return AttachmentConstraint(handles ? "handles" : "attachments", std::move(rows),
+                              model.rest.vertices);
 }
 
 }  // namespace weft

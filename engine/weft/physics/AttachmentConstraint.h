@@ -36,6 +36,7 @@ class AttachmentConstraint final : public ProjectiveConstraint {
 
 // Fixed attachments ("attachments") or handles ("handles") of the whole scene; the scene must
 // outlive the constraint (trajectories are referenced).
-AttachmentConstraint makeAttachmentConstraint(const Scene& scene, const ClothModel& model, bool handles);
+AttachmentConstraint makeAttachmentConstraint(const Scene& scene, const ClothModel& model,
+                                              bool handles);
 
 }  // namespace weft

@@ -15,8 +15,8 @@ struct ClothModel;
 struct Scene;
 
 struct Hinge {
-  int nodes[4];  // edge (0, 1), opposite vertices 2 (in triangle 0) and 3 (in triangle 1)
-  double cot[4]; // w_k
+  int nodes[4];     // edge (0, 1), opposite vertices 2 (in triangle 0) and 3 (in triangle 1)
+  double cot[4];    // w_k
   double restNorm;  // |sum_k w_k X_k| at rest; 0 for a flat hinge
   double weight;
 };

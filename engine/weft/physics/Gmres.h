@@ -33,7 +33,8 @@ class Gmres {
     GmresResult result;
     const int m = static_cast<int>(b.rows());
     const double bNorm = b.norm();
-    const bool fromGuess = warmStart && z.rows() == m && z.cols() == 3 && z.allFinite() && bNorm > 0.0;
+    const bool fromGuess =
+        warmStart && z.rows() == m && z.cols() == 3 && z.allFinite() && bNorm > 0.0;
     if (!fromGuess) z.setZero(m, 3);
     if (bNorm == 0.0) {
       residual_ = b;
@@ -95,7 +96,8 @@ class Gmres {
         h(j + 1, j) = 0.0;
         s[j + 1] = -sn[j] * s[j];
         s[j] = cs[j] * s[j];
-        if ((std::abs(s[j + 1]) < tolerance * bNorm && result.iterations >= minIterations) || breakdown) {
+        if ((std::abs(s[j + 1]) < tolerance * bNorm && result.iterations >= minIterations) ||
+            breakdown) {
           ++j;
           done = true;
           break;
@@ -103,7 +105,8 @@ class Gmres {
       }
       // z += B V y with H y = s (upper triangular, j columns).
       if (j > 0) {
-        const Eigen::VectorXd y = h.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(s.head(j));
+        const Eigen::VectorXd y =
+            h.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(s.head(j));
         for (int i = 0; i < j; ++i) z += y[i] * preconditioned_[i];
       }
       // The true residual decides (the recurrence's estimate drifts in round-off).

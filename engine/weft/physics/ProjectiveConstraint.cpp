@@ -2,8 +2,8 @@
 
 namespace weft {
 
-void ProjectiveConstraint::setSelection(int nodes,
-                                        const std::vector<Eigen::Triplet<double>>& rowNodeCoefficients) {
+void ProjectiveConstraint::setSelection(
+    int nodes, const std::vector<Eigen::Triplet<double>>& rowNodeCoefficients) {
   std::vector<Eigen::Triplet<double>> transposed;
   transposed.reserve(rowNodeCoefficients.size());
   for (const auto& t : rowNodeCoefficients) transposed.emplace_back(t.col(), t.row(), t.value());
@@ -41,9 +41,9 @@ Eigen::SparseMatrix<double> ProjectiveConstraint::weightedGram() const {
   return Eigen::SparseMatrix<double>(at_ * weights_.asDiagonal() * a);
 }
 
-Eigen::SparseMatrix<double> assembleSystemMatrix(const Eigen::VectorXd& mass,
-                                                 const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints,
-                                                 double h) {
+Eigen::SparseMatrix<double> assembleSystemMatrix(
+    const Eigen::VectorXd& mass,
+    const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints, double h) {
   const int m = static_cast<int>(mass.size());
   Eigen::SparseMatrix<double> system(m, m);
   std::vector<Eigen::Triplet<double>> diagonal;

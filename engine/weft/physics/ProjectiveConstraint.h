@@ -71,8 +71,8 @@ class ProjectiveConstraint {
 
 // The one-coordinate PD system matrix M + h^2 sum_i w_i A_i^T A_i (DiffCloth Eq. 7), compressed:
 // the Simulator's P and the adjoint's (DiffCloth Sec. 4.1).
-Eigen::SparseMatrix<double> assembleSystemMatrix(const Eigen::VectorXd& mass,
-                                                 const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints,
-                                                 double h);
+Eigen::SparseMatrix<double> assembleSystemMatrix(
+    const Eigen::VectorXd& mass,
+    const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints, double h);
 
 }  // namespace weft

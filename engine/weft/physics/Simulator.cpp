@@ -9,12 +9,12 @@
 #include <weft/physics/WindForce.h>
 
 #include <algorithm>
-#include <stdexcept>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <stdexcept>
 
 namespace weft {
 namespace {
@@ -47,7 +47,8 @@ constexpr int kGmresRestart = 100;
 constexpr double kMinStep = 1e-3;
 constexpr double kRelaxedGrowth = 100.0;
 constexpr int kRelaxedSteps = 3;
-// Times a step is solved again with contacts its solved path violated and detection missed (step()).
+// Times a step is solved again with contacts its solved path violated and detection missed
+// (step()).
 constexpr int kMissedContactPasses = 2;
 
 // Diagnostics: WEFT_CONTACT_TRACE=a-b (or =a) prints each Newton contact iteration of steps a..b
@@ -68,7 +69,8 @@ constexpr double kBlowUpSpeed = 1e5;  // m/s
 
 }  // namespace
 
-Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel(scene)), h_(scene.time.dt) {
+Simulator::Simulator(const Scene& scene)
+    : scene_(scene), model_(buildClothModel(scene)), h_(scene.time.dt) {
   solverModule_ = addModule("solver");
   // Constraint modules: only those with at least one instance.
   auto addConstraint = [this](std::unique_ptr<ProjectiveConstraint> c) {
@@ -78,8 +80,10 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
   };
   addConstraint(std::make_unique<StretchConstraint>(makeStretchConstraint(scene, model_)));
   addConstraint(std::make_unique<BendingConstraint>(makeBendingConstraint(scene, model_)));
-  addConstraint(std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, false)));
-  addConstraint(std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, true)));
+  addConstraint(
+      std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, false)));
+  addConstraint(
+      std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, true)));
 
   // Force modules: only the effects the scene names.
   auto addForce = [this](std::unique_ptr<ExternalForce> f) {
@@ -118,24 +122,28 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(buildClothModel
   for (std::size_t c = 0; c < scene.cloths.size(); ++c)
     for (int i = model_.vertexOffset[c]; i < model_.vertexOffset[c + 1]; ++i)
       v_.row(i) = scene.cloths[c].initialVelocity.transpose();
-  for (auto* buf : {&warmStart_, &force_, &y_, &massY_, &iterate_, &global_, &accelerated_, &change_, &rhs_,
-                    &residualVector_, &direction_, &cgResidual_, &cgPreconditioned_, &cgSearch_, &cgProduct_})
+  for (auto* buf :
+       {&warmStart_, &force_, &y_, &massY_, &iterate_, &global_, &accelerated_, &change_, &rhs_,
+        &residualVector_, &direction_, &cgResidual_, &cgPreconditioned_, &cgSearch_, &cgProduct_})
     buf->setZero(m, 3);
   for (const auto& c : constraints_) {
     projections_.emplace_back(NodeMatrix::Zero(c->rowCount(), 3));
     derivativeRows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
   if (contact_)
-    for (auto* buf : {&freeMomentum_, &plainIterate_, &fullResidual_, &lawInput_, &pinnedPart_, &predicted_}) buf->setZero(m, 3);
+    for (auto* buf :
+         {&freeMomentum_, &plainIterate_, &fullResidual_, &lawInput_, &pinnedPart_, &predicted_})
+      buf->setZero(m, 3);
   totalMass_ = model_.mass.sum();
-  if (scene.solver.acceleration == Acceleration::Anderson) anderson_.reset(3 * m, scene.solver.andersonWindow);
+  if (scene.solver.acceleration == Acceleration::Anderson)
+    anderson_.reset(3 * m, scene.solver.andersonWindow);
 
   const auto start = Clock::now();
   assembleAndFactorize();
   moduleSeconds_[solverModule_] += secondsSince(start);
   // From operation counts, not timings, so that runs repeat exactly.
   keepStiffnessFactor_ = kFactorTimePerFlopRatio * cholesky_.blockFactorFlopRatio(
-                                                     static_cast<double>(system_.nonZeros())) >
+                                                       static_cast<double>(system_.nonZeros())) >
                          kKeepFactorAbovePIterations;
 }
 
@@ -161,16 +169,16 @@ double Simulator::localStep(const NodeMatrix& x, bool energy) {
   // Inertia term of g (DiffCloth Eq. 3): |x - y|^2_M / (2 h^2).
   double total = 0.0;
   if (energy) {
-    for (int c = 0; c < 3; ++c)
-      total += model_.mass.dot((x.col(c) - y_.col(c)).cwiseAbs2());
+    for (int c = 0; c < 3; ++c) total += model_.mass.dot((x.col(c) - y_.col(c)).cwiseAbs2());
     total *= 0.5 / (h_ * h_);
   }
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
     // A family whose projections are all zero only needs its energy (for the safeguard).
     if (constraints_[c]->projectsToZero() && !energy) continue;
     const auto start = Clock::now();
-    const double e = constraints_[c]->projectsToZero() ? constraints_[c]->energy(x)
-                                                       : constraints_[c]->project(x, projections_[c]);
+    const double e = constraints_[c]->projectsToZero()
+                         ? constraints_[c]->energy(x)
+                         : constraints_[c]->project(x, projections_[c]);
     if (energy) total += e;
     const double s = secondsSince(start);
     moduleSeconds_[constraintModule_[c]] += s;
@@ -194,8 +202,10 @@ void Simulator::globalStep() {
   timed(solverModule_, [&] {
     rhs_ = massY_;
     for (std::size_t c = 0; c < constraints_.size(); ++c)
-      if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
-    if (activeContacts_) activeContacts_->addFriction(iterate_, h_, rhs_);  // slip friction as an impulse
+      if (!constraints_[c]->projectsToZero())
+        constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
+    if (activeContacts_)
+      activeContacts_->addFriction(iterate_, h_, rhs_);  // slip friction as an impulse
     global_ = rhs_;
     cholesky_.solveInPlace(global_);
     change_ = global_ - iterate_;
@@ -207,7 +217,8 @@ double Simulator::residualOf(const NodeMatrix& systemTimesChange) const {
   // P (x_global - x_k) = -h^2 grad g(x_k): the imbalance of Eq. 3 at the iterate, as a
   // mass-weighted RMS acceleration (m/s^2).
   const double sum = (systemTimesChange.rowwise().squaredNorm().transpose().array() *
-                      inverseMass_.transpose().array()).sum();
+                      inverseMass_.transpose().array())
+                         .sum();
   return std::sqrt(sum / totalMass_) / (h_ * h_);
 }
 
@@ -240,7 +251,8 @@ void Simulator::multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out) {
       constraints_[c]->gather(derivativeRows_[c], -h_ * h_, out);
     });
   }
-  if (activeContacts_) timed(contactSolveModule_, [&] { activeContacts_->addFrictionHessian(in, out); });
+  if (activeContacts_)
+    timed(contactSolveModule_, [&] { activeContacts_->addFrictionHessian(in, out); });
 }
 
 bool Simulator::checkConvergence() {
@@ -315,7 +327,8 @@ bool Simulator::iterateNewton() {
   const double velocityTolerance = solver.pdTolerance * h_;
   while (stats_.pdIterations < solver.pdIterations) {
     globalStep();
-    const bool small = checkConvergence();  // also leaves r0 = b - P x = P (x_global - x) in residualVector_
+    const bool small =
+        checkConvergence();  // also leaves r0 = b - P x = P (x_global - x) in residualVector_
     if (contacts) {
       // Branch update at every iterate (a primal-dual active-set strategy): the branches and the
       // elastic solve converge together instead of one Newton solve per active set.
@@ -456,8 +469,10 @@ void Simulator::detectContacts(double t0, double t1) {
     timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, predicted_); });
   timed(contactSolveModule_, [&] {
     contactLawMass_ = scene_.solver.contact == ContactMethod::Newton ? &lawMass_ : nullptr;
-    if (scene_.solver.contact == ContactMethod::ActiveSet) contact_->prepareActiveSet(x_, scene_.solver.pdTolerance * h_);
-    else contact_->prepareSolve(contactLawMass_);
+    if (scene_.solver.contact == ContactMethod::ActiveSet)
+      contact_->prepareActiveSet(x_, scene_.solver.pdTolerance * h_);
+    else
+      contact_->prepareSolve(contactLawMass_);
   });
 }
 
@@ -467,7 +482,8 @@ void Simulator::assembleContactRhs(const NodeMatrix& x, NodeMatrix& systemTimesX
   timed(solverModule_, [&] {
     rhs_ = massY_;
     for (std::size_t c = 0; c < constraints_.size(); ++c)
-      if (!constraints_[c]->projectsToZero()) constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
+      if (!constraints_[c]->projectsToZero())
+        constraints_[c]->gather(projections_[c], h_ * h_, rhs_);
     multiplySystem(x, systemTimesX);
   });
   if (contact_->empty()) return;
@@ -700,11 +716,14 @@ void Simulator::solveContactNewton() {
       out = massRoot_.cwiseInverse().asDiagonal() * out;
     });
   };
-  auto precondition = [&](const NodeMatrix& scaled, NodeMatrix& z) { preconditionContact(scaled, z); };
+  auto precondition = [&](const NodeMatrix& scaled, NodeMatrix& z) {
+    preconditionContact(scaled, z);
+  };
   auto prepareDerivatives = [&](bool definite) {
     for (std::size_t c = 0; c < constraints_.size(); ++c)
       if (constraints_[c]->hasDerivative())
-        timed(constraintModule_[c], [&] { constraints_[c]->prepareDerivative(iterate_, definite); });
+        timed(constraintModule_[c],
+              [&] { constraints_[c]->prepareDerivative(iterate_, definite); });
   };
 
   double measure = contactResidual(iterate_, residual);
@@ -712,9 +731,9 @@ void Simulator::solveContactNewton() {
   double bestMeasure = measure;
   best = iterate_;
   // Where a factorisation of K+ costs more than kKeepFactorAbovePIterations iterations with P
-  // (about 24x24 quads and up), the factor of an earlier step is kept as the preconditioner (refactorised
-  // when a solve with it is slow, as within a step): on Slope at 48x48, K+ was factorised anew
-  // on 10 of 100 steps at 200 ms each, where the previous steps' factor served.
+  // (about 24x24 quads and up), the factor of an earlier step is kept as the preconditioner
+  // (refactorised when a solve with it is slow, as within a step): on Slope at 48x48, K+ was
+  // factorised anew on 10 of 100 steps at 200 ms each, where the previous steps' factor served.
   bool factored = stiffnessFactored_ && keepStiffnessFactor_;
   stiffnessFactored_ = factored;  // (preconditionContact uses P until K+ is factorised)
   double forcing = 0.1, previous = 0.0;
@@ -726,27 +745,32 @@ void Simulator::solveContactNewton() {
     factorizeStiffness();
     if (!clamped) prepareDerivatives(false);
   };
-  if (trace) std::fprintf(stderr, "step %d: newton contact solve, residual %.3e\n", step_ + 1, measure);
+  if (trace)
+    std::fprintf(stderr, "step %d: newton contact solve, residual %.3e\n", step_ + 1, measure);
   while (true) {
     stats_.residual = measure;
     stats_.converged = measure < solver.pdTolerance;
     if (stats_.converged || !std::isfinite(measure) || stats_.pdIterations >= solveLimit_) break;
-    if (factored && lastIterations > kRefactorIterations) refactorStiffness();
-    else prepareDerivatives(clamped);
+    if (factored && lastIterations > kRefactorIterations)
+      refactorStiffness();
+    else
+      prepareDerivatives(clamped);
     int changed = 0;
     timed(contactSolveModule_, [&] { changed = contacts.linearize(); });
     // Inexact Newton: the linear tolerance follows the residual's decrease (Eisenstat-Walker 2).
     if (previous > 0.0) {
       const double ratio = measure / previous;
-      forcing = std::min(0.1, std::max({0.9 * ratio * ratio, 1e-6, 0.25 * solver.pdTolerance / measure}));
+      forcing =
+          std::min(0.1, std::max({0.9 * ratio * ratio, 1e-6, 0.25 * solver.pdTolerance / measure}));
     }
     previous = measure;
     timed(solverModule_, [&] { rhs = -(massRoot_.cwiseInverse().asDiagonal() * residual); });
     // Each step starts with P as the preconditioner (enough where contacts pin the cloth's
     // normal motion, as on Slope); K+ is factorised once a solve with P is slow.
     const int budget = std::max(1, solveLimit_ - stats_.pdIterations);
-    GmresResult linear = gmres_.solve(applyJacobian, precondition, rhs, step, forcing,
-                                      factored ? budget : std::min(budget, kPIterations), kGmresRestart);
+    GmresResult linear =
+        gmres_.solve(applyJacobian, precondition, rhs, step, forcing,
+                     factored ? budget : std::min(budget, kPIterations), kGmresRestart);
     if (!factored && !linear.converged && stats_.pdIterations < solveLimit_) {
       factored = true;
       refactorStiffness();
@@ -778,9 +802,12 @@ void Simulator::solveContactNewton() {
     }
     ++iteration;
     if (trace)
-      std::fprintf(stderr, "  %2d: %2d branch changes, gmres %3d (%.1e), step %.3f%s, residual %.3e -> %.3e, %d solves\n",
+      std::fprintf(stderr,
+                   "  %2d: %2d branch changes, gmres %3d (%.1e), step %.3f%s, residual %.3e -> "
+                   "%.3e, %d solves\n",
                    iteration, changed, linear.iterations, linear.residual, accepted ? alpha : 0.0,
-                   relaxed > 0 && accepted ? " (non-monotone)" : "", measure, trial, stats_.pdIterations);
+                   relaxed > 0 && accepted ? " (non-monotone)" : "", measure, trial,
+                   stats_.pdIterations);
     atIterate = accepted;
     // A failed line search with the exact K: the direction was nearly singular, not wrong (on the
     // crumpling corner the directional finite differences of G matched J d to O(alpha), while
@@ -848,9 +875,12 @@ const StepStats& Simulator::step() {
   if (contact_) {
     detectContacts(time_, t1);
     const bool newton = solver.contact == ContactMethod::ActiveSet;
-    if (newton && !contact_->activeSet().empty()) solveNewtonWithContact();
-    else if (newton) solveNewton();
-    else solveWithPerNodeContact();
+    if (newton && !contact_->activeSet().empty())
+      solveNewtonWithContact();
+    else if (newton)
+      solveNewton();
+    else
+      solveWithPerNodeContact();
     // Detection saw the predicted path only (DiffCloth Eq. 9's frames from x_n, v_n); where the
     // path the solve took strays from it, contacts it meets that the set lacks are added and the
     // step is solved again from its result, each pass with a fresh iteration budget.
@@ -868,16 +898,19 @@ const StepStats& Simulator::step() {
       solveWithPerNodeContact();
     }
     timed(contactSolveModule_, [&] {
-      if (newton) contact_->activeSet().record(lastContacts_);
-      else contact_->record(lastContacts_);
+      if (newton)
+        contact_->activeSet().record(lastContacts_);
+      else
+        contact_->record(lastContacts_);
       countBranches(lastContacts_, stats_);
       lastContacts_.sweeps = stats_.contactSweeps;
     });
     // The recorded impulses feed the output (contact_forces.npy) and the backward pass.
     for (const ContactPoint& p : lastContacts_.points)
       if (!p.impulse.allFinite() || !p.velocity.allFinite())
-        throw NumericalError(step_ + 1, "contact_solve",
-                             "non-finite contact impulse or velocity at node " + std::to_string(p.node));
+        throw NumericalError(
+            step_ + 1, "contact_solve",
+            "non-finite contact impulse or velocity at node " + std::to_string(p.node));
   } else if (solver.method == SolverMethod::Newton) {
     solveNewton();
   } else {
@@ -893,13 +926,15 @@ const StepStats& Simulator::step() {
   ++step_;
   const double maxSpeed = std::sqrt(v_.rowwise().squaredNorm().maxCoeff());
   if (!(maxSpeed < kBlowUpSpeed))
-    throw NumericalError(step_, "solver", "velocity " + std::to_string(maxSpeed) + " m/s: the integration blew up");
+    throw NumericalError(step_, "solver",
+                         "velocity " + std::to_string(maxSpeed) + " m/s: the integration blew up");
   return stats_;
 }
 
 void Simulator::restart(int step, const NodeMatrix& x, const NodeMatrix& v) {
   if (x.rows() != x_.rows() || v.rows() != v_.rows() || step < 0)
-    throw std::invalid_argument("Simulator::restart: the state must have one row per node and step >= 0");
+    throw std::invalid_argument(
+        "Simulator::restart: the state must have one row per node and step >= 0");
   x_ = x;
   v_ = v;
   step_ = step;
@@ -916,12 +951,14 @@ void Simulator::diagnoseNonFinite(const NodeMatrix& lastGood) const {
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
     NodeMatrix p = NodeMatrix::Zero(constraints_[c]->rowCount(), 3);
     constraints_[c]->project(lastGood, p);
-    if (!p.allFinite()) throw NumericalError(step_ + 1, constraints_[c]->name(), "non-finite projection");
+    if (!p.allFinite())
+      throw NumericalError(step_ + 1, constraints_[c]->name(), "non-finite projection");
   }
   throw NumericalError(step_ + 1, "solver", "non-finite positions after the global solve");
 }
 
-void Simulator::run(int steps, Trajectory& trajectory, const std::function<void(const StepStats&)>& progress) {
+void Simulator::run(int steps, Trajectory& trajectory,
+                    const std::function<void(const StepStats&)>& progress) {
   if (trajectory.positions.empty()) {
     trajectory.positions.push_back(x_);
     trajectory.velocities.push_back(v_);

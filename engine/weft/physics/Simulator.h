@@ -76,7 +76,9 @@ class Simulator {
   // Modules built for this scene, in a fixed order, with their accumulated seconds.
   const std::vector<std::string>& moduleNames() const { return moduleNames_; }
   const std::vector<double>& moduleSeconds() const { return moduleSeconds_; }
-  const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const { return constraints_; }
+  const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const {
+    return constraints_;
+  }
   const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return forces_; }
   // The scene's contact, or null when it has no obstacles and no self-collision.
   const FrictionalContact* contact() const { return contact_.get(); }
@@ -124,7 +126,8 @@ class Simulator {
   void preconditionContact(const NodeMatrix& scaled, NodeMatrix& z);
   void multiplySystem(const NodeMatrix& in, NodeMatrix& out) const;  // one-coordinate P, 3 columns
   void multiplyNewtonMatrix(const NodeMatrix& in, NodeMatrix& out);
-  double residualOf(const NodeMatrix& systemTimesChange) const;  // the convergence measure of P (x_global - x)
+  double residualOf(
+      const NodeMatrix& systemTimesChange) const;  // the convergence measure of P (x_global - x)
   void assembleAndFactorize();
   void diagnoseNonFinite(const NodeMatrix& lastGood) const;
 
@@ -165,8 +168,8 @@ class Simulator {
   NodeMatrix direction_, cgResidual_, cgPreconditioned_, cgSearch_, cgProduct_;
   NodeMatrix freeMomentum_, plainIterate_, fullResidual_;  // contact scenes only
   NodeMatrix predicted_;  // the displacement detection predicted (contact scenes only)
-  NodeMatrix lawInput_, pinnedPart_, newtonResult_;        // solver.contact = "newton" only
-  std::unique_ptr<HessianAssembly> stiffnessAssembly_;     // K+ (factorizeStiffness)
+  NodeMatrix lawInput_, pinnedPart_, newtonResult_;     // solver.contact = "newton" only
+  std::unique_ptr<HessianAssembly> stiffnessAssembly_;  // K+ (factorizeStiffness)
   Eigen::SparseMatrix<double> stiffness_;
   SparseCholesky stiffnessCholesky_{SparseCholesky::Use::Preconditioner};
   bool stiffnessFactored_ = false;

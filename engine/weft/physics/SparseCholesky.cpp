@@ -34,7 +34,9 @@ namespace {
 // with CHOLMOD's four threads, 75 ms serial).
 class OpenMpBudget {
  public:
-  OpenMpBudget() : levels_(omp_get_max_active_levels()), serial_(omp_get_max_threads() < CHOLMOD_OMP_NUM_THREADS) {
+  OpenMpBudget()
+      : levels_(omp_get_max_active_levels()),
+        serial_(omp_get_max_threads() < CHOLMOD_OMP_NUM_THREADS) {
     if (serial_) omp_set_max_active_levels(0);
   }
   ~OpenMpBudget() {
@@ -95,7 +97,8 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
   lower_ = matrix.triangularView<Eigen::Lower>();
   lower_.makeCompressed();
   cholmod_sparse view = lowerTriangleView(lower_);
-  const bool samePattern = symbolic_ && size_ == lower_.rows() && patternNonZeros_ == lower_.nonZeros();
+  const bool samePattern =
+      symbolic_ && size_ == lower_.rows() && patternNonZeros_ == lower_.nonZeros();
   if (!samePattern) {
     if (symbolic_) cholmod_free_factor(&symbolic_, common_);
     const int nodes = static_cast<int>(nodeOrder_.size());
@@ -134,7 +137,8 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
     cholmod_free_factor(&factor_, common_);
     return false;
   }
-  perm_.assign(static_cast<const int*>(factor_->Perm), static_cast<const int*>(factor_->Perm) + size_);
+  perm_.assign(static_cast<const int*>(factor_->Perm),
+               static_cast<const int*>(factor_->Perm) + size_);
   work_.resize(3 * static_cast<std::size_t>(size_));
   if (use_ == Use::Preconditioner && factor_->is_super) {
     // Single precision once L (in double) would outgrow a typical last-level cache.
@@ -307,8 +311,10 @@ void SparseCholesky::solveInPlace(double* data, int columns) {
       return solveSupernodal<double, 3>(panels_.data(), data);
     }
     for (int c = 0; c < columns; ++c) {
-      if (single) solveSupernodal<float, 1>(panelsSingle_.data(), data + c * stride);
-      else solveSupernodal<double, 1>(panels_.data(), data + c * stride);
+      if (single)
+        solveSupernodal<float, 1>(panelsSingle_.data(), data + c * stride);
+      else
+        solveSupernodal<double, 1>(panels_.data(), data + c * stride);
     }
     return;
   }

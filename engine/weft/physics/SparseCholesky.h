@@ -89,8 +89,10 @@ class SparseCholesky {
 
   Use use_;
   cholmod_common_struct* common_;
-  cholmod_factor_struct* factor_ = nullptr;    // the numeric factor (Use::Solve only; freed once packed)
-  cholmod_factor_struct* symbolic_ = nullptr;  // cholmod_analyze's result, kept while the pattern is
+  cholmod_factor_struct* factor_ =
+      nullptr;  // the numeric factor (Use::Solve only; freed once packed)
+  cholmod_factor_struct* symbolic_ =
+      nullptr;  // cholmod_analyze's result, kept while the pattern is
   cholmod_dense_struct *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;
   bool factorized_ = false;
   bool packed_ = false;  // L is in the panels (Use::Preconditioner), not in factor_
@@ -103,7 +105,7 @@ class SparseCholesky {
   // from panelStart_[s]; the rows below are belowRows_[belowStart_[s] .. belowStart_[s + 1]).
   std::vector<int> superStart_, belowStart_, belowRows_;
   std::vector<std::size_t> panelStart_;
-  std::vector<double> panels_;        // small factors: in cache, double is as fast
+  std::vector<double> panels_;       // small factors: in cache, double is as fast
   std::vector<float> panelsSingle_;  // large factors: streamed from memory, float halves it
   std::vector<int> perm_;
   std::vector<int> nodeOrder_;  // orderByNodes: the node graph's ordering (empty: CHOLMOD orders)

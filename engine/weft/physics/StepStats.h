@@ -5,8 +5,8 @@ namespace weft {
 
 // What one time step did: the row of stats.csv.
 struct StepStats {
-  int step = 0;        // index of the state this step produced (1 = after the first step)
-  double time = 0.0;   // s, at the end of the step
+  int step = 0;       // index of the state this step produced (1 = after the first step)
+  double time = 0.0;  // s, at the end of the step
   int pdIterations = 0;
   double residual = 0.0;  // m/s^2, see SolverSettings::pdTolerance
   bool converged = false;
@@ -20,7 +20,7 @@ struct StepStats {
   // Contacts added after the solve because the path it took met them and the predicted path
   // did not (FrictionalContact::addMissedContacts); the step was then solved again.
   int lateContacts = 0;
-  std::vector<double> moduleSeconds;     // aligned with Simulator::moduleNames()
+  std::vector<double> moduleSeconds;  // aligned with Simulator::moduleNames()
 };
 
 }  // namespace weft

@@ -42,7 +42,8 @@ Eigen::Matrix<double, 3, 2> triangleFrame(const Vec3& x0, const Vec3& x1, const 
 }  // namespace
 
 Eigen::Matrix<double, 3, 2> StretchConstraint::project(const Eigen::Matrix<double, 3, 2>& f,
-                                                       const Vec3& x0, const Vec3& x1, const Vec3& x2) {
+                                                       const Vec3& x0, const Vec3& x1,
+                                                       const Vec3& x2) {
   const Eigen::Matrix<double, 3, 2> t = triangleFrame(x0, x1, x2);
   const Eigen::Matrix2d s = t.transpose() * f;
   // Closed-form polar rotation of a 2x2 matrix: the angle maximising tr(R^T S).
@@ -164,15 +165,19 @@ void StretchConstraint::prepareDerivative(const NodeMatrix& x, bool definite) {
     const Eigen::Matrix2d s2 = d.q.transpose() * f;
     const double sa = s2(0, 0), sb = 0.5 * (s2(0, 1) + s2(1, 0)), sc = s2(1, 1);
     const double mean = 0.5 * (sa + sc), radius = std::hypot(0.5 * (sa - sc), sb);
-    const double sigma0 = std::max(mean - radius, kSmallestStretch), sigma1 = std::max(mean + radius, kSmallestStretch);
+    const double sigma0 = std::max(mean - radius, kSmallestStretch),
+                 sigma1 = std::max(mean + radius, kSmallestStretch);
     // The Hessian of |F - Q(F)|^2 / 2 is I - dQ/dF with eigenvalues 1 - 2/(s1+s2) (in-plane
-    // rotation) and 1 - 1/s_i (out of plane); `definite` clamps dQ's to at most 1, keeping them >= 0.
+    // rotation) and 1 - 1/s_i (out of plane); `definite` clamps dQ's to at most 1, keeping them >=
+    // 0.
     const double cap = definite ? 1.0 : std::numeric_limits<double>::infinity();
     const double rot = std::min(2.0 / (sigma0 + sigma1), cap);
     // B = g(S), g(s) = min(1 / s, cap) on the clamped eigenvalues: g0 I + (g1 - g0) v1 v1^T with
-    // v1 the eigenvector of the larger one, v1 v1^T = (I + [[cos 2t, sin 2t], [sin 2t, -cos 2t]]) / 2.
+    // v1 the eigenvector of the larger one, v1 v1^T = (I + [[cos 2t, sin 2t], [sin 2t, -cos 2t]])
+    // / 2.
     const double g0 = std::min(1.0 / sigma0, cap), g1 = std::min(1.0 / sigma1, cap);
-    const double cos2 = radius > 0.0 ? 0.5 * (sa - sc) / radius : 1.0, sin2 = radius > 0.0 ? sb / radius : 0.0;
+    const double cos2 = radius > 0.0 ? 0.5 * (sa - sc) / radius : 1.0,
+                 sin2 = radius > 0.0 ? sb / radius : 0.0;
     const double lift = 0.5 * (g1 - g0);
     const double b00 = g0 + lift * (1.0 + cos2), b01 = lift * sin2, b11 = g0 + lift * (1.0 - cos2);
     d.rot = rot;
@@ -187,7 +192,8 @@ void StretchConstraint::applyDerivative(const NodeMatrix& dx, NodeMatrix& wp) co
     const Eigen::Vector3i& n = nodes_[t];
     const Coefficients& c = coeff_[t];
     const Derivative& d = derivative_[t];
-    const Vec3 d0 = dx.row(n[0]), d1 = dx.row(n[1]) - d0.transpose(), d2 = dx.row(n[2]) - d0.transpose();
+    const Vec3 d0 = dx.row(n[0]), d1 = dx.row(n[1]) - d0.transpose(),
+               d2 = dx.row(n[2]) - d0.transpose();
     const Vec3 f0 = c(0, 1) * d1 + c(0, 2) * d2, f1 = c(1, 1) * d1 + c(1, 2) * d2;
     // In-plane rotation: QJ = [q1, -q0].
     const double omega = 0.5 * d.rot * (d.q.col(1).dot(f0) - d.q.col(0).dot(f1));
@@ -238,7 +244,8 @@ StretchConstraint makeStretchConstraint(const Scene& scene, const ClothModel& mo
     }
   }
   TriangleIndices tris(static_cast<int>(keep.size()), 3);
-  for (std::size_t i = 0; i < keep.size(); ++i) tris.row(static_cast<int>(i)) = model.rest.triangles.row(keep[i]);
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    tris.row(static_cast<int>(i)) = model.rest.triangles.row(keep[i]);
   return StretchConstraint(model.rest.vertices, tris, stiffness);
 }
 

@@ -30,8 +30,8 @@ class StretchConstraint final : public ProjectiveConstraint {
   using Coefficients = Eigen::Matrix<double, 2, 3>;
   const Coefficients& coefficients(int t) const { return coeff_[t]; }
   // Closest 3x2 matrix with orthonormal columns to F, computed in the triangle's own frame.
-  static Eigen::Matrix<double, 3, 2> project(const Eigen::Matrix<double, 3, 2>& f,
-                                             const Vec3& x0, const Vec3& x1, const Vec3& x2);
+  static Eigen::Matrix<double, 3, 2> project(const Eigen::Matrix<double, 3, 2>& f, const Vec3& x0,
+                                             const Vec3& x1, const Vec3& x2);
 
  private:
   std::vector<Eigen::Vector3i> nodes_;

@@ -21,7 +21,9 @@ struct Trajectory {
   std::vector<std::string> moduleNames;
 
   int stepCount() const { return static_cast<int>(steps.size()); }
-  int nodeCount() const { return positions.empty() ? 0 : static_cast<int>(positions.front().rows()); }
+  int nodeCount() const {
+    return positions.empty() ? 0 : static_cast<int>(positions.front().rows());
+  }
   // positions as one [states, nodes, 3] C-order array (the layout of positions.npy).
   std::vector<double> flattenedPositions() const;
 };

@@ -6,7 +6,8 @@ namespace weft {
 
 // The per-node coefficient k of Eq. 35: the lumped area (a pressure wind), or with a falloff
 // centre the inverse distance to it (the Flag's wind, Appendix B.4).
-inline const Eigen::VectorXd& windCoefficients(const Wind& wind, const Eigen::VectorXd& lumpedArea) {
+inline const Eigen::VectorXd& windCoefficients(const Wind& wind,
+                                               const Eigen::VectorXd& lumpedArea) {
   return wind.falloffCenter ? wind.coefficients : lumpedArea;
 }
 

@@ -29,7 +29,9 @@ void extendRows(Bounds& b, const PointMatrix& m) {
 
 }  // namespace
 
-float planeHalfSize(const Bounds& bounds) { return 2.5f * bounds.radius(); }
+float planeHalfSize(const Bounds& bounds) {
+  return 2.5f * bounds.radius();
+}
 
 Bounds sceneBounds(const RenderScene& scene) {
   Bounds b;

@@ -8,7 +8,8 @@
 namespace weft::render {
 
 struct OsMesaContext::Library {
-  SharedLibrary so{libraryNames("WEFT_OSMESA_LIBRARY", {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so"})};
+  SharedLibrary so{
+      libraryNames("WEFT_OSMESA_LIBRARY", {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so"})};
   decltype(&OSMesaCreateContextAttribs) createContextAttribs =
       so.function<decltype(&OSMesaCreateContextAttribs)>("OSMesaCreateContextAttribs");
   decltype(&OSMesaDestroyContext) destroyContext =

@@ -13,9 +13,9 @@ namespace weft {
 struct HandleTrajectory {
   enum class Kind { Keyframes, Hermite };
   Kind kind = Kind::Keyframes;
-  std::vector<double> times;    // strictly increasing
-  std::vector<Vec3> offsets;    // translation at each time (keyframes or spline points)
-  std::vector<Vec3> tangents;   // d offset / dt at each time (Hermite only), m/s
+  std::vector<double> times;   // strictly increasing
+  std::vector<Vec3> offsets;   // translation at each time (keyframes or spline points)
+  std::vector<Vec3> tangents;  // d offset / dt at each time (Hermite only), m/s
   bool rotates = false;
   Vec3 rotationCenter = Vec3::Zero();
   Vec3 rotationAxis = Vec3::UnitY();  // unit

@@ -47,15 +47,17 @@ class JsonReader {
   std::string string() const;
   std::string choice(std::initializer_list<const char*> options) const;
   Vec3 vec3() const;
-  Vec3 unitVec3() const;  // nonzero, normalised
+  Vec3 unitVec3() const;                                 // nonzero, normalised
   std::vector<double> numbers(std::size_t count) const;  // fixed-length numeric array
-  std::vector<int> indices(int count) const;  // array of integers in [0, count)
+  std::vector<int> indices(int count) const;             // array of integers in [0, count)
 
   // Convenience: value of an optional key or a default.
   double number(const std::string& key, double fallback, double min, double max) const;
 
  private:
-  std::string child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  std::string child(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
   std::string describe() const;  // short rendering of the value for messages
   const nlohmann::json* value_;
   std::string file_, path_;

@@ -22,7 +22,8 @@ struct TimeSettings {
 
 struct BackwardSettings {
   // The adjoint's linear solve per step (engine/weft/diff/AdjointSolver.h): "gmres" (Krylov,
-  // preconditioned by the factor of P), "fixed_point" (DiffCloth Eq. 20/30) or "direct" (sparse LU).
+  // preconditioned by the factor of P), "fixed_point" (DiffCloth Eq. 20/30) or "direct" (sparse
+  // LU).
   std::string method = "gmres";
   double tolerance = 1e-4;  // relative residual |g - K z| / |g| of each step's adjoint solve
   int maxIterations = 200;
@@ -68,8 +69,8 @@ struct Material {
 struct Attachment {
   enum class Kind { Fixed, Handle };
   Kind kind = Kind::Fixed;
-  std::vector<int> vertices;  // cloth-local indices
-  double stiffness = 1e4;     // N/m per vertex (PD attachment weight)
+  std::vector<int> vertices;    // cloth-local indices
+  double stiffness = 1e4;       // N/m per vertex (PD attachment weight)
   HandleTrajectory trajectory;  // handles only
 };
 
@@ -95,15 +96,15 @@ struct Cloth {
 struct Obstacle {
   enum class Shape { Plane, Sphere, Capsule, Box, Cylinder, Mesh };
   Shape shape = Shape::Plane;
-  Vec3 point = Vec3::Zero();              // plane
-  Vec3 normal = Vec3::UnitY();            // plane (unit)
-  Vec3 center = Vec3::Zero();             // sphere, box
-  double radius = 0.0;                    // sphere, capsule, cylinder
+  Vec3 point = Vec3::Zero();                // plane
+  Vec3 normal = Vec3::UnitY();              // plane (unit)
+  Vec3 center = Vec3::Zero();               // sphere, box
+  double radius = 0.0;                      // sphere, capsule, cylinder
   Vec3 a = Vec3::Zero(), b = Vec3::Zero();  // capsule, cylinder axis end points
-  Vec3 halfExtents = Vec3::Zero();        // box
-  Mat3 rotation = Mat3::Identity();       // box orientation
-  TriangleMesh mesh;                      // mesh obstacle (transformed)
-  bool smoothNormals = true;              // mesh obstacle
+  Vec3 halfExtents = Vec3::Zero();          // box
+  Mat3 rotation = Mat3::Identity();         // box orientation
+  TriangleMesh mesh;                        // mesh obstacle (transformed)
+  bool smoothNormals = true;                // mesh obstacle
   double friction = 0.0;
   // Contact skin (m): cloth nodes are kept this far outside the surface (extension of the spec,
   // key "thickness").
@@ -146,7 +147,7 @@ struct Task {
 
 struct Scene {
   std::string name;
-  std::string file;  // the scene file as given
+  std::string file;       // the scene file as given
   std::string directory;  // for resolving relative paths
   TimeSettings time;
   std::optional<Vec3> gravity;

@@ -49,15 +49,18 @@ void checkClothMesh(TriangleMesh& mesh, const JsonReader& meshNode, bool repair,
   MeshReport report = checkMesh(mesh);
   const std::string where = meshNode.file() + ": " + meshNode.path() + ": ";
   if (!report.nonFiniteVertices.empty())
-    meshNode.fail("non-finite vertex coordinates at vertices " + formatIndexList(report.nonFiniteVertices));
+    meshNode.fail("non-finite vertex coordinates at vertices " +
+                  formatIndexList(report.nonFiniteVertices));
   if (!report.badIndexTriangles.empty())
     meshNode.fail("triangles with out-of-range or repeated vertex indices: " +
                   formatIndexList(report.badIndexTriangles));
   if (!report.degenerateTriangles.empty()) {
     if (!repair)
-      meshNode.fail("degenerate (zero-area) triangles " + formatIndexList(report.degenerateTriangles) +
+      meshNode.fail("degenerate (zero-area) triangles " +
+                    formatIndexList(report.degenerateTriangles) +
                     "; fix the mesh or set \"repair\": true to drop them");
-    warnings.push_back(where + "dropped degenerate triangles " + formatIndexList(report.degenerateTriangles));
+    warnings.push_back(where + "dropped degenerate triangles " +
+                       formatIndexList(report.degenerateTriangles));
     removeTriangles(mesh, report.degenerateTriangles);
     report = checkMesh(mesh);
   }
@@ -129,7 +132,8 @@ HandleTrajectory readTrajectory(const JsonReader& r) {
     const std::size_t n = times.size();
     if (n < 2) times.fail("needs at least two knots");
     if (points.size() != n) points.fail("needs one point per time (" + std::to_string(n) + ")");
-    if (tangents.size() != n) tangents.fail("needs one tangent per time (" + std::to_string(n) + ")");
+    if (tangents.size() != n)
+      tangents.fail("needs one tangent per time (" + std::to_string(n) + ")");
     for (std::size_t i = 0; i < n; ++i) {
       traj.times.push_back(times[i].number(0.0));
       traj.offsets.push_back(points[i].vec3());
@@ -148,9 +152,10 @@ HandleTrajectory readTrajectory(const JsonReader& r) {
   return traj;
 }
 
-Cloth readCloth(const JsonReader& r, const std::string& directory, std::vector<std::string>& warnings) {
-  r.allowOnly({"name", "mesh", "material", "attachments", "forces", "initial_velocity",
-               "self_collision"});
+Cloth readCloth(const JsonReader& r, const std::string& directory,
+                std::vector<std::string>& warnings) {
+  r.allowOnly(
+      {"name", "mesh", "material", "attachments", "forces", "initial_velocity", "self_collision"});
   if (auto n = r.optional("name")) n->string();
   Cloth cloth;
   cloth.mesh = readClothMesh(r.at("mesh").object(), directory, warnings);
@@ -169,7 +174,8 @@ Cloth readCloth(const JsonReader& r, const std::string& directory, std::vector<s
       Attachment att;
       att.vertices = a.at("vertices").indices(m);
       if (att.vertices.empty()) a.at("vertices").fail("must list at least one vertex");
-      const std::string kind = a.optional("kind") ? a.at("kind").choice({"fixed", "handle"}) : "fixed";
+      const std::string kind =
+          a.optional("kind") ? a.at("kind").choice({"fixed", "handle"}) : "fixed";
       att.kind = kind == "fixed" ? Attachment::Kind::Fixed : Attachment::Kind::Handle;
       if (auto s = a.optional("stiffness")) att.stiffness = s->positive();
       if (att.stiffness > kMaxStiffness) a.at("stiffness").fail("is unreasonably large");
@@ -203,7 +209,8 @@ Cloth readCloth(const JsonReader& r, const std::string& directory, std::vector<s
 }
 
 Obstacle readObstacle(const JsonReader& r, const std::string& directory) {
-  r.allowOnly({"plane", "sphere", "capsule", "box", "cylinder", "mesh", "friction", "thickness", "motion"});
+  r.allowOnly(
+      {"plane", "sphere", "capsule", "box", "cylinder", "mesh", "friction", "thickness", "motion"});
   Obstacle o;
   o.friction = r.number("friction", 0.0, 0.0, 1e3);
   o.thickness = r.number("thickness", o.thickness, 0.0, 1.0);
@@ -274,8 +281,9 @@ Wind readWind(const JsonReader& r, const std::vector<Cloth>& cloths) {
         const double d = (c.mesh.vertices.row(i).transpose() - *w.falloffCenter).norm();
         // A node at the centre would receive an unbounded force.
         if (!(d >= 1e-6))
-          f->at("center").fail("vertex " + std::to_string(node) +
-                               " lies at the centre (closer than 1e-6 m): its inverse distance is unbounded");
+          f->at("center").fail(
+              "vertex " + std::to_string(node) +
+              " lies at the centre (closer than 1e-6 m): its inverse distance is unbounded");
         w.coefficients[node] = 1.0 / d;
       }
   }
@@ -283,9 +291,11 @@ Wind readWind(const JsonReader& r, const std::vector<Cloth>& cloths) {
 }
 
 void readSolver(const JsonReader& r, SolverSettings& s) {
-  r.allowOnly({"method", "contact", "pd_iterations", "pd_tolerance", "acceleration", "anderson_window", "backward"});
+  r.allowOnly({"method", "contact", "pd_iterations", "pd_tolerance", "acceleration",
+               "anderson_window", "backward"});
   if (auto v = r.optional("method"))
-    s.method = v->choice({"newton", "pd"}) == "pd" ? SolverMethod::ProjectiveDynamics : SolverMethod::Newton;
+    s.method = v->choice({"newton", "pd"}) == "pd" ? SolverMethod::ProjectiveDynamics
+                                                   : SolverMethod::Newton;
   if (auto v = r.optional("contact")) {
     const std::string c = v->choice({"pd", "active_set", "newton"});
     s.contact = c == "active_set" ? ContactMethod::ActiveSet
@@ -295,15 +305,19 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
   if (auto v = r.optional("pd_iterations")) s.pdIterations = v->integer(1, 1000000);
   if (auto v = r.optional("pd_tolerance")) s.pdTolerance = v->positive();
   if (auto v = r.optional("acceleration"))
-    s.acceleration = v->choice({"anderson", "none"}) == "none" ? Acceleration::None : Acceleration::Anderson;
+    s.acceleration =
+        v->choice({"anderson", "none"}) == "none" ? Acceleration::None : Acceleration::Anderson;
   if (auto v = r.optional("anderson_window")) s.andersonWindow = v->integer(1, 50);
   if (auto b = r.optional("backward")) {
-    b->allowOnly({"method", "tolerance", "max_iterations", "fallback", "preconditioner", "history"});
-    if (auto v = b->optional("method")) s.backward.method = v->choice({"gmres", "fixed_point", "direct"});
+    b->allowOnly(
+        {"method", "tolerance", "max_iterations", "fallback", "preconditioner", "history"});
+    if (auto v = b->optional("method"))
+      s.backward.method = v->choice({"gmres", "fixed_point", "direct"});
     if (auto v = b->optional("tolerance")) s.backward.tolerance = v->positive();
     if (auto v = b->optional("max_iterations")) s.backward.maxIterations = v->integer(1, 1000000);
     if (auto v = b->optional("fallback")) s.backward.fallback = v->choice({"direct", "none"});
-    if (auto v = b->optional("preconditioner")) s.backward.preconditioner = v->choice({"auto", "p", "hessian"});
+    if (auto v = b->optional("preconditioner"))
+      s.backward.preconditioner = v->choice({"auto", "p", "hessian"});
     if (auto v = b->optional("history")) s.backward.history = v->integer(0, 64);
   }
 }
@@ -395,7 +409,8 @@ Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string&
       target.string();
       if (term.has("weight")) term.at("weight").positive();
       if (term.has("vertices")) term.at("vertices").size();
-      (void)directory;  // targets may be produced later (e.g. by a run); checked when the loss is built
+      (void)directory;  // targets may be produced later (e.g. by a run); checked when the loss is
+                        // built
     } else if (it.key() == "keypoints") {
       checkKeypointsTerm(term, steps, vertices);
     } else {
@@ -408,7 +423,9 @@ Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string&
       const JsonReader p = (*params)[i];
       const std::string path = p.string();
       const nlohmann::json* v = findJsonPath(doc, path);
-      if (!v) p.fail("parameter '" + path + "' names no value in the scene (write the value in the scene file)");
+      if (!v)
+        p.fail("parameter '" + path +
+               "' names no value in the scene (write the value in the scene file)");
       if (!v->is_number()) p.fail("parameter '" + path + "' is not a number in the scene");
       task.parameters.push_back(path);
     }
@@ -417,7 +434,8 @@ Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string&
     bounds->object();
     for (auto it = bounds->value().begin(); it != bounds->value().end(); ++it) {
       const JsonReader b = bounds->at(it.key());
-      if (std::find(task.parameters.begin(), task.parameters.end(), it.key()) == task.parameters.end())
+      if (std::find(task.parameters.begin(), task.parameters.end(), it.key()) ==
+          task.parameters.end())
         b.fail("bounds are given for '" + it.key() + "', which is not one of task.parameters");
       if (b.size() != 2) b.fail("must be [lower, upper] (null for an unbounded side)");
       const double inf = std::numeric_limits<double>::infinity();
@@ -433,8 +451,10 @@ Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string&
 std::string locate(const std::string& text, std::size_t byte) {
   std::size_t line = 1, col = 1;
   for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') ++line, col = 1;
-    else ++col;
+    if (text[i] == '\n')
+      ++line, col = 1;
+    else
+      ++col;
   }
   return "line " + std::to_string(line) + ", column " + std::to_string(col);
 }
@@ -449,10 +469,12 @@ std::string resolveScenePath(const std::string& directory, const std::string& pa
   return p.string();
 }
 
-Scene parseScene(const nlohmann::json& document, const std::string& file, const std::string& directory) {
+Scene parseScene(const nlohmann::json& document, const std::string& file,
+                 const std::string& directory) {
   const JsonReader root(document, file, "");
   root.object();
-  root.allowOnly({"name", "description", "time", "gravity", "solver", "cloths", "obstacles", "wind", "task"});
+  root.allowOnly(
+      {"name", "description", "time", "gravity", "solver", "cloths", "obstacles", "wind", "task"});
   Scene scene;
   scene.file = file;
   scene.directory = directory;
@@ -495,8 +517,9 @@ Scene loadScene(const std::string& file, const std::vector<SceneOverride>& overr
   } catch (const nlohmann::json::parse_error& e) {
     std::string what = e.what();
     const auto pos = what.find("syntax error");
-    throw InputError(file, "<json>", "invalid JSON at " + locate(text, e.byte > 0 ? e.byte - 1 : 0) +
-                                         (pos != std::string::npos ? ": " + what.substr(pos) : ""));
+    throw InputError(file, "<json>",
+                     "invalid JSON at " + locate(text, e.byte > 0 ? e.byte - 1 : 0) +
+                         (pos != std::string::npos ? ": " + what.substr(pos) : ""));
   } catch (const nlohmann::json::exception& e) {
     // E.g. out_of_range 406, "number overflow parsing '1e999'": no byte offset is given, so the
     // quoted token is looked up in the text to say where it is.
