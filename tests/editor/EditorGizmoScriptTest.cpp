@@ -8,6 +8,7 @@
 #include <Selection.h>
 
 #include "../render/GoldenImage.h"
+#include "EditorScriptRun.h"
 #include "support/Process.h"
 #include "support/SceneBuilder.h"
 #include "support/TempDir.h"
@@ -25,19 +26,6 @@
 
 namespace weft::test {
 namespace {
-
-ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions,
-                        const std::string& size = "960x600") {
-  const std::string script = dir.write("script.json", nlohmann::json{{"actions", actions}}.dump(2));
-  return runProcess({WEFT_EDITOR_BINARY, "--headless", "--script", script, "--size", size},
-                    dir.path());
-}
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  return nlohmann::json::parse(in);
-}
 
 Vec3 vec(const nlohmann::json& j) {
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());

@@ -4,6 +4,7 @@
 // compares what the input did with what the matching script action (which calls the session
 // directly) does, or with the numbers EditorApp's handling is written to produce.
 
+#include "EditorScriptRun.h"
 #include "support/Process.h"
 #include "support/SceneBuilder.h"
 #include "support/TempDir.h"
@@ -25,17 +26,8 @@ namespace fs = std::filesystem;
 
 // 800x600: the viewport is the 420 px right of the 380 px panel, between the menu bar and the
 // 150 px timeline.
-ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions) {
-  const std::string script = dir.write("script.json", nlohmann::json{{"actions", actions}}.dump(2));
-  return runProcess({WEFT_EDITOR_BINARY, "--headless", "--script", script, "--size", "800x600"},
-                    dir.path());
-}
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  if (!in) return nullptr;
-  return nlohmann::json::parse(in);
+ProcessResult runInput(const TempDir& dir, const nlohmann::json& actions) {
+  return runEditor(dir, actions, "800x600");
 }
 
 // A point in viewport pixels, as raw-input actions take it.
@@ -57,7 +49,7 @@ std::string hangingScene(const TempDir& dir, int steps = 5) {
 
 TEST(EditorInput, RightDragOrbitsMiddleDragPansWheelZooms) {
   TempDir dir;
-  const ProcessResult r = runEditor(
+  const ProcessResult r = runInput(
       dir,
       {{{"open", hangingScene(dir)}},
        {{"camera", {{"yaw", 10}, {"pitch", 20}, {"distance", 3.0}, {"target", {0.0, 1.0, 0.0}}}}},
@@ -116,27 +108,27 @@ TEST(EditorInput, RightDragOrbitsMiddleDragPansWheelZooms) {
 TEST(EditorInput, SlowDragsOrbitAndPanFromTheFirstPixel) {
   TempDir dir;
   const ProcessResult r =
-      runEditor(dir, {{{"open", hangingScene(dir)}},
-                      {{"camera", kFront}},
-                      {{"frames", 1}},
-                      {{"mouse_drag", "right"},
-                       {"from", inView(200, 200)},
-                       {"to", inView(220, 200)},
-                       {"steps", 20}},
-                      {{"write_state", dir.file("orbit.json")}},
-                      {{"camera", kFront}},
-                      {{"frames", 1}},
-                      {{"mouse_drag", "middle"},
-                       {"from", inView(200, 200)},
-                       {"to", inView(200, 210)},
-                       {"steps", 10}},
-                      {{"write_state", dir.file("pan.json")}},
-                      // A move and a press in one frame, then the release: no drag, so no turn.
-                      {{"camera", kFront}},
-                      {{"mouse_move", inView(60, 300)}},
-                      {{"mouse_press", "right"}, {"at", inView(200, 200)}},
-                      {{"mouse_release", "right"}},
-                      {{"write_state", dir.file("press.json")}}});
+      runInput(dir, {{{"open", hangingScene(dir)}},
+                     {{"camera", kFront}},
+                     {{"frames", 1}},
+                     {{"mouse_drag", "right"},
+                      {"from", inView(200, 200)},
+                      {"to", inView(220, 200)},
+                      {"steps", 20}},
+                     {{"write_state", dir.file("orbit.json")}},
+                     {{"camera", kFront}},
+                     {{"frames", 1}},
+                     {{"mouse_drag", "middle"},
+                      {"from", inView(200, 200)},
+                      {"to", inView(200, 210)},
+                      {"steps", 10}},
+                     {{"write_state", dir.file("pan.json")}},
+                     // A move and a press in one frame, then the release: no drag, so no turn.
+                     {{"camera", kFront}},
+                     {{"mouse_move", inView(60, 300)}},
+                     {{"mouse_press", "right"}, {"at", inView(200, 200)}},
+                     {{"mouse_release", "right"}},
+                     {{"write_state", dir.file("press.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NEAR(readJson(dir.file("orbit.json"))["camera"]["yaw"].get<double>(), -20 * 0.4, 1e-4);
   const nlohmann::json pan = readJson(dir.file("pan.json"));
@@ -150,23 +142,23 @@ TEST(EditorInput, SlowDragsOrbitAndPanFromTheFirstPixel) {
 TEST(EditorInput, ClickAndBoxDragSelectWhatTheActionsSelect) {
   TempDir dir;
   const ProcessResult r =
-      runEditor(dir, {{{"open", hangingScene(dir)}},
-                      {{"camera", kFront}},
-                      {{"frames", 1}},
-                      {{"click", {200, 180}}},
-                      {{"write_state", dir.file("click-action.json")}},
-                      {{"clear_selection", true}},
-                      {{"mouse_click", inView(200, 180)}},
-                      {{"write_state", dir.file("click-mouse.json")}},
-                      // Shift adds the vertex under a second click.
-                      {{"mouse_click", inView(250, 120)}, {"modifiers", "shift"}},
-                      {{"write_state", dir.file("shift-click.json")}},
-                      {{"clear_selection", true}},
-                      {{"box_select", {150, 60, 320, 220}}},
-                      {{"write_state", dir.file("box-action.json")}},
-                      {{"clear_selection", true}},
-                      {{"mouse_drag", "left"}, {"from", inView(150, 60)}, {"to", inView(320, 220)}},
-                      {{"write_state", dir.file("box-mouse.json")}}});
+      runInput(dir, {{{"open", hangingScene(dir)}},
+                     {{"camera", kFront}},
+                     {{"frames", 1}},
+                     {{"click", {200, 180}}},
+                     {{"write_state", dir.file("click-action.json")}},
+                     {{"clear_selection", true}},
+                     {{"mouse_click", inView(200, 180)}},
+                     {{"write_state", dir.file("click-mouse.json")}},
+                     // Shift adds the vertex under a second click.
+                     {{"mouse_click", inView(250, 120)}, {"modifiers", "shift"}},
+                     {{"write_state", dir.file("shift-click.json")}},
+                     {{"clear_selection", true}},
+                     {{"box_select", {150, 60, 320, 220}}},
+                     {{"write_state", dir.file("box-action.json")}},
+                     {{"clear_selection", true}},
+                     {{"mouse_drag", "left"}, {"from", inView(150, 60)}, {"to", inView(320, 220)}},
+                     {{"write_state", dir.file("box-mouse.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 
   const nlohmann::json byAction = readJson(dir.file("click-action.json"));
@@ -205,11 +197,11 @@ TEST(EditorInput, GizmoPressAndDragMovesTheObjectAsGizmoDragDoes) {
   const nlohmann::json view = {
       {"yaw", 0}, {"pitch", 0}, {"distance", 2.5}, {"target", {0.2, 0.3, 0.4}}};
   const ProcessResult sized =
-      runEditor(dir, {{{"frames", 1}}, {{"write_state", dir.file("size.json")}}});
+      runInput(dir, {{{"frames", 1}}, {{"write_state", dir.file("size.json")}}});
   ASSERT_EQ(sized.exitCode, 0) << sized.err;
   const nlohmann::json viewport = readJson(dir.file("size.json"))["viewport"];
   const double cx = viewport[0].get<int>() / 2.0, cy = viewport[1].get<int>() / 2.0;
-  const ProcessResult r = runEditor(
+  const ProcessResult r = runInput(
       dir,
       {{{"open", clothAndSphere(dir)}},
        {{"gizmo", "obstacles.0"}},
@@ -248,15 +240,14 @@ TEST(EditorInput, CtrlClickPicksTheObjectForTheGizmo) {
   TempDir dir;
   const nlohmann::json view = {
       {"yaw", 0}, {"pitch", 0}, {"distance", 2.5}, {"target", {0.2, 0.3, 0.4}}};
-  const ProcessResult r =
-      runEditor(dir, {{{"open", clothAndSphere(dir)}},
-                      {{"camera", view}},
-                      {{"frames", 1}},
-                      {{"write_state", dir.file("size.json")}},
-                      {{"mouse_click", inView(210, 215)}, {"modifiers", "ctrl"}},
-                      {{"write_state", dir.file("sphere.json")}},
-                      {{"mouse_click", inView(10, 420)}, {"modifiers", "ctrl"}},
-                      {{"write_state", dir.file("nothing.json")}}});
+  const ProcessResult r = runInput(dir, {{{"open", clothAndSphere(dir)}},
+                                         {{"camera", view}},
+                                         {{"frames", 1}},
+                                         {{"write_state", dir.file("size.json")}},
+                                         {{"mouse_click", inView(210, 215)}, {"modifiers", "ctrl"}},
+                                         {{"write_state", dir.file("sphere.json")}},
+                                         {{"mouse_click", inView(10, 420)}, {"modifiers", "ctrl"}},
+                                         {{"write_state", dir.file("nothing.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   // The sphere's centre is the viewport's centre; the click lands within a few pixels of it.
   const nlohmann::json viewport = readJson(dir.file("size.json"))["viewport"];
@@ -274,7 +265,7 @@ TEST(EditorInput, CtrlClickPicksTheObjectForTheGizmo) {
 // drag_targets action moves them for the same pixels, and one undo step.
 TEST(EditorInput, AltDragMovesTargetsAsDragTargetsDoes) {
   TempDir dir;
-  const ProcessResult r = runEditor(
+  const ProcessResult r = runInput(
       dir, {{{"open", hangingScene(dir)}},
             {{"camera", kFront}},
             {{"select", {6, 7}}},
@@ -314,17 +305,17 @@ TEST(EditorInput, AltDragMovesTargetsAsDragTargetsDoes) {
 // frame's mouse delta, so Alt+click moved the targets by the way the mouse came.
 TEST(EditorInput, AltClickWithoutDraggingLeavesTargetsAlone) {
   TempDir dir;
-  const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir)}},
-                                          {{"camera", kFront}},
-                                          {{"select", {6, 7}}},
-                                          {{"set_targets", true}},
-                                          {{"write_state", dir.file("before.json")}},
-                                          {{"key_down", "alt"}},
-                                          {{"mouse_move", inView(60, 300)}},
-                                          {{"mouse_press", "left"}, {"at", inView(120, 250)}},
-                                          {{"mouse_release", "left"}},
-                                          {{"key_up", "alt"}},
-                                          {{"write_state", dir.file("after.json")}}});
+  const ProcessResult r = runInput(dir, {{{"open", hangingScene(dir)}},
+                                         {{"camera", kFront}},
+                                         {{"select", {6, 7}}},
+                                         {{"set_targets", true}},
+                                         {{"write_state", dir.file("before.json")}},
+                                         {{"key_down", "alt"}},
+                                         {{"mouse_move", inView(60, 300)}},
+                                         {{"mouse_press", "left"}, {"at", inView(120, 250)}},
+                                         {{"mouse_release", "left"}},
+                                         {{"key_up", "alt"}},
+                                         {{"write_state", dir.file("after.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const nlohmann::json before = readJson(dir.file("before.json"));
   const nlohmann::json after = readJson(dir.file("after.json"));
@@ -335,7 +326,7 @@ TEST(EditorInput, AltClickWithoutDraggingLeavesTargetsAlone) {
 TEST(EditorInput, UndoRedoAndSaveShortcutsDoWhatTheMenuDoes) {
   TempDir dir;
   const std::string scene = hangingScene(dir);
-  const ProcessResult r = runEditor(
+  const ProcessResult r = runInput(
       dir,
       {{{"open", scene}},
        {{"set", "cloths.0.material.stretch"}, {"value", 800.0}},
@@ -367,18 +358,18 @@ TEST(EditorInput, UndoRedoAndSaveShortcutsDoWhatTheMenuDoes) {
 TEST(EditorInput, PlaybackShortcutsStepAndPlay) {
   TempDir dir;
   // 400 states of 10 ms: four seconds of playback, far longer than the frames below take.
-  const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir, 400)}},
-                                          {{"simulate", true}},
-                                          {{"scrub", 10}},
-                                          {{"key", "right"}},
-                                          {{"key", "right"}},
-                                          {{"expect", {{"frame", 12}, {"playing", false}}}},
-                                          {{"key", "left"}},
-                                          {{"expect", {{"frame", 11}}}},
-                                          {{"key", "space"}},
-                                          {{"expect", {{"playing", true}}}},
-                                          {{"key", "space"}},
-                                          {{"write_state", dir.file("paused.json")}}});
+  const ProcessResult r = runInput(dir, {{{"open", hangingScene(dir, 400)}},
+                                         {{"simulate", true}},
+                                         {{"scrub", 10}},
+                                         {{"key", "right"}},
+                                         {{"key", "right"}},
+                                         {{"expect", {{"frame", 12}, {"playing", false}}}},
+                                         {{"key", "left"}},
+                                         {{"expect", {{"frame", 11}}}},
+                                         {{"key", "space"}},
+                                         {{"expect", {{"playing", true}}}},
+                                         {{"key", "space"}},
+                                         {{"write_state", dir.file("paused.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const nlohmann::json paused = readJson(dir.file("paused.json"));
   EXPECT_FALSE(paused["playing"]);
@@ -390,11 +381,11 @@ TEST(EditorInput, PlaybackShortcutsStepAndPlay) {
 TEST(EditorInput, SpaceAtTheLastStatePlaysFromTheStart) {
   TempDir dir;
   // 400 states of 10 ms: four seconds of playback, far longer than the frames below take.
-  const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir, 400)}},
-                                          {{"simulate", true}},
-                                          {{"scrub", 400}},
-                                          {{"key", "space"}},
-                                          {{"write_state", dir.file("replay.json")}}});
+  const ProcessResult r = runInput(dir, {{{"open", hangingScene(dir, 400)}},
+                                         {{"simulate", true}},
+                                         {{"scrub", 400}},
+                                         {{"key", "space"}},
+                                         {{"write_state", dir.file("replay.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const nlohmann::json replay = readJson(dir.file("replay.json"));
   EXPECT_TRUE(replay["playing"]);
@@ -403,7 +394,7 @@ TEST(EditorInput, SpaceAtTheLastStatePlaysFromTheStart) {
 
 TEST(EditorInput, ViewAndGizmoShortcuts) {
   TempDir dir;
-  const ProcessResult r = runEditor(
+  const ProcessResult r = runInput(
       dir,
       {{{"open", clothAndSphere(dir)}},
        {{"camera", "auto"}},
@@ -429,25 +420,25 @@ TEST(EditorInput, FileDialogsTakeATypedPath) {
   TempDir dir;
   const std::string copy = dir.file("copy.json");
   const ProcessResult r =
-      runEditor(dir, {{{"open", hangingScene(dir)}},
-                      {{"set", "time.steps"}, {"value", 9}},
-                      {{"key", "ctrl+shift+s"}},
-                      {{"write_state", dir.file("save-as.json")}},
-                      {{"key", "ctrl+a"}},  // the current file's path is filled in: replace it
-                      {{"type", copy}},
-                      {{"key", "enter"}},
-                      {{"expect", {{"file", copy}, {"dirty", false}, {"dialog", nullptr}}}},
-                      {{"new", true}},
-                      {{"key", "ctrl+o"}},
-                      {{"key", "ctrl+a"}},
-                      {{"type", copy}},
-                      {{"key", "enter"}},
-                      {{"expect",
-                        {{"file", copy},
-                         {"dialog", nullptr},
-                         {"value", {{"path", "time.steps"}, {"equals", 9}}}}}},
-                      {{"key", "ctrl+i"}},
-                      {{"write_state", dir.file("import.json")}}});
+      runInput(dir, {{{"open", hangingScene(dir)}},
+                     {{"set", "time.steps"}, {"value", 9}},
+                     {{"key", "ctrl+shift+s"}},
+                     {{"write_state", dir.file("save-as.json")}},
+                     {{"key", "ctrl+a"}},  // the current file's path is filled in: replace it
+                     {{"type", copy}},
+                     {{"key", "enter"}},
+                     {{"expect", {{"file", copy}, {"dirty", false}, {"dialog", nullptr}}}},
+                     {{"new", true}},
+                     {{"key", "ctrl+o"}},
+                     {{"key", "ctrl+a"}},
+                     {{"type", copy}},
+                     {{"key", "enter"}},
+                     {{"expect",
+                       {{"file", copy},
+                        {"dialog", nullptr},
+                        {"value", {{"path", "time.steps"}, {"equals", 9}}}}}},
+                     {{"key", "ctrl+i"}},
+                     {{"write_state", dir.file("import.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_EQ(readJson(dir.file("save-as.json"))["dialog"]["title"], "Save scene as");
   EXPECT_EQ(readJson(copy)["time"]["steps"], 9);
@@ -470,11 +461,11 @@ TEST(EditorInput, ClosingWithUnsavedChangesAsksFirst) {
   TempDir dir;
   const std::string scene = hangingScene(dir);
   // A first run finds where the prompt opens (it is centred, so the same in the second run).
-  const ProcessResult probe = runEditor(dir, {{{"open", scene}},
-                                              {{"set", "time.steps"}, {"value", 7}},
-                                              {{"close", true}},
-                                              {{"frames", 1}},
-                                              {{"write_state", dir.file("prompt.json")}}});
+  const ProcessResult probe = runInput(dir, {{{"open", scene}},
+                                             {{"set", "time.steps"}, {"value", 7}},
+                                             {{"close", true}},
+                                             {{"frames", 1}},
+                                             {{"write_state", dir.file("prompt.json")}}});
   ASSERT_EQ(probe.exitCode, 0) << probe.err << probe.out;
   const nlohmann::json prompt = readJson(dir.file("prompt.json"));
   EXPECT_TRUE(prompt["close_prompt"]);
@@ -484,32 +475,32 @@ TEST(EditorInput, ClosingWithUnsavedChangesAsksFirst) {
   const nlohmann::json rect = prompt["dialog"]["rect"];
 
   const ProcessResult r =
-      runEditor(dir, {{{"open", scene}},
-                      {{"set", "time.steps"}, {"value", 7}},
-                      {{"close", true}},
-                      {{"frames", 1}},
-                      {{"mouse_click", promptButton(rect, 2)}},  // Cancel
-                      {{"expect",
-                        {{"close_prompt", false},
-                         {"dialog", nullptr},
-                         {"dirty", true},
-                         {"close_confirmed", false}}}},
-                      {{"key", "ctrl+q"}},  // Quit asks the same
-                      {{"expect", {{"close_prompt", true}}}},
-                      {{"mouse_click", promptButton(rect, 1)}},  // Discard: the editor closes
-                      {{"write_state", dir.file("never.json")}}});
+      runInput(dir, {{{"open", scene}},
+                     {{"set", "time.steps"}, {"value", 7}},
+                     {{"close", true}},
+                     {{"frames", 1}},
+                     {{"mouse_click", promptButton(rect, 2)}},  // Cancel
+                     {{"expect",
+                       {{"close_prompt", false},
+                        {"dialog", nullptr},
+                        {"dirty", true},
+                        {"close_confirmed", false}}}},
+                     {{"key", "ctrl+q"}},  // Quit asks the same
+                     {{"expect", {{"close_prompt", true}}}},
+                     {{"mouse_click", promptButton(rect, 1)}},  // Discard: the editor closes
+                     {{"write_state", dir.file("never.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("closed at actions.8"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir.file("never.json"))) << "nothing runs after the close";
   EXPECT_EQ(readJson(scene)["time"]["steps"], 5) << "discarded, not saved";
 
   // Save in the prompt saves, then closes.
-  const ProcessResult saved = runEditor(dir, {{{"open", scene}},
-                                              {{"set", "time.steps"}, {"value", 7}},
-                                              {{"key", "ctrl+q"}},
-                                              {{"frames", 1}},
-                                              {{"mouse_click", promptButton(rect, 0)}},
-                                              {{"write_state", dir.file("never.json")}}});
+  const ProcessResult saved = runInput(dir, {{{"open", scene}},
+                                             {{"set", "time.steps"}, {"value", 7}},
+                                             {{"key", "ctrl+q"}},
+                                             {{"frames", 1}},
+                                             {{"mouse_click", promptButton(rect, 0)}},
+                                             {{"write_state", dir.file("never.json")}}});
   ASSERT_EQ(saved.exitCode, 0) << saved.err << saved.out;
   EXPECT_NE(saved.out.find("closed at actions.4"), std::string::npos) << saved.out;
   EXPECT_EQ(readJson(scene)["time"]["steps"], 7);
@@ -520,16 +511,16 @@ TEST(EditorInput, ClosingWithUnsavedChangesAsksFirst) {
 // edit being asked about, or replace the document behind the prompt).
 TEST(EditorInput, ShortcutsWaitWhileADialogIsOpen) {
   TempDir dir;
-  const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir)}},
-                                          {{"simulate", true}},
-                                          {{"scrub", 2}},
-                                          {{"set", "cloths.0.material.stretch"}, {"value", 800.0}},
-                                          {{"close", true}},
-                                          {{"frames", 1}},
-                                          {{"key", "ctrl+z"}},
-                                          {{"key", "ctrl+n"}},
-                                          {{"key", "right"}},
-                                          {{"write_state", dir.file("state.json")}}});
+  const ProcessResult r = runInput(dir, {{{"open", hangingScene(dir)}},
+                                         {{"simulate", true}},
+                                         {{"scrub", 2}},
+                                         {{"set", "cloths.0.material.stretch"}, {"value", 800.0}},
+                                         {{"close", true}},
+                                         {{"frames", 1}},
+                                         {{"key", "ctrl+z"}},
+                                         {{"key", "ctrl+n"}},
+                                         {{"key", "right"}},
+                                         {{"write_state", dir.file("state.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const nlohmann::json state = readJson(dir.file("state.json"));
   EXPECT_EQ(state["dialog"]["title"], "Unsaved changes");
@@ -545,7 +536,7 @@ TEST(EditorInput, NewAndOpenWithUnsavedChangesAskFirst) {
   TempDir dir;
   const std::string scene = hangingScene(dir);
   const std::string copy = dir.file("untitled-saved.json");
-  const ProcessResult r = runEditor(
+  const ProcessResult r = runInput(
       dir,
       {{{"open", scene}},
        {{"set", "time.steps"}, {"value", 7}},
@@ -586,12 +577,12 @@ TEST(EditorInput, NewAndOpenWithUnsavedChangesAskFirst) {
   // Discard (clicked) drops the changes and goes on: New replaces the document, unsaved.
   const nlohmann::json rect = readJson(dir.file("new-prompt.json"))["dialog"]["rect"];
   const ProcessResult discard =
-      runEditor(dir, {{{"open", scene}},
-                      {{"set", "time.steps"}, {"value", 9}},
-                      {{"key", "ctrl+n"}},
-                      {{"frames", 1}},
-                      {{"mouse_click", promptButton(rect, 1)}},
-                      {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}, {"dirty", false}}}}});
+      runInput(dir, {{{"open", scene}},
+                     {{"set", "time.steps"}, {"value", 9}},
+                     {{"key", "ctrl+n"}},
+                     {{"frames", 1}},
+                     {{"mouse_click", promptButton(rect, 1)}},
+                     {{"expect", {{"unsaved_prompt", nullptr}, {"file", ""}, {"dirty", false}}}}});
   ASSERT_EQ(discard.exitCode, 0) << discard.err << discard.out;
   EXPECT_EQ(readJson(scene)["time"]["steps"], 7) << "discarded, not saved";
 }
@@ -599,7 +590,7 @@ TEST(EditorInput, NewAndOpenWithUnsavedChangesAskFirst) {
 // Alt is the target-drag modifier; a chord with Alt held is not the chord without it.
 TEST(EditorInput, AltChordsAreNotTheShortcutsWithoutAlt) {
   TempDir dir;
-  const ProcessResult r = runEditor(
+  const ProcessResult r = runInput(
       dir, {{{"open", hangingScene(dir)}},
             {{"set", "time.steps"}, {"value", 8}},
             {{"key", "ctrl+alt+z"}},
@@ -611,9 +602,9 @@ TEST(EditorInput, AltChordsAreNotTheShortcutsWithoutAlt) {
 
 TEST(EditorInput, QuitWithNothingUnsavedClosesAtOnce) {
   TempDir dir;
-  const ProcessResult r = runEditor(dir, {{{"open", hangingScene(dir)}},
-                                          {{"key", "ctrl+q"}},
-                                          {{"write_state", dir.file("never.json")}}});
+  const ProcessResult r = runInput(dir, {{{"open", hangingScene(dir)}},
+                                         {{"key", "ctrl+q"}},
+                                         {{"write_state", dir.file("never.json")}}});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("closed at actions.1"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("script done"), std::string::npos) << r.out;

@@ -4,6 +4,7 @@
 // image, and one smoke test of a real window under Xvfb.
 
 #include "../render/GoldenImage.h"
+#include "EditorScriptRun.h"
 #include "support/Process.h"
 #include "support/SceneBuilder.h"
 #include "support/TempDir.h"
@@ -23,21 +24,6 @@ namespace weft::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions,
-                        std::vector<std::string> extra = {}) {
-  const std::string script = dir.write("script.json", nlohmann::json{{"actions", actions}}.dump(2));
-  std::vector<std::string> argv = {WEFT_EDITOR_BINARY, "--headless", "--script", script,
-                                   "--size",           "960x600"};
-  argv.insert(argv.end(), extra.begin(), extra.end());
-  return runProcess(argv, dir.path());
-}
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  return nlohmann::json::parse(in);
-}
 
 TEST(EditorScript, SessionEditsPinsSimulatesScrubsAndSaves) {
   TempDir dir;

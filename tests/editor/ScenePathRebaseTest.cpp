@@ -7,6 +7,7 @@
 #include <EditorSession.h>
 #include <ScenePathRebase.h>
 
+#include "EditorScriptRun.h"
 #include "support/SceneBuilder.h"
 #include "support/TempDir.h"
 
@@ -24,17 +25,12 @@ namespace weft::editor {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readJson;
 using test::TempDir;
 
 // A 2 x 1 m strip in the XZ plane: six vertices, four triangles.
 const char* kStripObj =
     "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 1\nv 1 0 1\nv 2 0 1\nf 1 4 5\nf 1 5 2\nf 2 5 6\nf 2 6 3\n";
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  return nlohmann::json::parse(in);
-}
 
 // The hanging cloth plus a cloth and a mesh obstacle read from `mesh` (as the scene names it).
 nlohmann::json sceneWithMesh(const std::string& mesh) {
