@@ -11,7 +11,6 @@
 #include <weft/diff/TaskLoss.h>
 #include <weft/io/MeshReader.h>
 #include <weft/mesh/BoundaryLoops.h>
-#include <weft/mesh/RigidTransform.h>
 #include <weft/render/Bounds.h>
 #include <weft/scene/JsonPath.h>
 #include <weft/scene/SceneLoader.h>
@@ -817,44 +816,38 @@ std::string EditorSession::loadTargetMotion(const std::string& file) {
 std::string EditorSession::loadTargetMesh(const std::string& file) {
   const Scene* scene = document_.scene();
   if (!scene) return "the scene does not validate: " + document_.validationError();
-  TriangleMesh mesh;
-  try {
-    mesh = readMesh(file);
-  } catch (const InputError& e) {
-    return file + ": " + e.reason();
-  } catch (const std::exception& e) {
-    return file + ": " + e.what();
-  }
+  const std::string path = std::filesystem::absolute(file).string();
   const ClothModel model = buildClothModel(*scene);
   std::string counts;
   for (std::size_t c = 0; c < scene->cloths.size(); ++c) {
     const int n = scene->cloths[c].mesh.vertexCount();
     counts +=
         (c ? ", " : "") + std::string("cloth ") + std::to_string(c) + " has " + std::to_string(n);
-    if (n != mesh.vertexCount()) continue;
-    // The cloth's own placement, as the loader applies it to the cloth's file (scale first).
-    const std::string base = "cloths." + std::to_string(c) + ".mesh";
-    if (const nlohmann::json* scale = document_.find(base + ".scale"); scale && scale->is_number())
-      mesh.vertices *= scale->get<double>();
-    if (const nlohmann::json* t = document_.find(base + ".transform"); t && t->is_object()) {
-      RigidTransform transform;
-      auto vec = [](const nlohmann::json& j) {
-        return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
-      };
-      if (t->contains("rotate_deg")) transform.rotateDeg = vec(t->at("rotate_deg"));
-      if (t->contains("translate")) transform.translate = vec(t->at("translate"));
-      transform.applyTo(mesh.vertices);
+    // The file in the cloth's place, placed by the loader as the cloth's own mesh is (its scale
+    // and transform, the mesh checks): the scene as it would be with that mesh.
+    nlohmann::json doc = document_.document();
+    nlohmann::json& mesh = doc["cloths"][c]["mesh"];
+    mesh.erase("grid");
+    mesh["file"] = path;
+    Scene placed;
+    try {
+      placed = parseScene(doc, document_.file(), document_.directory());
+    } catch (const InputError& e) {
+      if (e.path().rfind("cloths." + std::to_string(c) + ".mesh", 0) == 0)
+        return file + ": " + e.reason();  // the file itself (missing, unreadable, degenerate)
+      continue;  // another vertex count: the cloth's attachments or targets do not fit it
     }
-    if (!mesh.vertices.allFinite()) return file + ": the mesh has non-finite vertex positions";
+    const TriangleMesh& shape = placed.cloths[c].mesh;
+    if (shape.vertexCount() != n) continue;
     std::vector<FinalTarget> list;
     const int offset = model.vertexOffset[c];
     for (const FinalTarget& t : targets())  // other cloths' targets stay
       if (t.node < offset || t.node >= offset + n) list.push_back(t);
-    for (int v = 0; v < n; ++v) list.push_back({offset + v, mesh.vertices.row(v).transpose()});
+    for (int v = 0; v < n; ++v) list.push_back({offset + v, shape.vertices.row(v).transpose()});
     return editTargets("Target shape " + std::filesystem::path(file).filename().string(),
                        std::move(list));
   }
-  return file + ": " + std::to_string(mesh.vertexCount()) + " vertices, but " + counts +
+  return file + ": " + std::to_string(readMesh(path).vertexCount()) + " vertices, but " + counts +
          " (a target shape has the garment's vertices, in its order)";
 }
 
@@ -950,19 +943,7 @@ std::string EditorSession::computeStateGradients() {
   if (cache_.status() != SimulationCache::Status::Done || frames != current->time.steps + 1 ||
       cache_.staleFor(document_.document()))
     return "simulate the scene (all time.steps) first: the gradient is of the cached run";
-  // The cached run as the backward pass reads a recorded one.
-  auto trajectory = std::make_shared<Trajectory>();
-  bool touched = false;
-  for (int k = 0; k < frames; ++k) {
-    const std::shared_ptr<const CachedFrame> f = cache_.frame(k);
-    trajectory->positions.push_back(f->positions);
-    trajectory->velocities.push_back(f->velocities);
-    if (k == 0) continue;
-    trajectory->steps.push_back(f->stats);
-    trajectory->contacts.push_back(f->contacts);
-    touched = touched || !f->contacts.points.empty();
-  }
-  if (!touched) trajectory->contacts.clear();  // as a run without contact records it
+  auto trajectory = std::make_shared<const Trajectory>(cache_.trajectory());
   // The loss is built here, while the editor's targets are in their temporary file; the job
   // owns copies of everything it reads.
   std::shared_ptr<const Scene> scene;

@@ -31,8 +31,7 @@ const LossValue& LiveLoss::evaluate(const EditorDocument& document, const Simula
   }
   if (cache.runId() != runId_) {
     runId_ = cache.runId();
-    trajectory_ = Trajectory();
-    for (int k = 0; k < frames; ++k) trajectory_.positions.push_back(cache.frame(k)->positions);
+    trajectory_ = cache.trajectory();
   }
 
   try {

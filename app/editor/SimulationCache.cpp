@@ -115,6 +115,22 @@ std::shared_ptr<const CachedFrame> SimulationCache::frame(int k) const {
   return frames_[static_cast<std::size_t>(k)];
 }
 
+Trajectory SimulationCache::trajectory() const {
+  Trajectory t;
+  bool touched = false;
+  for (int k = 0, frames = frameCount(); k < frames; ++k) {
+    const std::shared_ptr<const CachedFrame> f = frame(k);
+    t.positions.push_back(f->positions);
+    t.velocities.push_back(f->velocities);
+    if (k == 0) continue;
+    t.steps.push_back(f->stats);
+    t.contacts.push_back(f->contacts);
+    touched = touched || !f->contacts.points.empty();
+  }
+  if (!touched) t.contacts.clear();  // as a run without contact records it
+  return t;
+}
+
 std::shared_ptr<const Scene> SimulationCache::scene() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return scene_;

@@ -8,6 +8,7 @@
 #include <weft/contact/StepContacts.h>
 #include <weft/core/Types.h>
 #include <weft/physics/StepStats.h>
+#include <weft/physics/Trajectory.h>
 #include <weft/scene/Scene.h>
 
 #include <atomic>
@@ -61,6 +62,9 @@ class SimulationCache {
   std::string error() const;  // the failure message (status Failed)
   // The frame of state k (0 <= k < frameCount()), or null. Safe while the worker appends.
   std::shared_ptr<const CachedFrame> frame(int k) const;
+  // The cached states as the recorded run the engine's losses and backward pass read: positions
+  // and velocities of every state, step statistics and (when any step touched) contacts.
+  Trajectory trajectory() const;
   // The scene the cache was computed from (null when empty).
   std::shared_ptr<const Scene> scene() const;
   // True when there are frames and they were computed from a document other than `document`:
