@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -86,6 +87,28 @@ TEST(ApplicationsRunsCli, EveryRunIsStoredAndResumeReadsItBack) {
   }
   const std::string csv = test::readFile(out + "/applications.csv");
   EXPECT_EQ(splitLines(csv), all);
+  // Each run's parameters at each evaluation, one row per row of its run file; the three methods
+  // start from the seed's one starting point (Table 2: the same initial seed set).
+  std::vector<std::string> firstRows;
+  for (const auto& m : kMethods) {
+    const std::string file = out + "/runs/parameters/napkin_4x4_" + m + "_1.csv";
+    ASSERT_TRUE(fs::exists(file)) << file;
+    auto lines = splitLines(test::readFile(file));
+    const auto rows = runRows(out + "/runs/napkin_4x4_" + m + "_1.csv");
+    ASSERT_EQ(lines.size(), rows.size() + 1) << file;
+    const auto header = splitCommas(lines[0]);
+    EXPECT_EQ(header.size(), 1u + 48u) << lines[0];  // 4x4 nodes, a force each (48 DoF)
+    EXPECT_EQ(header[0], "evaluation");
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      const auto f = splitCommas(lines[r + 1]);
+      ASSERT_EQ(f.size(), header.size()) << file << " row " << r + 1;
+      EXPECT_EQ(f[0], splitCommas(rows[r])[3]) << file;  // the same evaluation
+      for (std::size_t i = 1; i < f.size(); ++i) EXPECT_TRUE(std::isfinite(std::stod(f[i])));
+    }
+    firstRows.push_back(lines[1]);
+  }
+  EXPECT_EQ(firstRows[1], firstRows[0]);
+  EXPECT_EQ(firstRows[2], firstRows[0]);
   const std::string settings = test::readFile(out + "/runs/settings.json");
   EXPECT_NE(settings.find("\"budget\": 450"), std::string::npos) << settings;
   EXPECT_NE(settings.find("\"quick\": true"), std::string::npos) << settings;
@@ -115,7 +138,12 @@ TEST(ApplicationsRunsCli, EveryRunIsStoredAndResumeReadsItBack) {
   const auto fourth = runWeft(more);
   ASSERT_EQ(fourth.exitCode, 0) << describe(fourth);
   EXPECT_NE(fourth.out.find("3 run(s) made, 3 resumed"), std::string::npos) << fourth.out;
-  for (const auto& m : kMethods) EXPECT_TRUE(fs::exists(out + "/runs/napkin_4x4_" + m + "_2.csv"));
+  for (const auto& m : kMethods) {
+    EXPECT_TRUE(fs::exists(out + "/runs/napkin_4x4_" + m + "_2.csv"));
+    EXPECT_TRUE(fs::exists(out + "/runs/parameters/napkin_4x4_" + m + "_2.csv"));
+    EXPECT_TRUE(fs::exists(out + "/runs/parameters/napkin_4x4_" + m + "_1.csv"))
+        << "carried over from the finished comparison";
+  }
 }
 
 TEST(ApplicationsRunsCli, AKilledComparisonKeepsItsFinishedRunsAndResumeContinuesIt) {

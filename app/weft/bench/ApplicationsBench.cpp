@@ -16,7 +16,9 @@
 //   loss_<task>.png   loss against steps, the minimum envelope over seeds (Fig. 4 bottom left)
 //   speedup.png       speedup against the parameter count (Fig. 4 bottom right)
 //   runs/             every (task, method, seed) run as <task>_<method>_<seed>.csv (the rows of
-//                     applications.csv) and settings.json (budget, quick, paper meshes)
+//                     applications.csv), settings.json (budget, quick, paper meshes) and
+//                     parameters/<task>_<method>_<seed>.csv: evaluation, then the value of each
+//                     task parameter (scene units) that evaluation simulated
 //   paper_scenes/     with --paper-meshes: the scenes as run (<task>.json, targets beside them)
 // Runs are written as they finish, atomically, into DIR.partial/ (kept when the comparison is
 // killed or fails); --resume reads the runs stored there (or in DIR/runs/ of a finished
@@ -230,6 +232,23 @@ void writeRunFile(const std::string& path, const Run& run) {
   writeFileAtomically(path, text);
 }
 
+// The parameter values of every evaluation of a run (issue 7: "every run records ... the
+// parameters at each evaluation"), beside its run file in the store's parameters/ folder.
+// Written before the run file, so that a stored run always has them.
+void writeParameterFile(const std::string& path, const ParameterSpace& space,
+                        const OptimizationLog& log) {
+  std::vector<std::string> header{"evaluation"};
+  for (const SceneParameter& p : space.parameters()) header.push_back(p.path);
+  std::string text = joinCsv(header);
+  for (const LogEntry& e : log.entries()) {
+    std::vector<std::string> row{std::to_string(e.evaluation)};
+    const Eigen::VectorXd values = space.toValues(e.x);
+    for (int i = 0; i < values.size(); ++i) row.push_back(formatNumber(values[i], 17));
+    text += joinCsv(row);
+  }
+  writeFileAtomically(path, text);
+}
+
 // A stored run, checked line by line against the run it must be.
 Run readRunFile(const std::string& path, const ApplicationTask& task, int method, int seed) {
   std::ifstream in(path);
@@ -326,9 +345,7 @@ int openRunStore(const std::string& store, const std::string& finished, bool res
     // A finished comparison: continue from its runs (more seeds, more tasks) without touching it.
     checkStoredSettings(finished + "/settings.json", settings);
     fs::create_directories(store, ec);
-    for (const auto& entry : fs::directory_iterator(finished, ec))
-      if (entry.is_regular_file())
-        fs::copy_file(entry.path(), fs::path(store) / entry.path().filename(), ec);
+    fs::copy(finished, store, fs::copy_options::recursive, ec);
     if (ec)
       throw InputError(store, "--resume",
                        "cannot copy the runs of " + finished + ": " + ec.message());
@@ -340,6 +357,8 @@ int openRunStore(const std::string& store, const std::string& finished, bool res
     if (ec) throw InputError(store, "--out", "cannot create the run folder: " + ec.message());
     writeFileAtomically(settingsFile, settings.dump(2) + "\n");
   }
+  fs::create_directories(store + "/parameters", ec);
+  if (ec) throw InputError(store, "--out", "cannot create the run folder: " + ec.message());
   int stored = 0;
   for (const auto& entry : fs::directory_iterator(store, ec))
     if (entry.path().extension() == ".csv") ++stored;
@@ -474,6 +493,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                               std::to_string(e.evaluation), std::to_string(e.steps), wall,
                               formatNumber(e.loss, 17)});
         }
+        writeParameterFile(store + "/parameters/" + runFileName(*task, m, seed), objective.space(),
+                           optimizer->log());
         writeRunFile(runFile, run);  // from here on the run survives a kill
         ++newRuns;
         if (!run.curve.steps.empty()) result.runs.push_back(std::move(run));
@@ -666,6 +687,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       if (entry.is_regular_file() &&
           (entry.path().extension() == ".csv" || entry.path().filename() == "settings.json"))
         fs::copy_file(entry.path(), fs::path(out.file("runs")) / entry.path().filename(), ec);
+    if (!ec && fs::is_directory(store + "/parameters"))
+      fs::copy(store + "/parameters", out.file("runs/parameters"), fs::copy_options::recursive, ec);
     if (ec) throw InputError(out.file("runs"), "output", "cannot copy the runs: " + ec.message());
   }
   // The paper-mesh scenes as run, each with its target beside it (the mesh stays where it is).
