@@ -146,6 +146,55 @@ TEST(ApplicationsRunsCli, EveryRunIsStoredAndResumeReadsItBack) {
   }
 }
 
+// A run file's rows without the wall-clock column (which depends on the load).
+std::vector<std::string> withoutWallSeconds(const std::string& file) {
+  std::vector<std::string> rows;
+  for (const auto& row : runRows(file)) {
+    auto f = splitCommas(row);
+    if (f.size() == 7u) f.erase(f.begin() + 5);
+    std::string joined;
+    for (std::size_t i = 0; i < f.size(); ++i) joined += (i ? "," : "") + f[i];
+    rows.push_back(joined);
+  }
+  return rows;
+}
+
+TEST(ApplicationsRunsCli, RunsMadeTwoAtATimeAreTheRunsMadeOneAtATime) {
+  // --jobs 2 runs the six (method, seed) runs on two threads; each run is the same as when the
+  // runs are made one after another: the same evaluations, losses and parameter values.
+  TempDir dir;
+  std::vector<std::string> args = {"bench",      "applications", "--quick", "--tasks",
+                                   "napkin_4x4", "--seeds",      "2",       "--budget",
+                                   "450",        "--threads",    "1",       "--out"};
+  auto one = args, two = args;
+  one.push_back(dir.file("one"));
+  two.insert(two.end(), {dir.file("two"), "--jobs", "2"});
+  const auto serial = runWeft(one);
+  ASSERT_EQ(serial.exitCode, 0) << describe(serial);
+  const auto parallel = runWeft(two);
+  ASSERT_EQ(parallel.exitCode, 0) << describe(parallel);
+  EXPECT_NE(parallel.out.find("6 run(s) made"), std::string::npos) << parallel.out;
+  EXPECT_NE(test::readFile(dir.file("two") + "/applications.md").find("2 run(s) at a time"),
+            std::string::npos);
+  for (const auto& m : kMethods)
+    for (const char* seed : {"1", "2"}) {
+      const std::string name = "napkin_4x4_" + m + "_" + seed + ".csv";
+      const auto a = withoutWallSeconds(dir.file("one") + "/runs/" + name);
+      ASSERT_FALSE(a.empty()) << name;
+      EXPECT_EQ(withoutWallSeconds(dir.file("two") + "/runs/" + name), a) << name;
+      EXPECT_EQ(test::readFile(dir.file("two") + "/runs/parameters/" + name),
+                test::readFile(dir.file("one") + "/runs/parameters/" + name))
+          << name;
+    }
+  // The tables list the runs in the same order.
+  std::vector<std::string> a, b;
+  for (const auto& row : splitLines(test::readFile(dir.file("one") + "/applications.csv")))
+    a.push_back(row.substr(0, row.find(',', row.find(',', row.find(',') + 1) + 1)));
+  for (const auto& row : splitLines(test::readFile(dir.file("two") + "/applications.csv")))
+    b.push_back(row.substr(0, row.find(',', row.find(',', row.find(',') + 1) + 1)));
+  EXPECT_EQ(b, a);
+}
+
 TEST(ApplicationsRunsCli, AKilledComparisonKeepsItsFinishedRunsAndResumeContinuesIt) {
   TempDir dir;
   const std::string out = dir.file("bench");

@@ -1,10 +1,11 @@
 // `weft bench applications [--tasks a,b] [--seeds N] [--budget STEPS] [--quick] [--out DIR]
-//                          [--threads N] [--resume] [--paper-meshes [DIR]]`: DiffCloth's comparison
-// of gradient-based and gradient-free optimisation (Sec. 5.2 and Fig. 4, the Flying Napkin; Sec. 6,
-// Tables 2-3; Appendix C, Tables 5-6). Every task scene is optimised by L-BFGS-B (adjoint
-// gradients), CMA-ES and the (1+1)-ES (values alone) from the same random starting point per seed,
-// each run with the same budget of simulated steps (a forward step 1, a backward step 1 more, as
-// the paper counts them). Writes, staged, into DIR (default out/bench-applications):
+//                          [--threads N] [--jobs J] [--resume] [--paper-meshes [DIR]]`:
+// DiffCloth's comparison of gradient-based and gradient-free optimisation (Sec. 5.2 and Fig. 4, the
+// Flying Napkin; Sec. 6, Tables 2-3; Appendix C, Tables 5-6). Every task scene is optimised by
+// L-BFGS-B (adjoint gradients), CMA-ES and the (1+1)-ES (values alone) from the same random
+// starting point per seed, each run with the same budget of simulated steps (a forward step 1, a
+// backward step 1 more, as the paper counts them). Writes, staged, into DIR (default
+// out/bench-applications):
 //   applications.csv  task,method,seed,evaluation,steps,wall_s,loss: every evaluation of every run
 //   applications.md   the Table 2 analogue (final loss and loss at L-BFGS-B's convergence step
 //                     count, as % of the minimum initial loss), the Table 3 / Fig. 4 analogue
@@ -23,6 +24,9 @@
 // Runs are written as they finish, atomically, into DIR.partial/ (kept when the comparison is
 // killed or fails); --resume reads the runs stored there (or in DIR/runs/ of a finished
 // comparison) instead of running them again, and refuses runs stored with other settings.
+// --jobs J makes J runs at once, each on its own thread with --threads OpenMP threads (on this
+// 2-core machine: --jobs 2 --threads 1); the stored runs are the same whatever J, their wall
+// seconds are not.
 
 #include "../CommandLine.h"
 #include "BenchAssets.h"
@@ -44,17 +48,21 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <random>
 #include <sstream>
+#include <thread>
 
 namespace weft::cli {
 namespace {
@@ -373,6 +381,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   const std::vector<const ApplicationTask*> tasks = selectTasks(cl, quick);
   const int seeds = cl.integer("--seeds", quick ? 1 : 3, 1, 100);
   const int threads = cl.integer("--threads", 1, 1, 1024);
+  const int jobCount = cl.integer("--jobs", 1, 1, 64);
   omp_set_num_threads(threads);
   const double budgetOption = cl.number("--budget", 0.0);
   if (cl.has("--budget") &&
@@ -423,35 +432,49 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   if (storedRuns > 0)
     std::fprintf(stderr, "applications: %d stored run(s) in %s\n", storedRuns, store.c_str());
 
-  int resumedRuns = 0, newRuns = 0;
-  for (TaskResult& result : results) {
-    const ApplicationTask* task = result.task;
-    const std::string file = assetFile(task->scene);
-    const paper::PaperMesh* paperMesh =
-        paperDir.empty() ? nullptr : paper::paperMeshFor(task->name);
-    // Loaded only when some run of the task is still to do.
+  // The scenes of the tasks that still have runs to make (or a pass to time), loaded once.
+  struct TaskScene {
     std::optional<Scene> scene;
     std::optional<ParameterSet> parameters;
-    std::optional<SimulationObjective> probe;
-    const auto prepare = [&]() {
-      if (scene) return;
-      if (!result.paperScene)
-        scene = loadScene(file, {});
-      else
-        scene =
-            parseScene(result.paperScene->document, file, fs::path(file).parent_path().string());
-      for (const std::string& w : scene->warnings)
-        std::fprintf(stderr, "warning: %s: %s\n", task->name, w.c_str());
-      parameters = ParameterSet::fromTask(*scene);
-      probe.emplace(*scene, *parameters);  // the box and the starting values
-    };
+    std::optional<SimulationObjective> probe;  // the box and the starting values
+  };
+  std::vector<TaskScene> loaded(results.size());
+  const auto prepare = [&](std::size_t t) {
+    TaskScene& ts = loaded[t];
+    if (ts.scene) return;
+    const TaskResult& result = results[t];
+    const std::string file = assetFile(result.task->scene);
+    if (!result.paperScene)
+      ts.scene = loadScene(file, {});
+    else
+      ts.scene =
+          parseScene(result.paperScene->document, file, fs::path(file).parent_path().string());
+    for (const std::string& w : ts.scene->warnings)
+      std::fprintf(stderr, "warning: %s: %s\n", result.task->name, w.c_str());
+    ts.parameters = ParameterSet::fromTask(*ts.scene);
+    ts.probe.emplace(*ts.scene, *ts.parameters);
+  };
+
+  // Stored runs are read back; the others become jobs.
+  struct Job {
+    std::size_t task;
+    int seed, method;
+    Run run;
+  };
+  std::vector<Job> jobs;
+  int resumedRuns = 0;
+  for (std::size_t t = 0; t < results.size(); ++t) {
+    TaskResult& result = results[t];
+    const ApplicationTask* task = result.task;
+    const paper::PaperMesh* paperMesh =
+        paperDir.empty() ? nullptr : paper::paperMeshFor(task->name);
     if (paperMesh) {
       std::fprintf(stderr, "applications: %s on %s...\n", task->name, paperMesh->file);
-      result.paperScene = paper::makePaperScene(file, *paperMesh, paperDir, store + "/targets",
-                                                /*reuseTarget=*/true);
+      result.paperScene = paper::makePaperScene(assetFile(task->scene), *paperMesh, paperDir,
+                                                store + "/targets", /*reuseTarget=*/true);
       result.garmentVertices = result.paperScene->vertices;
     }
-    for (int seed = 1; seed <= seeds; ++seed) {
+    for (int seed = 1; seed <= seeds; ++seed)
       for (int m = 0; m < kMethodCount; ++m) {
         const std::string runFile = store + "/" + runFileName(*task, m, seed);
         if (fs::exists(runFile)) {
@@ -460,18 +483,37 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
           if (!run.curve.steps.empty()) result.runs.push_back(std::move(run));
           continue;
         }
-        prepare();
-        const Eigen::VectorXd start = randomStart(probe->space(), static_cast<unsigned>(seed));
+        prepare(t);
+        jobs.push_back({t, seed, m, {}});
+      }
+  }
+
+  // The runs to make, `jobs` at a time (--jobs), each on its own thread with --threads OpenMP
+  // threads: the runs are independent and each is deterministic, so the stored runs do not depend
+  // on how many ran at once (only their wall seconds do, through the load).
+  std::atomic<std::size_t> next{0};
+  std::mutex failureMutex;
+  std::exception_ptr failure;
+  const auto work = [&]() {
+    omp_set_num_threads(threads);  // (a new thread starts from OpenMP's default)
+    for (std::size_t j = next++; j < jobs.size(); j = next++) {
+      try {
+        Job& job = jobs[j];
+        const ApplicationTask* task = results[job.task].task;
+        const TaskScene& ts = loaded[job.task];
+        const int m = job.method;
+        const Eigen::VectorXd start =
+            randomStart(ts.probe->space(), static_cast<unsigned>(job.seed));
         std::fprintf(stderr, "applications: %s, %s, seed %d...\n", task->name, kMethods[m].name,
-                     seed);
-        SimulationObjective objective(*scene, *parameters);
+                     job.seed);
+        SimulationObjective objective(*ts.scene, *ts.parameters);
         OptimizerSettings settings;
-        settings.budget = result.budget;
-        settings.seed = static_cast<unsigned>(seed);
+        settings.budget = results[job.task].budget;
+        settings.seed = static_cast<unsigned>(job.seed);
         std::unique_ptr<Optimizer> optimizer = makeOptimizer(kMethods[m].name, settings);
-        Run run;
+        Run& run = job.run;
         run.method = m;
-        run.seed = seed;
+        run.seed = job.seed;
         try {
           run.stop = optimizer
                          ->minimize(objective, start, objective.space().lowerCoordinates(),
@@ -480,8 +522,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         } catch (const NumericalError& e) {
           // A sample the forward solver cannot simulate ends that run, not the benchmark.
           run.stop = std::string("numerical failure: ") + e.what();
-          std::fprintf(stderr, "warning: %s, %s, seed %d: %s\n", task->name, kMethods[m].name, seed,
-                       e.what());
+          std::fprintf(stderr, "warning: %s, %s, seed %d: %s\n", task->name, kMethods[m].name,
+                       job.seed, e.what());
         }
         for (const LogEntry& e : optimizer->log().entries()) {
           run.curve.steps.push_back(e.steps);
@@ -489,22 +531,45 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
           run.seconds = e.seconds;
           char wall[32];
           std::snprintf(wall, sizeof wall, "%.6f", e.seconds);
-          run.rows.push_back({task->name, kMethods[m].name, std::to_string(seed),
+          run.rows.push_back({task->name, kMethods[m].name, std::to_string(job.seed),
                               std::to_string(e.evaluation), std::to_string(e.steps), wall,
                               formatNumber(e.loss, 17)});
         }
-        writeParameterFile(store + "/parameters/" + runFileName(*task, m, seed), objective.space(),
-                           optimizer->log());
-        writeRunFile(runFile, run);  // from here on the run survives a kill
-        ++newRuns;
-        if (!run.curve.steps.empty()) result.runs.push_back(std::move(run));
+        const std::string name = runFileName(*task, m, job.seed);
+        writeParameterFile(store + "/parameters/" + name, objective.space(), optimizer->log());
+        writeRunFile(store + "/" + name, run);  // from here on the run survives a kill
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failureMutex);
+        if (!failure) failure = std::current_exception();
+        next = jobs.size();  // no new runs; the running ones finish and are stored
       }
     }
+  };
+  {
+    std::vector<std::thread> workers;
+    const std::size_t count =
+        std::min<std::size_t>(static_cast<std::size_t>(jobCount), jobs.size());
+    for (std::size_t w = 1; w < count; ++w) workers.emplace_back(work);
+    work();
+    for (std::thread& w : workers) w.join();
+  }
+  omp_set_num_threads(threads);
+  if (failure) std::rethrow_exception(failure);
+  const int newRuns = static_cast<int>(jobs.size());
+  for (Job& job : jobs)
+    if (!job.run.curve.steps.empty()) results[job.task].runs.push_back(std::move(job.run));
+
+  for (std::size_t t = 0; t < results.size(); ++t) {
+    TaskResult& result = results[t];
+    std::stable_sort(result.runs.begin(), result.runs.end(), [](const Run& a, const Run& b) {
+      return a.seed != b.seed ? a.seed < b.seed : a.method < b.method;
+    });
     // Table 4: not stored with the runs, so measured again by every invocation (one gradient
-    // evaluation, small next to the runs themselves).
-    prepare();
-    std::fprintf(stderr, "applications: %s, one forward and backward pass, timed...\n", task->name);
-    result.timing = timePasses(*scene, *parameters);
+    // evaluation, small next to the runs themselves), one task at a time after all runs.
+    prepare(t);
+    std::fprintf(stderr, "applications: %s, one forward and backward pass, timed...\n",
+                 result.task->name);
+    result.timing = timePasses(*loaded[t].scene, *loaded[t].parameters);
   }
   BenchTable csv(kRunColumns);
   for (const TaskResult& r : results)
@@ -739,7 +804,9 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     for (const TaskResult& r : results)
       taskList += (taskList.empty() ? "" : ",") + std::string(r.task->name);
     const std::string setup =
-        "Machine: " + machineDescription() + ", " + std::to_string(threads) + " thread(s). " +
+        "Machine: " + machineDescription() + ", " + std::to_string(threads) +
+        " thread(s) per run, " +
+        std::to_string(std::min<int>(jobCount, std::max<int>(1, newRuns))) + " run(s) at a time. " +
         std::to_string(seeds) + " seed(s) per task (1.." + std::to_string(seeds) + "), " +
         formatNumber(benchSeconds, 4) + " s in this invocation (" + std::to_string(newRuns) +
         " run(s) made, " + std::to_string(resumedRuns) +
