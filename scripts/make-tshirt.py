@@ -87,9 +87,19 @@ The scene (assets/scenes/tshirt.json):
   at build time (CMake target weft_task_targets in app/CMakeLists.txt: 8.7 MB, so not
   committed) by `weft simulate assets/scenes/tshirt.json --set <HIDDEN> --threads 1`.
 - Solver: Newton-PCG to 1e-4 m/s^2 with up to 500 solves per step and DiffCloth's PD contact
-  solve (the default; the semismooth Newton contact solve diverged on this shirt, residuals up
-  to 4.5e3 m/s^2 in a stronger wind, tried), GMRES adjoint at 1e-6 with the direct fallback (as
-  sphere_sysid).
+  solve (the default), GMRES adjoint at 1e-6 with the direct fallback (as sphere_sysid). The PD
+  contact solve stops unconverged on 148 of the 250 steps at START. The semismooth Newton
+  contact solve (solver.contact "newton", continued by the PD iteration where it stalls)
+  converges on 233 of them in the same time, but it is not used, because its result is not a
+  continuous function of the parameters. The layers' step equations can have several
+  solutions, and Newton's non-monotone steps pick among them by rounding. Measured 2026-12-03
+  on the coarse shirt (36 steps, forward to 1e-8): two runs at most 5e-9 apart in each parameter
+  matched to 5e-13 m up to step 32, and then both converged at step 33 to solutions 1.9 mm
+  apart. `weft gradcheck` there gave finite differences of 1.04 and -0.94 against adjoint
+  values of 0.0043 and 0.0057 (d_x, d_z), where the PD solve's agreed to 4e-7 and 1e-5. The
+  reduced L-BFGS-B test stopped at 25 evaluations with the loss at 5.8e-4, where PD's reached
+  1.6e-9. On the full task L-BFGS-B from `weft bench applications` seed 1 went 432.5 -> 227.3
+  in 10 evaluations with PD and 430.7 -> 227.7 with Newton.
 
 Usage: python3 scripts/make-tshirt.py [ASSET_DIR]   (default: assets/ next to scripts/)
 Writes ASSET_DIR/meshes/tshirt.obj, ASSET_DIR/meshes/tshirt-coarse.obj and
