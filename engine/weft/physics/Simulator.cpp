@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace weft {
 namespace {
@@ -53,15 +54,16 @@ constexpr int kMissedContactPasses = 2;
 
 // Diagnostics: WEFT_CONTACT_TRACE=a-b (or =a) prints each Newton contact iteration of steps a..b
 // to stderr (residual, GMRES iterations, step length, branch changes).
+// Read once, by a static initialiser, which is thread-safe: simulators may run on several
+// threads at once (`weft bench applications --jobs`, the editor's workers).
 bool traceContactStep(int step) {
-  static int first = 0, last = -1;
-  static bool read = false;
-  if (!read) {
-    read = true;
+  static const std::pair<int, int> range = [] {
+    int first = 0, last = -1;
     if (const char* e = std::getenv("WEFT_CONTACT_TRACE"))
       if (std::sscanf(e, "%d-%d", &first, &last) == 1) last = first;
-  }
-  return step >= first && step <= last;
+    return std::pair<int, int>(first, last);
+  }();
+  return step >= range.first && step <= range.second;
 }
 
 // A speed no cloth reaches unless the integration has blown up.
