@@ -71,6 +71,7 @@ ParameterSpace::ParameterSpace(const Scene& scene, const ParameterSet& set)
     }
     scale_[i] = v != 0.0 ? std::abs(v) : 1.0;
   }
+  initialCoordinates_ = toCoordinates(initial_);
 }
 
 Eigen::VectorXd ParameterSpace::toCoordinates(const Eigen::VectorXd& values) const {
@@ -83,7 +84,9 @@ Eigen::VectorXd ParameterSpace::toCoordinates(const Eigen::VectorXd& values) con
 Eigen::VectorXd ParameterSpace::toValues(const Eigen::VectorXd& z) const {
   Eigen::VectorXd v(size());
   for (int i = 0; i < size(); ++i)
-    v[i] = parameters_[i].logScale ? std::exp(z[i]) : z[i] * scale_[i];
+    v[i] = z[i] == initialCoordinates_[i] ? initial_[i]  // the start, exactly (header)
+           : parameters_[i].logScale      ? std::exp(z[i])
+                                          : z[i] * scale_[i];
   return v;
 }
 
