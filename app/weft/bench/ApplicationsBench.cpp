@@ -111,6 +111,8 @@ constexpr double kThresholdFraction = 0.01;
 // counts steps "until convergence" without saying when; L-BFGS-B's own stop, a relative loss
 // change of 1e-12, is reached only after a long tail of tiny gains).
 constexpr double kConvergedFraction = 0.01;
+// Seconds of a run between two of its progress lines on stderr.
+constexpr double kProgressSeconds = 300.0;
 
 struct Run {
   int method = 0;
@@ -511,6 +513,19 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         settings.budget = results[job.task].budget;
         settings.seed = static_cast<unsigned>(job.seed);
         std::unique_ptr<Optimizer> optimizer = makeOptimizer(kMethods[m].name, settings);
+        // A run can take hours (the Sock's); one progress line per kProgressSeconds of it.
+        double reported = 0.0;
+        double best = std::numeric_limits<double>::infinity();
+        optimizer->log().setObserver([&, budget = settings.budget](const LogEntry& e) {
+          best = std::min(best, e.loss);
+          if (e.seconds - reported < kProgressSeconds) return;
+          reported = e.seconds;
+          std::fprintf(stderr,
+                       "applications: %s, %s, seed %d: evaluation %d, %lld of %lld steps, best "
+                       "loss %s, %.0f s\n",
+                       task->name, kMethods[m].name, job.seed, e.evaluation, e.steps, budget,
+                       formatNumber(best, 4).c_str(), e.seconds);
+        });
         Run& run = job.run;
         run.method = m;
         run.seed = job.seed;
