@@ -3,6 +3,8 @@
 #include <weft/contact/ContactLawJacobian.h>
 #include <weft/core/Error.h>
 
+#include <Eigen/SVD>
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -15,6 +17,26 @@ namespace {
 // and the round-off (1e-16 / eps) are both below 1e-9 of the derivative.
 constexpr double kFrameStep = 1e-6;
 constexpr double kAnyReach = std::numeric_limits<double>::max();
+
+// The groups of contacts coupled through shared nodes (the connected components of T's
+// off-diagonal blocks), each with two or more contacts. `sharing`: node -> (contact, sign).
+std::vector<std::vector<int>> coupledGroups(
+    const std::vector<std::vector<std::pair<int, double>>>& sharing, int count) {
+  std::vector<int> parent(count);
+  for (int k = 0; k < count; ++k) parent[k] = k;
+  const auto root = [&](int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  for (const auto& list : sharing)
+    for (std::size_t i = 1; i < list.size(); ++i) parent[root(list[i].first)] = root(list[0].first);
+  std::vector<std::vector<int>> byRoot(count);
+  for (int k = 0; k < count; ++k) byRoot[root(k)].push_back(k);
+  std::vector<std::vector<int>> groups;
+  for (std::vector<int>& g : byRoot)
+    if (g.size() > 1) groups.push_back(std::move(g));
+  return groups;
+}
 
 }  // namespace
 
@@ -133,23 +155,36 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
   }
   tTransposed_.resize(3 * count, 3 * count);
   tTransposed_.setFromTriplets(entries.begin(), entries.end());
+  // A node sticking to two obstacles (or pairs sticking around a node) has no unique impulse
+  // split: two sticks on one node give T^T = [I I; I I], a stick and a slip [I I; S I] with S
+  // sharing I's normal direction. The node's motion depends on the total impulse only, which
+  // every solution gives; the forward picked one split. A shift of the diagonal makes the solve
+  // pick the minimum-norm split (as the shift goes to 0), and the direct fallback's augmented
+  // system takes the same shifted block. Which groups of coupled contacts are singular is read
+  // from their singular values: rounding leaves the stick-slip block's zeros at 1e-17, where the
+  // sparse LU finds no zero pivot, and the unshifted augmented system then failed UMFPACK (the
+  // Sock, step 282) or gave a gradient 20 % off (ContactGradientTest, the turned corner).
+  for (const std::vector<int>& group : coupledGroups(sharing, count)) {
+    const int size = 3 * static_cast<int>(group.size());
+    Eigen::MatrixXd block(size, size);
+    for (int i = 0; i < size; ++i)
+      for (int j = 0; j < size; ++j)
+        block(i, j) = tTransposed_.coeff(3 * group[i / 3] + i % 3, 3 * group[j / 3] + j % 3);
+    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(block).singularValues();
+    if (sigma[size - 1] > kSingularCouplingRatio * sigma[0]) continue;
+    for (int k : group)
+      for (int e = 0; e < 3; ++e)
+        tTransposed_.coeffRef(3 * k + e, 3 * k + e) += kSingularCouplingShift;
+  }
   tTransposed_.makeCompressed();
   tSolver_.compute(tTransposed_);
-  if (tSolver_.info() != Eigen::Success) {
-    // A node sticking to two obstacles (or pairs sticking around a node) has no unique impulse
-    // split: two sticks on one node give T^T = [I I; I I]. The node's motion depends on the total
-    // impulse only, which every solution gives; the forward's Gauss-Seidel picked one split. A
-    // shift of the diagonal makes the solve pick the minimum-norm split (as the shift goes to 0),
-    // and the direct fallback's augmented system takes the same shifted block.
-    for (int k = 0; k < 3 * count; ++k) tTransposed_.coeffRef(k, k) += kSingularCouplingShift;
-    tSolver_.compute(tTransposed_);
-  }
   if (tSolver_.info() != Eigen::Success)
     throw NumericalError(
         step, "backward",
         "the contacts sharing a node have no unique impulse split (singular contact coupling "
         "of " +
-            std::to_string(count) + " contacts, also with the diagonal shifted by 1e-9)");
+            std::to_string(count) +
+            " contacts, also with the singular groups' diagonal shifted by 1e-9)");
 }
 
 void ContactAdjoint::applyTransposed(const NodeMatrix& z, NodeMatrix& wbar,

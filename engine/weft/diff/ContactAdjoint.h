@@ -103,6 +103,10 @@ class ContactAdjoint {
   // entries are O(1) (the law's m_c dL/dw over a node mass), so this moves the solution by about
   // 1e-9 relative outside the split's null space.
   static constexpr double kSingularCouplingShift = 1e-9;  // the error message quotes it
+  // A group of coupled contacts is singular when its block of T^T has a singular value below
+  // this fraction of its largest (exact zeros come out of rounding at about 1e-16; the Sock's
+  // genuinely ill-conditioned slip pairs have 1e-5 and are left exact).
+  static constexpr double kSingularCouplingRatio = 1e-12;
   bool coupled_ = false;
   Eigen::SparseMatrix<double> tTransposed_;  // when coupled
   Eigen::SparseLU<Eigen::SparseMatrix<double>> tSolver_;
