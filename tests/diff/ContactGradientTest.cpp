@@ -251,6 +251,18 @@ TEST(ContactGradient, NewtonForwardSlipAndCoupledContacts) {
   }
 }
 
+// The corner with high friction on both planes and gravity pressing the cloth into the wall, so
+// that the edge's nodes stick (or slip) on both at once; Newton's contact solve.
+nlohmann::json pressedCornerScene() {
+  nlohmann::json doc = cornerScene();
+  doc["obstacles"][0]["friction"] = 2.0;
+  doc["obstacles"][1]["friction"] = 2.0;
+  doc["gravity"] = {2.0, -9.8, 0.0};
+  doc["cloths"][0]["initial_velocity"] = {0.05, 0.0, 0.0};
+  doc["solver"]["contact"] = "newton";
+  return doc;
+}
+
 // Nodes sticking to the floor and the wall at once have no unique impulse split (T^T = [I I; I I]
 // for the two contacts of such a node: singular). The backward pass takes the minimum-norm split
 // (ContactAdjoint::kSingularCouplingShift); the node's motion depends on the total only, so the
@@ -258,12 +270,7 @@ TEST(ContactGradient, NewtonForwardSlipAndCoupledContacts) {
 // on the Sock task, step 399 of its first L-BFGS-B evaluation).
 TEST(ContactGradient, NodesStickingToTwoObstaclesAtOnce) {
   TempDir dir;
-  nlohmann::json doc = cornerScene();
-  doc["obstacles"][0]["friction"] = 2.0;
-  doc["obstacles"][1]["friction"] = 2.0;
-  doc["gravity"] = {2.0, -9.8, 0.0};  // pressed into the wall
-  doc["cloths"][0]["initial_velocity"] = {0.05, 0.0, 0.0};
-  doc["solver"]["contact"] = "newton";
+  nlohmann::json doc = pressedCornerScene();
   const Scene scene =
       withTask(dir, doc, {{"gravity.0", 2.5}},
                {"gravity.0", "cloths.0.material.density", "cloths.0.initial_velocity.0"});
@@ -308,12 +315,7 @@ nlohmann::json rotated(nlohmann::json doc, const RigidTransform& rotation) {
 // (the Sock's first L-BFGS-B evaluation at bench seed 1, step 282, on its two capsules).
 TEST(ContactGradient, NodesStickingToOneObstacleAndSlippingOnAnother) {
   TempDir dir;
-  nlohmann::json doc = cornerScene();
-  doc["obstacles"][0]["friction"] = 2.0;
-  doc["obstacles"][1]["friction"] = 2.0;
-  doc["gravity"] = {2.0, -9.8, 0.0};  // pressed into the wall
-  doc["cloths"][0]["initial_velocity"] = {0.05, 0.0, 0.0};
-  doc["solver"]["contact"] = "newton";
+  nlohmann::json doc = pressedCornerScene();
   RigidTransform turn;
   turn.rotateDeg = Vec3(17.0, 29.0, 11.0);
   doc = rotated(doc, turn);
