@@ -99,7 +99,7 @@ class ContactAdjoint {
   double h_;
   std::vector<ContactObstacle> obstacles_;
   std::vector<Contact> contacts_;
-  // Added to T^T's diagonal when it is singular (contacts sticking around one node): T's other
+  // Added to the diagonal of T^T's singular groups (contacts sticking around one node): T's other
   // entries are O(1) (the law's m_c dL/dw over a node mass), so this moves the solution by about
   // 1e-9 relative outside the split's null space.
   static constexpr double kSingularCouplingShift = 1e-9;  // the error message quotes it
