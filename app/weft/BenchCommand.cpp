@@ -25,11 +25,11 @@ int benchCommand(const std::vector<std::string>& arguments) {
                           arguments[i + 1] != "applications";
     args.push_back("--paper-meshes=" + (hasValue ? arguments[++i] : std::string()));
   }
-  CommandLine cl(
-      args,
-      {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks", "--seeds",
-       "--budget", "--jobs", "--contact", "--paper-meshes", "--subdivisions", "--resolution"},
-      {"--quick", "--resume", "--calibrate"});
+  CommandLine cl(args,
+                 {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks",
+                  "--methods", "--seeds", "--budget", "--jobs", "--contact", "--paper-meshes",
+                  "--subdivisions", "--resolution"},
+                 {"--quick", "--resume", "--calibrate"});
   if (cl.positional().size() != 1)
     cl.fail("NAME",
             "bench takes one benchmark name: forward, backward, continuity, contact, applications "
@@ -48,7 +48,7 @@ int benchCommand(const std::vector<std::string>& arguments) {
     return applicationsBenchmark(cl, out);
   }
   for (const char* option :
-       {"--tasks", "--seeds", "--budget", "--jobs", "--resume", "--paper-meshes"})
+       {"--tasks", "--methods", "--seeds", "--budget", "--jobs", "--resume", "--paper-meshes"})
     if (cl.has(option)) cl.fail(option, "applies to the applications benchmark only");
   if (name == "contact") return contactBenchmark(cl, out);
   if (cl.has("--contact") && name != "continuity")

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 namespace weft {
@@ -257,6 +258,77 @@ TEST(ApplicationsRunsCli, AKilledComparisonKeepsItsFinishedRunsAndResumeContinue
   for (const auto& e : fs::directory_iterator(out + "/runs"))
     runs += e.path().extension() == ".csv";
   EXPECT_EQ(runs, 9);
+}
+
+// The cells of the markdown rows of `task` in applications.md, table after table (losses, steps,
+// passes, ...), each row's cells trimmed.
+std::vector<std::vector<std::string>> taskRows(const std::string& md, const std::string& task) {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& line : splitLines(md)) {
+    if (line.rfind("| " + task + " |", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::stringstream items(line.substr(1));
+    for (std::string cell; std::getline(items, cell, '|');) {
+      const auto a = cell.find_first_not_of(' '), b = cell.find_last_not_of(' ');
+      cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST(ApplicationsRunsCli, MethodsMakesOnlyTheNamedMethodsRunsAndResumeAddsTheOthers) {
+  TempDir dir;
+  const std::string out = dir.file("bench");
+  std::vector<std::string> args = {
+      "bench",    "applications", "--quick", "--tasks", "napkin_4x4", "--seeds", "1",
+      "--budget", "450",          "--out",   out,       "--threads",  "1",       "--methods"};
+  auto first = args;
+  first.push_back("es1p1");
+  const auto es = runWeft(first);
+  ASSERT_EQ(es.exitCode, 0) << describe(es);
+  EXPECT_NE(es.out.find("1 run(s) made, 0 resumed"), std::string::npos) << es.out;
+  EXPECT_FALSE(fs::exists(out + "/runs/napkin_4x4_lbfgsb_1.csv"));
+  EXPECT_FALSE(fs::exists(out + "/runs/napkin_4x4_cmaes_1.csv"));
+  const std::string esRun = out + "/runs/napkin_4x4_es1p1_1.csv";
+  ASSERT_TRUE(fs::exists(esRun));
+  const std::string esStored = test::readFile(esRun);
+  // The methods without runs show "-", not "> budget" (which would claim they ran and failed).
+  auto rows = taskRows(test::readFile(out + "/applications.md"), "napkin_4x4");
+  ASSERT_GE(rows.size(), 2u);
+  const auto& losses = rows[0];  // task, parameters, seeds, budget, min initial, L-BFGS-B final %
+  ASSERT_GE(losses.size(), 10u);
+  EXPECT_EQ(losses[5], "-");
+  EXPECT_EQ(losses[6], "-");
+  EXPECT_NE(losses[8], "-");    // (1+1)-ES final %
+  const auto& steps = rows[1];  // task, parameters, threshold, 3 conv. steps, 3 to threshold, ...
+  ASSERT_GE(steps.size(), 11u);
+  EXPECT_EQ(steps[3], "-");
+  EXPECT_EQ(steps[4], "-");
+  EXPECT_NE(steps[5], "-");
+  EXPECT_EQ(steps[6], "-");
+  EXPECT_EQ(steps[7], "-");
+  EXPECT_EQ(steps[9], "-");  // no speedup without L-BFGS-B
+  EXPECT_EQ(steps[10], "-");
+
+  // The other two are added to the finished comparison; the (1+1)-ES run is read back.
+  auto rest = args;
+  rest.insert(rest.end(), {"lbfgsb,cmaes", "--resume"});
+  const auto more = runWeft(rest);
+  ASSERT_EQ(more.exitCode, 0) << describe(more);
+  EXPECT_NE(more.out.find("2 run(s) made, 1 resumed"), std::string::npos) << more.out;
+  EXPECT_EQ(test::readFile(esRun), esStored);
+  for (const auto& m : kMethods) EXPECT_TRUE(fs::exists(out + "/runs/napkin_4x4_" + m + "_1.csv"));
+  rows = taskRows(test::readFile(out + "/applications.md"), "napkin_4x4");
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_NE(rows[0][5], "-");
+  EXPECT_NE(rows[1][3], "-");
+
+  auto unknown = args;
+  unknown.push_back("lbfgsb,bfgs");
+  const auto bad = runWeft(unknown);
+  EXPECT_EQ(bad.exitCode, 2) << describe(bad);
+  EXPECT_NE(bad.err.find("--methods: unknown method 'bfgs'"), std::string::npos) << bad.err;
 }
 
 TEST(ApplicationsRunsCli, PaperMeshesNeedTheirFolder) {

@@ -1,5 +1,5 @@
-// `weft bench applications [--tasks a,b] [--seeds N] [--budget STEPS] [--quick] [--out DIR]
-//                          [--threads N] [--jobs J] [--resume] [--paper-meshes [DIR]]`:
+// `weft bench applications [--tasks a,b] [--methods m,n] [--seeds N] [--budget STEPS] [--quick]
+//                          [--out DIR] [--threads N] [--jobs J] [--resume] [--paper-meshes [DIR]]`:
 // DiffCloth's comparison of gradient-based and gradient-free optimisation (Sec. 5.2 and Fig. 4, the
 // Flying Napkin; Sec. 6, Tables 2-3; Appendix C, Tables 5-6). Every task scene is optimised by
 // L-BFGS-B (adjoint gradients), CMA-ES and the (1+1)-ES (values alone) from the same random
@@ -24,6 +24,10 @@
 // Runs are written as they finish, atomically, into DIR.partial/ (kept when the comparison is
 // killed or fails); --resume reads the runs stored there (or in DIR/runs/ of a finished
 // comparison) instead of running them again, and refuses runs stored with other settings.
+// --methods m,n (of lbfgsb, cmaes, es1p1) makes the runs of those methods only; stored runs of the
+// others are still read back and tabulated, so a comparison too long for one sitting (the Sock's
+// runs take hours each) can be made a method at a time, and one method rerun after a fix (its run
+// files deleted from the store) without repeating the others.
 // --jobs J makes J runs at once, each on its own thread with --threads OpenMP threads (on this
 // 2-core machine: --jobs 2 --threads 1); the stored runs are the same whatever J, their wall
 // seconds are not.
@@ -48,6 +52,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -210,6 +215,26 @@ std::vector<const ApplicationTask*> selectTasks(const CommandLine& cl, bool quic
   if (out.empty())
     cl.fail("--tasks", "expects a comma-separated list of tasks (known: " + known + ")");
   return out;
+}
+
+// --methods: which methods make runs (all by default).
+std::array<bool, kMethodCount> selectMethods(const CommandLine& cl) {
+  std::array<bool, kMethodCount> selected;
+  std::string known;
+  for (const Method& m : kMethods) known += (known.empty() ? "" : ", ") + std::string(m.name);
+  const std::string list = cl.value("--methods", "");
+  selected.fill(list.empty());
+  std::stringstream items(list);
+  for (std::string name; std::getline(items, name, ',');) {
+    int found = -1;
+    for (int m = 0; m < kMethodCount; ++m)
+      if (name == kMethods[m].name) found = m;
+    if (found < 0) cl.fail("--methods", "unknown method '" + name + "' (known: " + known + ")");
+    selected[found] = true;
+  }
+  if (std::find(selected.begin(), selected.end(), true) == selected.end())
+    cl.fail("--methods", "expects a comma-separated list of methods (known: " + known + ")");
+  return selected;
 }
 
 std::string percent(double loss, double reference) {
@@ -381,6 +406,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   const bool quick = cl.has("--quick");
   const bool resume = cl.has("--resume");
   const std::vector<const ApplicationTask*> tasks = selectTasks(cl, quick);
+  const std::array<bool, kMethodCount> methods = selectMethods(cl);
   const int seeds = cl.integer("--seeds", quick ? 1 : 3, 1, 100);
   const int threads = cl.integer("--threads", 1, 1, 1024);
   const int jobCount = cl.integer("--jobs", 1, 1, 64);
@@ -485,6 +511,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
           if (!run.curve.steps.empty()) result.runs.push_back(std::move(run));
           continue;
         }
+        if (!methods[m]) continue;
         prepare(t);
         jobs.push_back({t, seed, m, {}});
       }
@@ -632,20 +659,22 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       return envelope[m].loss.empty() ? std::numeric_limits<double>::quiet_NaN()
                                       : envelope[m].loss.back();
     };
+    // A method without runs (--methods) shows "-", never "> budget".
+    constexpr long long kNoRuns = -2;
     const auto converged = [&](int m) {
-      return envelope[m].loss.empty() ? -1 : convergenceSteps(envelope[m], minInitial);
+      return envelope[m].loss.empty() ? kNoRuns : convergenceSteps(envelope[m], minInitial);
     };
     const long long lbfgsbConverged = converged(0);
     const double threshold = kThresholdFraction * minInitial;
     long long toThreshold[kMethodCount];
     for (int m = 0; m < kMethodCount; ++m)
-      toThreshold[m] = envelope[m].loss.empty() ? -1 : stepsToReach(envelope[m], threshold);
+      toThreshold[m] = envelope[m].loss.empty() ? kNoRuns : stepsToReach(envelope[m], threshold);
     const auto stepsText = [&](long long s) {
-      return s < 0 ? "> " + std::to_string(r.budget) : std::to_string(s);
+      return s == kNoRuns ? "-" : s < 0 ? "> " + std::to_string(r.budget) : std::to_string(s);
     };
     std::string speedupText[2];
     for (int m = 1; m < kMethodCount; ++m) {
-      if (toThreshold[0] < 0) {
+      if (toThreshold[0] < 0 || toThreshold[m] == kNoRuns) {
         speedupText[m - 1] = "-";
       } else if (toThreshold[m] < 0) {
         speedupText[m - 1] = "> " + formatNumber(double(r.budget) / toThreshold[0], 3);
@@ -907,10 +936,10 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     fs::remove_all(store, ec);  // everything it held is in DIR/runs now
   }
   std::printf(
-      "bench applications: %zu task(s) x %d methods x %d seed(s), %d run(s) made, %d resumed, "
+      "bench applications: %zu task(s) x %d method(s) x %d seed(s), %d run(s) made, %d resumed, "
       "%s meshes, %.1f s -> %s/applications.{csv,md}, loss_<task>.png, runs/\n",
-      results.size(), kMethodCount, seeds, newRuns, resumedRuns, paperDir.empty() ? "own" : "paper",
-      benchSeconds, outDir.c_str());
+      results.size(), static_cast<int>(std::count(methods.begin(), methods.end(), true)), seeds,
+      newRuns, resumedRuns, paperDir.empty() ? "own" : "paper", benchSeconds, outDir.c_str());
   return 0;
 }
 
