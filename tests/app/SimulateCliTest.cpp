@@ -19,9 +19,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <set>
+#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -365,6 +368,54 @@ TEST(SimulateCli, UsageErrorsExitTwo) {
   const test::ProcessResult help = runWeft({"--help"});
   EXPECT_EQ(help.exitCode, 0) << describe(help);
   EXPECT_NE(help.out.find("simulate SCENE"), std::string::npos);
+}
+
+TEST(SimulateCli, ContactTraceNamesWhereEachTracedStepsResidualSits) {
+  // WEFT_CONTACT_TRACE=a-b: each traced Newton contact step ends with the nodes holding the largest
+  // shares of its mass-weighted squared residual, largest first (scripts/trace-stall-hinges.py
+  // reads them); steps outside the range print nothing.
+  TempDir dir;
+  const test::ProcessResult r =
+      test::runProcess({"/usr/bin/env", "WEFT_CONTACT_TRACE=3-4", WEFT_BINARY, "simulate",
+                        std::string(WEFT_ASSET_DIR) + "/scenes/slope.json", "--steps", "5", "--out",
+                        dir.file("out"), "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  std::vector<int> traced;
+  std::map<int, std::vector<double>> shares;
+  std::istringstream lines(r.err);
+  for (std::string line; std::getline(lines, line);) {
+    int step = 0, node = -1;
+    double share = -1.0;
+    char branch[16] = {};
+    if (std::sscanf(line.c_str(), "step %d: newton contact solve", &step) == 1) {
+      traced.push_back(step);
+    } else if (std::sscanf(line.c_str(),
+                           "  residual at node %d: share %lf, x (%*f, %*f, %*f), contact %15s",
+                           &node, &share, branch) == 3) {
+      ASSERT_FALSE(traced.empty()) << line;
+      EXPECT_GE(node, 0);
+      EXPECT_LT(node, 25 * 25);
+      EXPECT_TRUE(std::string(branch) == "takeoff" || std::string(branch) == "stick" ||
+                  std::string(branch) == "slip" || std::string(branch) == "none")
+          << line;
+      shares[traced.back()].push_back(share);
+    }
+  }
+  EXPECT_EQ(traced, (std::vector<int>{3, 4})) << r.err;
+  for (int step : {3, 4}) {
+    const std::vector<double>& s = shares[step];
+    ASSERT_EQ(s.size(), 8u) << "step " << step << ":\n" << r.err;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      EXPECT_GE(s[i], 0.0);
+      if (i > 0) {
+        EXPECT_LE(s[i], s[i - 1]) << "largest first";
+      }
+      sum += s[i];
+    }
+    EXPECT_GT(s[0], 0.0);
+    EXPECT_LE(sum, 1.0 + 1e-9) << "shares of one total";
+  }
 }
 
 }  // namespace

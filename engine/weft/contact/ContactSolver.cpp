@@ -247,6 +247,14 @@ void ContactSolver::removePinned(NodeMatrix& v) const {
   for (const Slot& s : slots_) v.row(s.node) -= (s.pinned * v.row(s.node).transpose()).transpose();
 }
 
+ContactBranch ContactSolver::branchOfNode(int node) const {
+  const int slot = node >= 0 && node < static_cast<int>(slotOf_.size()) ? slotOf_[node] : -1;
+  if (slot >= 0)
+    for (const Contact& c : contacts_)
+      if (c.a == slot || c.b == slot) return c.branch;
+  return ContactBranch::None;
+}
+
 void ContactSolver::record(StepContacts& out) const {
   out.points.clear();
   out.points.reserve(contacts_.size());

@@ -54,6 +54,8 @@ class ContactSolver {
 
   // The step's record (branch, frame, impulse, velocity per contact) and the counts per branch.
   void record(StepContacts& out) const;
+  // The branch of the node's first contact (None when it has none), for diagnostics.
+  ContactBranch branchOfNode(int node) const;
 
   // Linearisation of the last solve, for the semismooth Newton contact solve (Simulator):
   // the impulses r(f) as a function of the free momentum f, differentiated in each contact's

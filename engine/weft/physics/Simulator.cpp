@@ -669,6 +669,25 @@ void Simulator::preconditionContact(const NodeMatrix& scaled, NodeMatrix& z) {
   ++stats_.pdIterations;
 }
 
+void Simulator::traceResidualNodes(const NodeMatrix& residual) const {
+  // Where the step's residual sits (WEFT_CONTACT_TRACE): the nodes holding the largest shares of
+  // the squared, mass-weighted residual (residualOf), with their positions and contact branches.
+  // On the Sock, a stalled step's residual sat on the four nodes of one bending hinge
+  // (scripts/trace-stall-hinges.py names the hinge).
+  constexpr int kShown = 8;
+  const Eigen::VectorXd weighted = residual.rowwise().squaredNorm().cwiseProduct(inverseMass_);
+  const Eigen::VectorXd share = weighted / std::max(1e-300, weighted.sum());
+  std::vector<int> order(static_cast<std::size_t>(share.size()));
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  const auto shown = order.begin() + std::min<std::ptrdiff_t>(kShown, share.size());
+  std::partial_sort(order.begin(), shown, order.end(),
+                    [&](int a, int b) { return share[a] > share[b]; });
+  for (auto it = order.begin(); it != shown; ++it)
+    std::fprintf(stderr, "  residual at node %d: share %.3f, x (%.4f, %.4f, %.4f), contact %s\n",
+                 *it, share[*it], iterate_(*it, 0), iterate_(*it, 1), iterate_(*it, 2),
+                 branchName(contact_->perNodeSolver().branchOfNode(*it)));
+}
+
 void Simulator::solveContactNewton() {
   // Semismooth Newton on G(x) = P x - b(x) - h r(f(x)) = 0, the fixed point of the "pd" contact
   // iteration x <- P^-1 (b(x) + h r(f(x))) (DiffCloth Eqs. 10-12): the same per-node law (Eq. 8),
@@ -838,6 +857,7 @@ void Simulator::solveContactNewton() {
     atIterate = false;
   }
   if (!atIterate) measure = contactResidual(iterate_, residual);
+  if (trace) traceResidualNodes(residual);
   stats_.residual = measure;
   stats_.converged = measure < solver.pdTolerance;
   // The step's result is the checked iterate itself (its contacts are the recorded ones). One PD

@@ -116,6 +116,7 @@ class Simulator {
   // at x, rhs_ = b(x) + h r); returns its mass-weighted RMS (residualOf's measure).
   double contactResidual(const NodeMatrix& x, NodeMatrix& residual);
   void solveContactNewton();
+  void traceResidualNodes(const NodeMatrix& residual) const;  // WEFT_CONTACT_TRACE
   void finishWithPerNodeIterations();
   // The Newton contact solve's preconditioner: a CHOLMOD factor of the 3m x 3m clamped Hessian
   // K+ = P - Delta P+ (the `definite` projection derivatives), assembled from the constraints'
