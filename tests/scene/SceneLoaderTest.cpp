@@ -247,6 +247,12 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
   expectInputError([&] { test::parse(with("/solver/backward/history", -1)); },
                    "solver.backward.history", "must be an integer in [0, 64]");
   EXPECT_EQ(test::parse(with("/solver/backward/history", 0)).solver.backward.history, 0);
+  expectInputError([&] { test::parse(with("/cloths/0/material/bend_model", "signed")); },
+                   "cloths.0.material.bend_model", "must be one of magnitude, oriented");
+  EXPECT_EQ(test::parse(good).cloths[0].material.bendModel, Material::BendModel::Magnitude);
+  EXPECT_EQ(
+      test::parse(with("/cloths/0/material/bend_model", "oriented")).cloths[0].material.bendModel,
+      Material::BendModel::Oriented);
   EXPECT_EQ(test::parse(good).solver.backward.history, 8);
   expectInputError(
       [&] { test::parse(with("/cloths/0/mesh/grid/size", nlohmann::json::array({1.0}))); },

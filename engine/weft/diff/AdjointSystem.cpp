@@ -24,6 +24,7 @@ AdjointSystem::AdjointSystem(const Scene& scene)
   system_ = assembleSystemMatrix(model_.mass, constraints_, h_);
   for (const auto& c : constraints_) {
     anyDerivative_ = anyDerivative_ || c->hasDerivative();
+    dependsOnStart_ = dependsOnStart_ || c->dependsOnStart();
     rows_.emplace_back(NodeMatrix::Zero(c->hasDerivative() ? c->rowCount() : 0, 3));
   }
   if (!cholesky_.factorize(system_))
@@ -33,6 +34,16 @@ AdjointSystem::AdjointSystem(const Scene& scene)
 }
 
 AdjointSystem::~AdjointSystem() = default;
+
+void AdjointSystem::beginStep(double time, const NodeMatrix& start) {
+  for (auto& c : constraints_) c->beginStep(time, start);
+}
+
+void AdjointSystem::addStartGradient(const NodeMatrix& start, const NodeMatrix& q,
+                                     NodeMatrix& out) const {
+  for (const auto& c : constraints_)
+    if (c->dependsOnStart()) c->addStartGradient(start, q, h_ * h_, out);
+}
 
 void AdjointSystem::prepare(const NodeMatrix& x, const ContactAdjoint* contact) {
   preparedX_ = x;  // kept for factorClampedHessian (same size every step: no allocation)

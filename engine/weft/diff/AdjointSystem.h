@@ -48,6 +48,12 @@ class AdjointSystem {
   // Evaluates the projection derivatives (Delta P) at x (the recorded x_{n+1}) and takes the
   // step's prepared contacts (null or empty: none). `contact` must outlive the step's solve.
   void prepare(const NodeMatrix& x, const ContactAdjoint* contact = nullptr);
+  // The step's start x_n, for projections set from it (oriented bending), before prepare().
+  void beginStep(double time, const NodeMatrix& start);
+  bool dependsOnStart() const { return dependsOnStart_; }
+  // out += h^2 sum_i (dp_i/dx_n)^T w_i A_i q: what the step equations' x_n dependence through
+  // such projections passes back to dL/dx_n (q = S^T z, as for force-like parameters).
+  void addStartGradient(const NodeMatrix& start, const NodeMatrix& q, NodeMatrix& out) const;
   bool hasDeltaP() const { return anyDerivative_; }
   bool hasContact() const { return contact_ != nullptr; }
   // K != P: the fixed point of Eq. 20/30 needs more than one solve.
@@ -108,6 +114,7 @@ class AdjointSystem {
   SparseCholesky hessianCholesky_{SparseCholesky::Use::Preconditioner};
   NodeMatrix preparedX_;
   bool anyDerivative_ = false;
+  bool dependsOnStart_ = false;
   mutable std::vector<NodeMatrix> rows_;  // per-constraint derivative rows (work buffers)
   const ContactAdjoint* contact_ = nullptr;
   mutable NodeMatrix contactWbar_, contactSum_, work_;

@@ -44,6 +44,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
     const auto prepareStart = std::chrono::steady_clock::now();
     if (touching) contact->prepare(trajectory.contacts[n], x0, t1 - h, t1, n + 1);
     const auto contactDone = std::chrono::steady_clock::now();
+    system.beginStep(t1, x0);  // (projections set from the step's start: oriented bending)
     system.prepare(x1, touching ? contact.get() : nullptr);
     result.deltaRSeconds += std::chrono::duration<double>(contactDone - prepareStart).count();
     result.deltaPSeconds +=
@@ -58,6 +59,8 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
     // Force-like parameters enter f as well as G1: their partials take S^T z = z + wbar.
     partials.accumulate(x0, v0, x1, t1, z + wbar, result.gradient);
     dLdx[n] += model.mass.asDiagonal() * z - dLdvNext / h;
+    // Projections set from x_n enter the step like a force (b, and through it f): S^T z.
+    if (system.dependsOnStart()) system.addStartGradient(x0, z + wbar, dLdx[n]);
     dLdv = h * (model.mass.asDiagonal() * (z + wbar));  // dG/dv_n = -h M, df/dv_n = M
     if (system.hasContact()) {
       contact->addStateGradients(y, dLdx[n], dLdv);

@@ -28,7 +28,9 @@ ParameterPartials::ParameterPartials(const Scene& scene, const ClothModel& model
                                                                 std::vector<double>(t1 - t0, 1.0));
     else
       unit_[k].constraint = std::make_unique<BendingConstraint>(
-          buildHinges(model_.rest.vertices, tris, 1.0), model_.nodeCount());
+          buildHinges(model_.rest.vertices, tris, 1.0,
+                      scene.cloths[p.cloth].material.bendModel == Material::BendModel::Oriented),
+          model_.nodeCount());
     unit_[k].gram = unit_[k].constraint->weightedGram();
   }
 }
@@ -64,6 +66,8 @@ void ParameterPartials::accumulate(const NodeMatrix& x0, const NodeMatrix& v0, c
         // dG/dk = h^2 (Gram x - A^T w_hat p(x)): Eq. 17 summed over the cloth's family at k = 1.
         work_ = unit_[k].gram * x1;
         if (!c.projectsToZero()) {
+          // Projections set from the step's start (oriented bending) are those of x_n.
+          if (c.dependsOnStart()) unit_[k].constraint->beginStep(t1, x0);
           rows_.resize(c.rowCount(), 3);
           c.project(x1, rows_);
           c.gather(rows_, -1.0, work_);

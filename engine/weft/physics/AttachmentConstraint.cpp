@@ -21,7 +21,7 @@ AttachmentConstraint::AttachmentConstraint(const char* name, std::vector<Row> ro
   setSelection(static_cast<int>(initial.rows()), sel);
 }
 
-void AttachmentConstraint::beginStep(double time) {
+void AttachmentConstraint::beginStep(double time, const NodeMatrix& /*start*/) {
   for (int r = 0; r < rowCount(); ++r)
     if (rows_[r].trajectory)
       targets_.row(r) = rows_[r].trajectory->target(anchors_.row(r).transpose(), time).transpose();

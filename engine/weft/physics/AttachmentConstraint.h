@@ -22,7 +22,7 @@ class AttachmentConstraint final : public ProjectiveConstraint {
   };
   AttachmentConstraint(const char* name, std::vector<Row> rows, const NodeMatrix& initial);
   const char* name() const override { return name_; }
-  void beginStep(double time) override;
+  void beginStep(double time, const NodeMatrix& start) override;
   double project(const NodeMatrix& x, NodeMatrix& weightedProjections) const override;
   const std::vector<Row>& rows() const { return rows_; }
   const NodeMatrix& targets() const { return targets_; }

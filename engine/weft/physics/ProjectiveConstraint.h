@@ -56,8 +56,15 @@ class ProjectiveConstraint {
   // The same prepared derivative as dense element blocks, for assembling Delta P directly
   // (HessianAssembly) instead of through products; false when the family has none.
   virtual bool derivativeBlocks(DerivativeBlockSink& /*sink*/) const { return false; }
-  // Called once per time step, before the iterations, with the end-of-step time.
-  virtual void beginStep(double /*time*/) {}
+  // Called once per time step, before the iterations, with the end-of-step time and the
+  // positions the step starts from (x_n).
+  virtual void beginStep(double /*time*/, const NodeMatrix& /*start*/) {}
+  // Projections that depend on the step's start x_n (set by beginStep, constant in the step):
+  // out += scale sum_r (dp_r/dx_n)^T w_r A_r q, the step equations' x_n term the adjoint carries
+  // back (Backpropagation). None by default.
+  virtual bool dependsOnStart() const { return false; }
+  virtual void addStartGradient(const NodeMatrix& /*start*/, const NodeMatrix& /*q*/,
+                                double /*scale*/, NodeMatrix& /*out*/) const {}
   // Local step: writes w_r * p_r(x) into row r of `weightedProjections` (rows x 3) and returns
   // the family's energy sum_r W_r(x).
   virtual double project(const NodeMatrix& x, NodeMatrix& weightedProjections) const = 0;

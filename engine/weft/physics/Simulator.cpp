@@ -882,7 +882,7 @@ const StepStats& Simulator::step() {
   for (std::size_t f = 0; f < forces_.size(); ++f)
     timed(forceModule_[f], [&] { forces_[f]->accumulate(t1, force_); });
   for (std::size_t c = 0; c < constraints_.size(); ++c)
-    timed(constraintModule_[c], [&] { constraints_[c]->beginStep(t1); });
+    timed(constraintModule_[c], [&] { constraints_[c]->beginStep(t1, x_); });
 
   timed(solverModule_, [&] {
     // y = x_n + h v_n + h^2 M^{-1} f_ext (Eq. 3)

@@ -64,6 +64,11 @@ struct Material {
   double density = 0.1;  // kg/m^2 (areal)
   double stretch = 100;  // N/m (membrane)
   double bend = 0.0;     // N*m
+  // How a hinge curved at rest is bent back (BendingConstraint.h): "magnitude" keeps the rest
+  // curvature's magnitude along the current curvature (DiffCloth's); "oriented" aims it along
+  // the hinge's normal at the step's start, on the rest shape's side.
+  enum class BendModel { Magnitude, Oriented };
+  BendModel bendModel = BendModel::Magnitude;
 };
 
 struct Attachment {

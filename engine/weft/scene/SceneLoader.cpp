@@ -162,10 +162,14 @@ Cloth readCloth(const JsonReader& r, const std::string& directory,
   const int m = cloth.mesh.vertexCount();
 
   const JsonReader mat = r.at("material");
-  mat.allowOnly({"density", "stretch", "bend"});
+  mat.allowOnly({"density", "stretch", "bend", "bend_model"});
   cloth.material.density = mat.at("density").positive();
   cloth.material.stretch = mat.at("stretch").number(0.0, kMaxStiffness);
   cloth.material.bend = mat.number("bend", 0.0, 0.0, kMaxStiffness);
+  if (auto v = mat.optional("bend_model"))
+    cloth.material.bendModel = v->choice({"magnitude", "oriented"}) == "oriented"
+                                   ? Material::BendModel::Oriented
+                                   : Material::BendModel::Magnitude;
 
   if (auto list = r.optional("attachments")) {
     for (std::size_t i = 0; i < list->size(); ++i) {
