@@ -36,7 +36,9 @@ AdjointSystem::AdjointSystem(const Scene& scene)
 AdjointSystem::~AdjointSystem() = default;
 
 void AdjointSystem::beginStep(double time, const NodeMatrix& start) {
-  for (auto& c : constraints_) c->beginStep(time, start);
+  // Only the projections the adjoint needs from x_n (the handles' targets are not used here).
+  for (auto& c : constraints_)
+    if (c->dependsOnStart()) c->beginStep(time, start);
 }
 
 void AdjointSystem::addStartGradient(const NodeMatrix& start, const NodeMatrix& q,

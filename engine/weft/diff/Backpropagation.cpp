@@ -32,6 +32,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
   std::vector<NodeMatrix> dLdx = loss.gradient(trajectory);
   NodeMatrix dLdvNext = NodeMatrix::Zero(m, 3);  // dL/dv_{n+1} through the steps after n+1
   NodeMatrix rhs(m, 3), z = NodeMatrix::Zero(m, 3), wbar = NodeMatrix::Zero(m, 3), dLdv(m, 3);
+  NodeMatrix forceLike(m, 3);  // S^T z = z + wbar
   Eigen::MatrixX3d y;
   AdjointGrowth growth;
   for (int n = steps - 1; n >= 0; --n) {
@@ -44,7 +45,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
     const auto prepareStart = std::chrono::steady_clock::now();
     if (touching) contact->prepare(trajectory.contacts[n], x0, t1 - h, t1, n + 1);
     const auto contactDone = std::chrono::steady_clock::now();
-    system.beginStep(t1, x0);  // (projections set from the step's start: oriented bending)
+    if (system.dependsOnStart()) system.beginStep(t1, x0);  // (oriented bending)
     system.prepare(x1, touching ? contact.get() : nullptr);
     result.deltaRSeconds += std::chrono::duration<double>(contactDone - prepareStart).count();
     result.deltaPSeconds +=
@@ -57,11 +58,12 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
     else
       wbar.setZero();
     // Force-like parameters enter f as well as G1: their partials take S^T z = z + wbar.
-    partials.accumulate(x0, v0, x1, t1, z + wbar, result.gradient);
+    forceLike = z + wbar;
+    partials.accumulate(x0, v0, x1, t1, forceLike, result.gradient);
     dLdx[n] += model.mass.asDiagonal() * z - dLdvNext / h;
     // Projections set from x_n enter the step like a force (b, and through it f): S^T z.
-    if (system.dependsOnStart()) system.addStartGradient(x0, z + wbar, dLdx[n]);
-    dLdv = h * (model.mass.asDiagonal() * (z + wbar));  // dG/dv_n = -h M, df/dv_n = M
+    if (system.dependsOnStart()) system.addStartGradient(x0, forceLike, dLdx[n]);
+    dLdv = h * (model.mass.asDiagonal() * forceLike);  // dG/dv_n = -h M, df/dv_n = M
     if (system.hasContact()) {
       contact->addStateGradients(y, dLdx[n], dLdv);
       contact->addParameterGradients(parameters.parameters(), y, wbar, x0, v0, x1, result.gradient);

@@ -65,8 +65,8 @@ struct Material {
   double stretch = 100;  // N/m (membrane)
   double bend = 0.0;     // N*m
   // How a hinge curved at rest is bent back (BendingConstraint.h): "magnitude" keeps the rest
-  // curvature's magnitude along the current curvature (DiffCloth's); "oriented" aims it along
-  // the hinge's normal at the step's start, on the rest shape's side.
+  // curvature's magnitude along the current curvature (DiffCloth's); "oriented" carries the rest
+  // curvature vector with the hinge's frame at the step's start, so it keeps its side.
   enum class BendModel { Magnitude, Oriented };
   BendModel bendModel = BendModel::Magnitude;
 };
