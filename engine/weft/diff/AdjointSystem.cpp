@@ -84,6 +84,10 @@ void AdjointSystem::multiplyK(const NodeMatrix& in, NodeMatrix& out) const {
     }
     return;
   }
+  multiplyElastic(in, out);
+}
+
+void AdjointSystem::multiplyElastic(const NodeMatrix& in, NodeMatrix& out) const {
   multiplyP(in, out);
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
     if (!constraints_[c]->hasDerivative()) continue;
@@ -104,6 +108,34 @@ void AdjointSystem::multiplyCoupling(const NodeMatrix& in, NodeMatrix& out) cons
 
 void AdjointSystem::solveP(NodeMatrix& inOut) {
   cholesky_.solveInPlace(inOut);
+}
+
+void AdjointSystem::precondition(NodeMatrix& inOut, bool hessian) {
+  const auto solve = [&](NodeMatrix& v) {
+    if (hessian)
+      solveClampedHessian(v);
+    else
+      solveP(v);
+  };
+  if (!contact_ || !contactPreconditioning_ || contact_->pinnedNodes().empty()) {
+    solve(inOut);
+    return;
+  }
+  // (AdjointSystem.h) u = (I - Pi) F^-1 (I - Pi) g, then c = M^-1 Pi (g - K_e u).
+  const auto& pinned = contact_->pinnedNodes();
+  preconditionRhs_ = inOut;
+  const auto removePinned = [&](NodeMatrix& v) {
+    for (const auto& p : pinned)
+      v.row(p.node) -= (p.projector * v.row(p.node).transpose()).transpose();
+  };
+  removePinned(inOut);
+  solve(inOut);
+  removePinned(inOut);
+  multiplyElastic(inOut, elasticProduct_);
+  for (const auto& p : pinned) {
+    const Vec3 rest = (preconditionRhs_.row(p.node) - elasticProduct_.row(p.node)).transpose();
+    inOut.row(p.node) += (p.projector * rest).transpose() / model_.mass[p.node];
+  }
 }
 
 bool AdjointSystem::factorClampedHessian() {

@@ -65,6 +65,22 @@ class AdjointSystem {
   void multiplyCoupling(const NodeMatrix& in, NodeMatrix& out)
       const;                       // out = (P - K) in (Eq. 30's (Delta P + Delta R)^T)
   void solveP(NodeMatrix& inOut);  // inOut = P^{-1} inOut (CHOLMOD factor)
+  // GMRES's right preconditioner: inOut = B inOut with B ~ K^-1, built on P's factor or (hessian)
+  // the clamped Hessian's. Without contact B is that factor's solve. With contact, K z =
+  // K_e S z + M (I - S) z (K_e = P - Delta P, z + wbar = S z), and S is I - Pi on a node an
+  // obstacle pins (Pi: ContactAdjoint::PinnedNode's projector; exactly so where it sticks, up to
+  // the friction terms where it slips). Splitting z = u + c with Pi u = 0 and c = Pi c,
+  // K z = K_e u + M c: the free part solves (I - Pi) K_e u = (I - Pi) g, approximated by
+  // (I - Pi) F^-1 (I - Pi) g with F the factor, and the pinned part is exact,
+  // c = M^-1 Pi (g - K_e u). The factor's solve alone models K's columns of the pinned nodes,
+  // M Pi, as P's, which are larger by h^2 times the node's stiffness: on Slope at 24^2 and 1e-6
+  // GMRES needed 6.1 iterations per step and up to 200 that way, 3.1 and at most 15 this way
+  // (docs/benchmarks.md, "Contact-pinned velocities in the preconditioner"). One more product
+  // with K_e per application; the forward's Newton contact solve preconditions its Jacobian, the
+  // transpose of this K, the same way (Simulator::preconditionContact).
+  void precondition(NodeMatrix& inOut, bool hessian);
+  // Tests and benchmarks: false makes precondition() the factor's solve also with contact.
+  void setContactPreconditioning(bool on) { contactPreconditioning_ = on; }
   // A preconditioner closer to K than P (solver.backward.preconditioner "hessian"): H = P minus
   // Delta P with every projection derivative clamped as the Newton forward clamps it
   // (prepareDerivative(x, true)), i.e. h^2 times the implicit-Euler Hessian with each element's
@@ -117,6 +133,9 @@ class AdjointSystem {
   bool dependsOnStart_ = false;
   mutable std::vector<NodeMatrix> rows_;  // per-constraint derivative rows (work buffers)
   const ContactAdjoint* contact_ = nullptr;
+  bool contactPreconditioning_ = true;
+  NodeMatrix preconditionRhs_, elasticProduct_;
+  void multiplyElastic(const NodeMatrix& in, NodeMatrix& out) const;  // out = (P - Delta P) in
   mutable NodeMatrix contactWbar_, contactSum_, work_;
   mutable Eigen::MatrixX3d contactY_;
   mutable std::unique_ptr<HessianAssembly> assembly_;  // assembleK's pattern and positions

@@ -101,6 +101,19 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
                              double t1, int step) {
   for (ContactObstacle& o : obstacles_) o.beginStep(t0, t1);
   contacts_.clear();
+  pinned_.clear();
+  pinnedSlot_.resize(model_.nodeCount(), -1);
+  // As the forward's Newton contact solve pins a node (ContactSolver::linearize): a second
+  // prescribed direction on the node pins it whole.
+  const auto pin = [&](int node, bool stick, const Vec3& normal) {
+    int& slot = pinnedSlot_[node];
+    if (slot < 0) {
+      slot = static_cast<int>(pinned_.size());
+      pinned_.push_back({node, stick ? Mat3(Mat3::Identity()) : Mat3(normal * normal.transpose())});
+    } else {
+      pinned_[slot].projector.setIdentity();
+    }
+  };
   for (const ContactPoint& p : contacts.points) {
     if (p.branch != ContactBranch::Stick && p.branch != ContactBranch::Slip) continue;
     Contact c;
@@ -120,7 +133,9 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
     else
       frameOfPair(p, x0, law.normal, c);
     contacts_.push_back(c);
+    if (p.partner < 0) pin(p.node, p.branch == ContactBranch::Stick, p.normal);
   }
+  for (const PinnedNode& n : pinned_) pinnedSlot_[n.node] = -1;  // (ready for the next step)
 
   // Contacts sharing a node couple through T (ContactAdjoint.h).
   const int count = size();

@@ -51,6 +51,15 @@ class ContactAdjoint {
   void prepare(const StepContacts& contacts, const NodeMatrix& x0, double t0, double t1, int step);
   // Contacts with an impulse (stick or slip) in the prepared step.
   int size() const { return static_cast<int>(contacts_.size()); }
+  // A node whose velocity an obstacle contact prescribes in the prepared step, and the projector
+  // onto the prescribed directions: I where it sticks (or touches two obstacles), n n^T where it
+  // slips. Its rows of S = I + R'^T (z + wbar = S z) are (I - projector) up to the slip branch's
+  // friction terms: what AdjointSystem::precondition inverts exactly.
+  struct PinnedNode {
+    int node = -1;
+    Mat3 projector;
+  };
+  const std::vector<PinnedNode>& pinnedNodes() const { return pinned_; }
   bool coupled() const { return coupled_; }
 
   // wbar = R'^T z (m x 3) and the contact-space adjoint y = T^-T G z (size() x 3).
@@ -107,6 +116,8 @@ class ContactAdjoint {
   // this fraction of its largest (exact zeros come out of rounding at about 1e-16; the Sock's
   // genuinely ill-conditioned slip pairs have 1e-5 and are left exact).
   static constexpr double kSingularCouplingRatio = 1e-12;
+  std::vector<PinnedNode> pinned_;
+  std::vector<int> pinnedSlot_;  // node -> index in pinned_ or -1 (reset after each prepare)
   bool coupled_ = false;
   Eigen::SparseMatrix<double> tTransposed_;  // when coupled
   Eigen::SparseLU<Eigen::SparseMatrix<double>> tSolver_;

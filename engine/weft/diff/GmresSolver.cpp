@@ -37,10 +37,7 @@ LinearSolveResult GmresSolver::solveFrom(AdjointSystem& system, const NodeMatrix
   bool hessian = false;
   auto precondition = [&](const NodeMatrix& in, NodeMatrix& out) {
     out = in;
-    if (hessian)
-      system.solveClampedHessian(out);
-    else
-      system.solveP(out);
+    system.precondition(out, hessian);
   };
   if (preconditioner_ != Preconditioner::Automatic || !system.hasDeltaP()) {
     // Without Delta P the clamped Hessian is P itself.
