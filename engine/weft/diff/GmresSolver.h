@@ -29,8 +29,10 @@
 // iterations as the run's steps have cost on average, at least kAutomaticPIterations: a
 // factorisation by hessianFactorCost, an iteration with H by hessianIterationCost) and
 // staying with P if it converged within them, and dropping back to P as soon as a fresh factor
-// needs more than kAutomaticPIterations (the hard iterations come from the contact part Delta R,
-// which the Hessian does not model: Slope's hardest steps need 79 iterations with P, 39 with it).
+// needs more than kAutomaticPIterations (the hard iterations came from the contact part Delta R,
+// which neither factor models: Slope's hardest steps needed 79 iterations with P, 39 with the
+// Hessian, until AdjointSystem::precondition inverted the contact-prescribed velocities exactly
+// around either factor; at most 15 since, at 12^2-48^2 and 1e-6).
 // The choice depends on iteration and operation counts only, so repeated runs stay
 // bit-identical.
 // With warmStart each step starts from the previous step's solution, or with history > 0 from
