@@ -5,6 +5,8 @@
 #include <weft/physics/BendingConstraint.h>
 #include <weft/physics/StretchConstraint.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 
@@ -53,6 +55,32 @@ void AdjointSystem::prepare(const NodeMatrix& x, const ContactAdjoint* contact) 
     if (c->hasDerivative())
       c->prepareDerivative(x, false);  // exact derivative (Eq. 18), not clamped
   contact_ = contact && contact->size() > 0 ? contact : nullptr;
+  pinnedBlocks_.clear();
+  if (!contact_) return;
+  for (const ContactAdjoint::PinnedNode& p : contact_->pinnedNodes()) {
+    PinnedBlock b{p.node, p.projector, Mat3::Zero()};
+    if (!p.projector.isIdentity(0.0)) {
+      // A slipping node: S's tangent block is I - g (I - t t^T) (t: the slip direction, g =
+      // mu |du_N| / |w_T| < 1), so z's tangent part is the factor's solution mapped by its
+      // inverse. Where 1 - g is below m / P_ii, K's column there is closer to M's (S ~ 0, as
+      // sticking) than to K_e's, and the direction is pinned instead.
+      Vec3 t1 = p.normal.unitOrthogonal(), t2 = p.normal.cross(t1);
+      Eigen::Matrix<double, 3, 2> tangent;
+      tangent << t1, t2;
+      const Eigen::Matrix2d block = tangent.transpose() * p.s * tangent;
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(0.5 * (block + block.transpose()));
+      const double floor = model_.mass[p.node] / system_.coeff(p.node, p.node);
+      for (int k = 0; k < 2; ++k) {
+        const Vec3 e = tangent * eigen.eigenvectors().col(k);
+        const double lambda = eigen.eigenvalues()[k];
+        if (lambda > floor)
+          b.freeMap += e * e.transpose() / lambda;
+        else
+          b.pinned += e * e.transpose();
+      }
+    }
+    pinnedBlocks_.push_back(b);
+  }
 }
 
 void AdjointSystem::multiplyP(const NodeMatrix& in, NodeMatrix& out) const {
@@ -117,24 +145,25 @@ void AdjointSystem::precondition(NodeMatrix& inOut, bool hessian) {
     else
       solveP(v);
   };
-  if (!contact_ || !contactPreconditioning_ || contact_->pinnedNodes().empty()) {
+  if (!contact_ || !contactPreconditioning_ || pinnedBlocks_.empty()) {
     solve(inOut);
     return;
   }
-  // (AdjointSystem.h) u = (I - Pi) F^-1 (I - Pi) g, then c = M^-1 Pi (g - K_e u).
-  const auto& pinned = contact_->pinnedNodes();
+  // (AdjointSystem.h) w = (I - Pi) F^-1 (I - Pi) g, u = Q w on contact nodes (w elsewhere),
+  // then z = u + M^-1 Pi (g - K u).
   preconditionRhs_ = inOut;
   const auto removePinned = [&](NodeMatrix& v) {
-    for (const auto& p : pinned)
-      v.row(p.node) -= (p.projector * v.row(p.node).transpose()).transpose();
+    for (const PinnedBlock& b : pinnedBlocks_)
+      v.row(b.node) -= (b.pinned * v.row(b.node).transpose()).transpose();
   };
   removePinned(inOut);
   solve(inOut);
-  removePinned(inOut);
-  multiplyElastic(inOut, elasticProduct_);
-  for (const auto& p : pinned) {
-    const Vec3 rest = (preconditionRhs_.row(p.node) - elasticProduct_.row(p.node)).transpose();
-    inOut.row(p.node) += (p.projector * rest).transpose() / model_.mass[p.node];
+  for (const PinnedBlock& b : pinnedBlocks_)
+    inOut.row(b.node) = (b.freeMap * inOut.row(b.node).transpose()).transpose();
+  multiplyK(inOut, preconditionProduct_);
+  for (const PinnedBlock& b : pinnedBlocks_) {
+    const Vec3 rest = (preconditionRhs_.row(b.node) - preconditionProduct_.row(b.node)).transpose();
+    inOut.row(b.node) += (b.pinned * rest).transpose() / model_.mass[b.node];
   }
 }
 

@@ -66,17 +66,19 @@ class AdjointSystem {
       const;                       // out = (P - K) in (Eq. 30's (Delta P + Delta R)^T)
   void solveP(NodeMatrix& inOut);  // inOut = P^{-1} inOut (CHOLMOD factor)
   // GMRES's right preconditioner: inOut = B inOut with B ~ K^-1, built on P's factor or (hessian)
-  // the clamped Hessian's. Without contact B is that factor's solve. With contact, K z =
-  // K_e S z + M (I - S) z (K_e = P - Delta P, z + wbar = S z), and S is I - Pi on a node an
-  // obstacle pins (Pi: ContactAdjoint::PinnedNode's projector; exactly so where it sticks, up to
-  // the friction terms where it slips). Splitting z = u + c with Pi u = 0 and c = Pi c,
-  // K z = K_e u + M c: the free part solves (I - Pi) K_e u = (I - Pi) g, approximated by
-  // (I - Pi) F^-1 (I - Pi) g with F the factor, and the pinned part is exact,
-  // c = M^-1 Pi (g - K_e u). The factor's solve alone models K's columns of the pinned nodes,
-  // M Pi, as P's, which are larger by h^2 times the node's stiffness: on Slope at 24^2 and 1e-6
-  // GMRES needed 6.1 iterations per step and up to 200 that way, 3.1 and at most 15 this way
+  // the clamped Hessian's, F. Without contact B is F's solve. With contact, K z =
+  // K_e S z + M (I - S) z (K_e = P - Delta P, z + wbar = S z), and on a node an obstacle pins
+  // S is zero along the prescribed directions Pi (ContactAdjoint::PinnedNode: all of a sticking
+  // node's, a slipping node's normal), where K's columns are M alone, and on a slipping node's
+  // tangent plane S is I - g (I - t t^T) (friction's gain g < 1). Splitting z = u + c with
+  // Pi u = 0 and Pi c = c: K z = K_e S u + M (I - S) u + M c. The free part takes w = S u from
+  // (I - Pi) F^-1 (I - Pi) g and u = Q w with Q S's inverse on the tangent plane (a direction
+  // where 1 - g < m / P_ii is pinned instead: there S ~ 0 and K's column is nearly M's); the
+  // pinned part is then exact, c = M^-1 Pi (g - K u). F's solve alone models the columns M Pi as
+  // P's, larger by h^2 times the node's stiffness: on Slope at 24^2 and 1e-6 GMRES needed 6.1
+  // iterations per step and up to 200 that way, 3.1 and at most 15 with the pinned part
   // (docs/benchmarks.md, "Contact-pinned velocities in the preconditioner"). One more product
-  // with K_e per application; the forward's Newton contact solve preconditions its Jacobian, the
+  // with K per application; the forward's Newton contact solve preconditions its Jacobian, the
   // transpose of this K, the same way (Simulator::preconditionContact).
   void precondition(NodeMatrix& inOut, bool hessian);
   // Tests and benchmarks: false makes precondition() the factor's solve also with contact.
@@ -134,7 +136,14 @@ class AdjointSystem {
   mutable std::vector<NodeMatrix> rows_;  // per-constraint derivative rows (work buffers)
   const ContactAdjoint* contact_ = nullptr;
   bool contactPreconditioning_ = true;
-  NodeMatrix preconditionRhs_, elasticProduct_;
+  // precondition()'s blocks per contact node (prepare()): the directions it pins, Pi, and the map
+  // Q from the factor's solution to z on the others (S's inverse there).
+  struct PinnedBlock {
+    int node;
+    Mat3 pinned, freeMap;
+  };
+  std::vector<PinnedBlock> pinnedBlocks_;
+  NodeMatrix preconditionRhs_, preconditionProduct_;
   void multiplyElastic(const NodeMatrix& in, NodeMatrix& out) const;  // out = (P - Delta P) in
   mutable NodeMatrix contactWbar_, contactSum_, work_;
   mutable Eigen::MatrixX3d contactY_;

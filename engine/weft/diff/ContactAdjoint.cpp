@@ -105,13 +105,15 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
   pinnedSlot_.resize(model_.nodeCount(), -1);
   // As the forward's Newton contact solve pins a node (ContactSolver::linearize): a second
   // prescribed direction on the node pins it whole.
-  const auto pin = [&](int node, bool stick, const Vec3& normal) {
+  const auto pin = [&](int node, bool stick, const Vec3& normal, const Mat3& dOverMass) {
     int& slot = pinnedSlot_[node];
     if (slot < 0) {
       slot = static_cast<int>(pinned_.size());
-      pinned_.push_back({node, stick ? Mat3(Mat3::Identity()) : Mat3(normal * normal.transpose())});
+      pinned_.push_back({node, stick ? Mat3(Mat3::Identity()) : Mat3(normal * normal.transpose()),
+                         Mat3::Identity() + dOverMass.transpose(), normal});
     } else {
       pinned_[slot].projector.setIdentity();
+      pinned_[slot].s.setZero();
     }
   };
   for (const ContactPoint& p : contacts.points) {
@@ -133,7 +135,9 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
     else
       frameOfPair(p, x0, law.normal, c);
     contacts_.push_back(c);
-    if (p.partner < 0) pin(p.node, p.branch == ContactBranch::Stick, p.normal);
+    // (Its row of wbar = M^-1 G^T D^T y is d^T z / m for an uncoupled contact: S = I + d^T / m.)
+    if (p.partner < 0)
+      pin(p.node, p.branch == ContactBranch::Stick, p.normal, c.d / model_.mass[p.node]);
   }
   for (const PinnedNode& n : pinned_) pinnedSlot_[n.node] = -1;  // (ready for the next step)
 

@@ -51,13 +51,15 @@ class ContactAdjoint {
   void prepare(const StepContacts& contacts, const NodeMatrix& x0, double t0, double t1, int step);
   // Contacts with an impulse (stick or slip) in the prepared step.
   int size() const { return static_cast<int>(contacts_.size()); }
-  // A node whose velocity an obstacle contact prescribes in the prepared step, and the projector
-  // onto the prescribed directions: I where it sticks (or touches two obstacles), n n^T where it
-  // slips. Its rows of S = I + R'^T (z + wbar = S z) are (I - projector) up to the slip branch's
-  // friction terms: what AdjointSystem::precondition inverts exactly.
+  // A node whose velocity an obstacle contact prescribes in the prepared step: the projector
+  // onto the prescribed directions, I where it sticks (or touches two obstacles), n n^T where it
+  // slips, and its block of S = I + R'^T (z + wbar = S z; I + dL/dw^T of its one contact), which
+  // is zero along those directions. AdjointSystem::precondition inverts them exactly.
   struct PinnedNode {
     int node = -1;
     Mat3 projector;
+    Mat3 s;  // (of a node with two contacts: zero, as the projector is I)
+    Vec3 normal;
   };
   const std::vector<PinnedNode>& pinnedNodes() const { return pinned_; }
   bool coupled() const { return coupled_; }
