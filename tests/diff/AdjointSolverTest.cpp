@@ -171,8 +171,8 @@ TEST(AdjointSolvers, ContactPreconditionerCutsIterationsAndKeepsTheSolution) {
 
 // Where friction takes most of a slipping node's tangential velocity, z's tangent part is the
 // factor's solution mapped through S's inverse there (AdjointSystem::precondition): 24
-// iterations to 1e-10 on the creeping ribbon, 36 with that map left out (measured by replacing
-// it with the tangent projector), 148 with P alone.
+// iterations to 1e-10 on the creeping ribbon; a build with the map replaced by the tangent
+// projector took 36 there, which this bound catches (P alone: 148).
 TEST(AdjointSolvers, ContactPreconditionerMapsSlipsThroughFriction) {
   const std::unique_ptr<ContactStep> step = lastContactStep(creepingRibbon());
   AdjointSystem& system = *step->system;
