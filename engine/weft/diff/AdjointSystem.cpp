@@ -37,12 +37,6 @@ AdjointSystem::AdjointSystem(const Scene& scene)
 
 AdjointSystem::~AdjointSystem() = default;
 
-void AdjointSystem::beginStep(double time, const NodeMatrix& start) {
-  // Only the projections the adjoint needs from x_n (the handles' targets are not used here).
-  for (auto& c : constraints_)
-    if (c->dependsOnStart()) c->beginStep(time, start);
-}
-
 void AdjointSystem::addStartGradient(const NodeMatrix& start, const NodeMatrix& q,
                                      NodeMatrix& out) const {
   for (const auto& c : constraints_)

@@ -48,8 +48,6 @@ class AdjointSystem {
   // Evaluates the projection derivatives (Delta P) at x (the recorded x_{n+1}) and takes the
   // step's prepared contacts (null or empty: none). `contact` must outlive the step's solve.
   void prepare(const NodeMatrix& x, const ContactAdjoint* contact = nullptr);
-  // The step's start x_n, for projections set from it (oriented bending), before prepare().
-  void beginStep(double time, const NodeMatrix& start);
   bool dependsOnStart() const { return dependsOnStart_; }
   // out += h^2 sum_i (dp_i/dx_n)^T w_i A_i q: what the step equations' x_n dependence through
   // such projections passes back to dL/dx_n (q = S^T z, as for force-like parameters).

@@ -45,7 +45,6 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
     const auto prepareStart = std::chrono::steady_clock::now();
     if (touching) contact->prepare(trajectory.contacts[n], x0, t1 - h, t1, n + 1);
     const auto contactDone = std::chrono::steady_clock::now();
-    if (system.dependsOnStart()) system.beginStep(t1, x0);  // (oriented bending)
     system.prepare(x1, touching ? contact.get() : nullptr);
     result.deltaRSeconds += std::chrono::duration<double>(contactDone - prepareStart).count();
     result.deltaPSeconds +=

@@ -210,8 +210,7 @@ void BendingConstraint::prepareDerivative(const NodeMatrix& x, bool definite) {
     const Hinge& h = hinges_[r];
     const Vec3 e = curvature(h, x);
     const double n = e.norm();
-    if (h.restNorm == 0.0 || n == 0.0 ||
-        (h.oriented && !target_.empty())) {  // (oriented: constant p)
+    if (h.restNorm == 0.0 || n == 0.0 || h.oriented) {  // (oriented: p constant in a step)
       unit_[r].setZero();
       scale_[r] = 0.0;
       continue;
