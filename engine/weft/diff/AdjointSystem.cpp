@@ -51,19 +51,30 @@ void AdjointSystem::prepare(const NodeMatrix& x, const ContactAdjoint* contact) 
   contact_ = contact && contact->size() > 0 ? contact : nullptr;
   pinnedBlocks_.clear();
   if (!contact_) return;
-  for (const ContactAdjoint::PinnedNode& p : contact_->pinnedNodes()) {
-    PinnedBlock b{p.node, p.projector, Mat3::Zero()};
+  for (const ContactAdjoint::PinnedContact& p : contact_->pinnedContacts()) {
+    PinnedBlock b{p.node, p.partner, p.projector, Mat3::Zero(), 1.0, 0.0, model_.mass[p.node]};
+    if (p.partner >= 0) {
+      // A pair: z_a = c + alpha r, z_b = c - beta r for the mean c and the relative r, with
+      // alpha = m_c / m_a and beta = m_c / m_b (alpha + beta = 1).
+      const double ma = model_.mass[p.node], mb = model_.mass[p.partner];
+      b.alpha = mb / (ma + mb);
+      b.beta = ma / (ma + mb);
+      b.mass = ma * mb / (ma + mb);
+    }
     if (!p.projector.isIdentity(0.0)) {
-      // A slipping node: S's tangent block is I - g (I - t t^T) (t: the slip direction, g =
+      // Slipping: S's tangent block is I - g (I - t t^T) (t: the slip direction, g =
       // mu |du_N| / |w_T| < 1), so z's tangent part is the factor's solution mapped by its
-      // inverse. Where 1 - g is below m / P_ii, K's column there is closer to M's (S ~ 0, as
-      // sticking) than to K_e's, and the direction is pinned instead.
+      // inverse. Where 1 - g is below m_c / (alpha P_aa + beta P_bb) (an obstacle's node:
+      // m / P_aa), K's column there is closer to M's (S ~ 0, as sticking) than to K_e's, and the
+      // direction is pinned instead.
       Vec3 t1 = p.normal.unitOrthogonal(), t2 = p.normal.cross(t1);
       Eigen::Matrix<double, 3, 2> tangent;
       tangent << t1, t2;
       const Eigen::Matrix2d block = tangent.transpose() * p.s * tangent;
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(0.5 * (block + block.transpose()));
-      const double floor = model_.mass[p.node] / system_.coeff(p.node, p.node);
+      double stiffness = b.alpha * system_.coeff(p.node, p.node);
+      if (p.partner >= 0) stiffness += b.beta * system_.coeff(p.partner, p.partner);
+      const double floor = b.mass / stiffness;
       for (int k = 0; k < 2; ++k) {
         const Vec3 e = tangent * eigen.eigenvectors().col(k);
         const double lambda = eigen.eigenvalues()[k];
@@ -144,20 +155,43 @@ void AdjointSystem::precondition(NodeMatrix& inOut, bool hessian) {
     return;
   }
   // (AdjointSystem.h) w = (I - Pi) F^-1 (I - Pi) g, u = Q w on contact nodes (w elsewhere),
-  // then z = u + M^-1 Pi (g - K u).
+  // then z = u + V Pi (g - K u). On a pair, Pi acts on the relative part: (I - Pi) removes
+  // Pi (g_a - g_b) / 2 from g_a and adds it to g_b, Q maps w_a - w_b and keeps the mean.
   preconditionRhs_ = inOut;
-  const auto removePinned = [&](NodeMatrix& v) {
-    for (const PinnedBlock& b : pinnedBlocks_)
-      v.row(b.node) -= (b.pinned * v.row(b.node).transpose()).transpose();
-  };
-  removePinned(inOut);
-  solve(inOut);
-  for (const PinnedBlock& b : pinnedBlocks_)
-    inOut.row(b.node) = (b.freeMap * inOut.row(b.node).transpose()).transpose();
-  multiplyK(inOut, preconditionProduct_);
   for (const PinnedBlock& b : pinnedBlocks_) {
-    const Vec3 rest = (preconditionRhs_.row(b.node) - preconditionProduct_.row(b.node)).transpose();
-    inOut.row(b.node) += (b.pinned * rest).transpose() / model_.mass[b.node];
+    if (b.partner < 0) {
+      inOut.row(b.node) -= (b.pinned * inOut.row(b.node).transpose()).transpose();
+    } else {
+      const Vec3 half = 0.5 * b.pinned * (inOut.row(b.node) - inOut.row(b.partner)).transpose();
+      inOut.row(b.node) -= half.transpose();
+      inOut.row(b.partner) += half.transpose();
+    }
+  }
+  solve(inOut);
+  for (const PinnedBlock& b : pinnedBlocks_) {
+    if (b.partner < 0) {
+      inOut.row(b.node) = (b.freeMap * inOut.row(b.node).transpose()).transpose();
+    } else {
+      const Vec3 wa = inOut.row(b.node).transpose(), wb = inOut.row(b.partner).transpose();
+      const Vec3 mean = b.beta * wa + b.alpha * wb, relative = b.freeMap * (wa - wb);
+      inOut.row(b.node) = (mean + b.alpha * relative).transpose();
+      inOut.row(b.partner) = (mean - b.beta * relative).transpose();
+    }
+  }
+  multiplyK(inOut, preconditionProduct_);
+  // K's columns along the pinned directions: M alone on an obstacle's node (K M^-1 Pi e = Pi e);
+  // on a pair, z = (e / m_a, -e / m_b) with e along Pi has S z = 0 and K z = (e, -e).
+  const auto residual = [&](int node) {
+    return Vec3((preconditionRhs_.row(node) - preconditionProduct_.row(node)).transpose());
+  };
+  for (const PinnedBlock& b : pinnedBlocks_) {
+    if (b.partner < 0) {
+      inOut.row(b.node) += (b.pinned * residual(b.node)).transpose() / model_.mass[b.node];
+    } else {
+      const Vec3 e = 0.5 * b.pinned * (residual(b.node) - residual(b.partner));
+      inOut.row(b.node) += e.transpose() / model_.mass[b.node];
+      inOut.row(b.partner) -= e.transpose() / model_.mass[b.partner];
+    }
   }
 }
 

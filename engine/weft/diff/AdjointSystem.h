@@ -66,7 +66,7 @@ class AdjointSystem {
   // GMRES's right preconditioner: inOut = B inOut with B ~ K^-1, built on P's factor or (hessian)
   // the clamped Hessian's, F. Without contact B is F's solve. With contact, K z =
   // K_e S z + M (I - S) z (K_e = P - Delta P, z + wbar = S z), and on a node an obstacle pins
-  // S is zero along the prescribed directions Pi (ContactAdjoint::PinnedNode: all of a sticking
+  // S is zero along the prescribed directions Pi (ContactAdjoint::PinnedContact: all of a sticking
   // node's, a slipping node's normal), where K's columns are M alone, and on a slipping node's
   // tangent plane S is I - g (I - t t^T) (friction's gain g < 1). Splitting z = u + c with
   // Pi u = 0 and Pi c = c: K z = K_e S u + M (I - S) u + M c. The free part takes w = S u from
@@ -79,7 +79,12 @@ class AdjointSystem {
   // back to the LU, 166 with the pinned part alone, none with the map through S's inverse
   // (docs/benchmarks.md, "Contact-pinned velocities in the preconditioner"). One more product
   // with K per application; the forward's Newton contact solve preconditions its Jacobian, the
-  // transpose of this K, the same way (Simulator::preconditionContact).
+  // transpose of this K, the same way (Simulator::preconditionContact), for obstacles only.
+  // A self-collision pair whose nodes have no other contact is the same in its relative velocity:
+  // S keeps the mass-weighted mean (m_a z_a + m_b z_b) / (m_a + m_b) and maps r = z_a - z_b by
+  // the pair's block (m_c = the pair's effective mass for m), so Pi and Q act on r, the pinned
+  // columns z = (e / m_a, -e / m_b) give K z = (e, -e), and the correction takes half the
+  // residual's difference, e = Pi (res_a - res_b) / 2.
   void precondition(NodeMatrix& inOut, bool hessian);
   // Tests and benchmarks: false makes precondition() the factor's solve also with contact.
   void setContactPreconditioning(bool on) { contactPreconditioning_ = on; }
@@ -139,8 +144,10 @@ class AdjointSystem {
   // precondition()'s blocks per contact node (prepare()): the directions it pins, Pi, and the map
   // Q from the factor's solution to z on the others (S's inverse there).
   struct PinnedBlock {
-    int node;
+    int node, partner;  // (partner -1: an obstacle contact)
     Mat3 pinned, freeMap;
+    double alpha, beta;  // a pair's z_a = c + alpha r, z_b = c - beta r (an obstacle's: 1, 0)
+    double mass;         // m_c (an obstacle's: the node's mass)
   };
   std::vector<PinnedBlock> pinnedBlocks_;
   NodeMatrix preconditionRhs_, preconditionProduct_;

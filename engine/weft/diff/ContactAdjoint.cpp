@@ -109,7 +109,8 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
     int& slot = pinnedSlot_[node];
     if (slot < 0) {
       slot = static_cast<int>(pinned_.size());
-      pinned_.push_back({node, stick ? Mat3(Mat3::Identity()) : Mat3(normal * normal.transpose()),
+      pinned_.push_back({node, -1,
+                         stick ? Mat3(Mat3::Identity()) : Mat3(normal * normal.transpose()),
                          Mat3::Identity() + dOverMass.transpose(), normal});
     } else {
       pinned_[slot].projector.setIdentity();
@@ -124,6 +125,8 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
     c.obstacle = p.obstacle;
     c.mass = p.effectiveMass;
     c.friction = p.friction;
+    c.stick = p.branch == ContactBranch::Stick;
+    c.normal = p.normal;
     c.velocityChange = p.impulse / p.effectiveMass;
     const Vec3 free = p.velocity - c.velocityChange;
     const ContactLawJacobian law =
@@ -139,15 +142,23 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
     if (p.partner < 0)
       pin(p.node, p.branch == ContactBranch::Stick, p.normal, c.d / model_.mass[p.node]);
   }
-  for (const PinnedNode& n : pinned_) pinnedSlot_[n.node] = -1;  // (ready for the next step)
+  for (const PinnedContact& n : pinned_) pinnedSlot_[n.node] = -1;  // (ready for the next step)
 
   // Contacts sharing a node couple through T (ContactAdjoint.h).
   const int count = size();
-  std::vector<int> touching(model_.nodeCount(), 0);
+  touching_.assign(model_.nodeCount(), 0);
   coupled_ = false;
   for (const Contact& c : contacts_) {
-    coupled_ = coupled_ || ++touching[c.a] > 1;
-    if (c.b >= 0) coupled_ = coupled_ || ++touching[c.b] > 1;
+    coupled_ = coupled_ || ++touching_[c.a] > 1;
+    if (c.b >= 0) coupled_ = coupled_ || ++touching_[c.b] > 1;
+  }
+  // A pair whose nodes touch nothing else: y = z_a - z_b and wbar = (d^T y / m_a, -d^T y / m_b),
+  // so S keeps (m_a z_a + m_b z_b) / (m_a + m_b) and maps z_a - z_b by I + d^T / m_c.
+  for (const Contact& c : contacts_) {
+    if (c.b < 0 || touching_[c.a] > 1 || touching_[c.b] > 1) continue;
+    pinned_.push_back({c.a, c.b,
+                       c.stick ? Mat3(Mat3::Identity()) : Mat3(c.normal * c.normal.transpose()),
+                       Mat3::Identity() + c.d.transpose() / c.mass, c.normal});
   }
   if (!coupled_) return;
   std::vector<std::vector<std::pair<int, double>>> sharing(

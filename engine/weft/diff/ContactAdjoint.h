@@ -51,17 +51,22 @@ class ContactAdjoint {
   void prepare(const StepContacts& contacts, const NodeMatrix& x0, double t0, double t1, int step);
   // Contacts with an impulse (stick or slip) in the prepared step.
   int size() const { return static_cast<int>(contacts_.size()); }
-  // A node whose velocity an obstacle contact prescribes in the prepared step: the projector
-  // onto the prescribed directions, I where it sticks (or touches two obstacles), n n^T where it
-  // slips, and its block of S = I + R'^T (z + wbar = S z; I + dL/dw^T of its one contact), which
-  // is zero along those directions. AdjointSystem::precondition inverts them exactly.
-  struct PinnedNode {
+  // A contact that prescribes a velocity in the prepared step: a node's (an obstacle contact,
+  // partner -1) or a self-collision pair's relative velocity v_node - v_partner (only where
+  // neither node has another contact, so that the pair's block of S involves the two nodes
+  // alone). The projector picks the prescribed directions, I where it sticks (or a node touches
+  // two obstacles), n n^T where it slips; s is the block of S = I + R'^T (z + wbar = S z) acting
+  // on the prescribed velocity, I + dL/dw^T of the contact, zero along those directions. A pair's
+  // S keeps its nodes' mass-weighted mean velocity and maps their relative velocity by s, as an
+  // obstacle's maps the node's. AdjointSystem::precondition inverts them exactly.
+  struct PinnedContact {
     int node = -1;
+    int partner = -1;
     Mat3 projector;
-    Mat3 s;  // (of a node with two contacts: zero, as the projector is I)
+    Mat3 s;  // (of a node with two obstacle contacts: zero, as the projector is I)
     Vec3 normal;
   };
-  const std::vector<PinnedNode>& pinnedNodes() const { return pinned_; }
+  const std::vector<PinnedContact>& pinnedContacts() const { return pinned_; }
   bool coupled() const { return coupled_; }
 
   // wbar = R'^T z (m x 3) and the contact-space adjoint y = T^-T G z (size() x 3).
@@ -94,6 +99,8 @@ class ContactAdjoint {
     int obstacle = -1;
     double mass = 0.0;  // effective mass m_c
     double friction = 0.0;
+    bool stick = false;  // (else slip)
+    Vec3 normal;
     Mat3 d;               // m_c dL/dw
     Mat3 frameX;          // d (h r_c) / d x_n of node a (node b of a pair: minus this)
     Mat3 frameV;          // d (h r_c) / d v_n of node a (obstacle contacts)
@@ -118,8 +125,9 @@ class ContactAdjoint {
   // this fraction of its largest (exact zeros come out of rounding at about 1e-16; the Sock's
   // genuinely ill-conditioned slip pairs have 1e-5 and are left exact).
   static constexpr double kSingularCouplingRatio = 1e-12;
-  std::vector<PinnedNode> pinned_;
+  std::vector<PinnedContact> pinned_;
   std::vector<int> pinnedSlot_;  // node -> index in pinned_ or -1 (reset after each prepare)
+  std::vector<int> touching_;    // node -> contacts on it in the prepared step
   bool coupled_ = false;
   Eigen::SparseMatrix<double> tTransposed_;  // when coupled
   Eigen::SparseLU<Eigen::SparseMatrix<double>> tSolver_;
