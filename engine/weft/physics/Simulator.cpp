@@ -547,17 +547,28 @@ void Simulator::finishWithPerNodeIterations() {
   // bending projection's derivative is discontinuous (a collapsed or flipped element) and the
   // residual norm is not smooth; the PD iteration needs no derivative there. It runs with the
   // lumped mass in the law (the PD iteration is not a contraction with Newton's m~, see
-  // solveContactNewton's end), which does not change the solution. The better of the two results
-  // is the step's.
+  // solveContactNewton's end), which does not change the solution, and the free momentum it
+  // hands the law is then the lumped mass's too: built with m~, the law saw the velocity
+  // (m~ / m) v (about 55 v on the Sock), which leaves a stick or slip decision unchanged but
+  // closes a gap at m / m~ of its rate, so the continuation converged to other equations. The
+  // better of the two results is the step's.
   newtonResult_ = iterate_;
   const double newtonResidual = stats_.residual;
+  const Eigen::VectorXd* newtonLawMass = contactLawMass_;
+  contactLawMass_ = nullptr;
   timed(contactSolveModule_, [&] { contact_->prepareSolve(nullptr); });
   if (scene_.solver.acceleration == Acceleration::Anderson) anderson_.restart();
   solveWithContact();
+  contactLawMass_ = newtonLawMass;
   const bool better = stats_.converged || stats_.residual < newtonResidual;
-  timed(contactSolveModule_, [&] { contact_->prepareSolve(contactLawMass_); });
+  // Kept, the PD iteration's result comes with its contact state, the impulses and branches its
+  // last global solve used: that is what the step records (contact_forces.npy, the backward
+  // pass). Resetting the solver to the law mass here had cleared them (setContacts starts every
+  // contact at take-off with no impulse): 7 of the Sock's 400 steps, pressed on the foot, were
+  // recorded free of contact.
   if (!better) {
     // Back to Newton's iterate, with the contact impulses (to be recorded) evaluated there.
+    timed(contactSolveModule_, [&] { contact_->prepareSolve(contactLawMass_); });
     iterate_ = newtonResult_;
     stats_.residual = contactResidual(iterate_, fullResidual_);
     stats_.converged = stats_.residual < scene_.solver.pdTolerance;
