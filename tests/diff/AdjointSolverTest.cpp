@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -151,6 +152,46 @@ std::vector<std::pair<int, int>> pairsOn(const StepContacts& contacts, ContactBr
   return pairs;
 }
 
+// For a g on prescribed velocities only, the contact preconditioner gives M^-1 g, and K of it is g
+// to round-off; without its contact part, the factor's solve of the same g is far from K's
+// inverse.
+void expectInvertedExactly(AdjointSystem& system, const NodeMatrix& g) {
+  ASSERT_TRUE(system.hasContact());
+  NodeMatrix z = g, kz;
+  system.precondition(z, false);
+  EXPECT_LT((z - system.model().mass.cwiseInverse().asDiagonal() * g).norm(), 1e-12 * z.norm());
+  system.multiplyK(z, kz);
+  EXPECT_LT((kz - g).norm(), 1e-12 * g.norm());
+  system.setContactPreconditioning(false);
+  system.precondition(z = g, false);
+  system.multiplyK(z, kz);
+  EXPECT_GT((kz - g).norm(), 0.1 * g.norm());
+  system.setContactPreconditioning(true);
+}
+
+// GMRES to 1e-10 with and without the contact part of the preconditioner: both reach the direct
+// solve's solution, the contact part in fewer iterations.
+void expectFewerIterationsAndTheSameSolution(AdjointSystem& system, unsigned seed,
+                                             const std::string& label) {
+  ASSERT_TRUE(system.hasContact());
+  const NodeMatrix g = randomBlock(system.nodeCount(), seed);
+  NodeMatrix exact, a, b;
+  ASSERT_TRUE(DirectLuSolver().solve(system, g, exact).converged);
+  GmresSolver withContact(1e-10, 1000, 1000), factorOnly(1e-10, 1000, 1000);
+  const LinearSolveResult ra = withContact.solve(system, g, a);
+  system.setContactPreconditioning(false);
+  const LinearSolveResult rb = factorOnly.solve(system, g, b);
+  system.setContactPreconditioning(true);
+  ASSERT_TRUE(ra.converged);
+  ASSERT_TRUE(rb.converged);
+  EXPECT_LT((a - exact).norm(), 1e-8 * exact.norm());
+  EXPECT_LT((b - exact).norm(), 1e-8 * exact.norm());
+  std::printf(
+      "%s: iterations to 1e-10 preconditioned by P with the contact part %d, by P alone %d\n",
+      label.c_str(), ra.iterations, rb.iterations);
+  EXPECT_LT(ra.iterations, rb.iterations);
+}
+
 // With contact, GMRES's preconditioner inverts the columns of K that belong to the velocities
 // the contacts prescribe (AdjointSystem::precondition): where a node sticks, S = 0 and K's
 // column block there is M alone, so for a right-hand side on stuck nodes only the preconditioned
@@ -167,16 +208,7 @@ TEST(AdjointSolvers, ContactPreconditionerInvertsStuckNodesExactly) {
     if (p.branch == ContactBranch::Stick && p.partner < 0)
       g.row(p.node) = noise.row(p.node), ++stuck;
   ASSERT_GE(stuck, 10);
-  NodeMatrix z = g, kz;
-  system.precondition(z, false);
-  EXPECT_LT((z - system.model().mass.cwiseInverse().asDiagonal() * g).norm(), 1e-12 * z.norm());
-  system.multiplyK(z, kz);
-  EXPECT_LT((kz - g).norm(), 1e-12 * g.norm());
-  // Without the contact part, the factor's solve of the same g is far from K's inverse.
-  system.setContactPreconditioning(false);
-  system.precondition(z = g, false);
-  system.multiplyK(z, kz);
-  EXPECT_GT((kz - g).norm(), 0.1 * g.norm());
+  expectInvertedExactly(system, g);
 }
 
 // On whole steps, sticking and slipping, the contact preconditioner reaches the direct solve's
@@ -184,23 +216,7 @@ TEST(AdjointSolvers, ContactPreconditionerInvertsStuckNodesExactly) {
 TEST(AdjointSolvers, ContactPreconditionerCutsIterationsAndKeepsTheSolution) {
   for (const nlohmann::json& doc : {restingOnASphere(), slidingRibbon()}) {
     const std::unique_ptr<ContactStep> step = lastContactStep(doc);
-    AdjointSystem& system = *step->system;
-    ASSERT_TRUE(system.hasContact());
-    const NodeMatrix g = randomBlock(system.nodeCount(), 12);
-    NodeMatrix exact, a, b;
-    ASSERT_TRUE(DirectLuSolver().solve(system, g, exact).converged);
-    GmresSolver withContact(1e-10, 1000, 1000), factorOnly(1e-10, 1000, 1000);
-    const LinearSolveResult ra = withContact.solve(system, g, a);
-    system.setContactPreconditioning(false);
-    const LinearSolveResult rb = factorOnly.solve(system, g, b);
-    ASSERT_TRUE(ra.converged);
-    ASSERT_TRUE(rb.converged);
-    EXPECT_LT((a - exact).norm(), 1e-8 * exact.norm());
-    EXPECT_LT((b - exact).norm(), 1e-8 * exact.norm());
-    std::printf(
-        "%s: iterations to 1e-10 preconditioned by P with the contact part %d, by P alone %d\n",
-        step->scene.name.c_str(), ra.iterations, rb.iterations);
-    EXPECT_LT(ra.iterations, rb.iterations);
+    expectFewerIterationsAndTheSameSolution(*step->system, 12, step->scene.name);
   }
 }
 
@@ -238,15 +254,7 @@ TEST(AdjointSolvers, ContactPreconditionerInvertsStuckPairsExactly) {
   NodeMatrix g = NodeMatrix::Zero(m, 3);
   const NodeMatrix noise = randomBlock(m, 14);
   for (const auto& [a, b] : stuck) g.row(a) = noise.row(a), g.row(b) = -noise.row(a);
-  NodeMatrix z = g, kz;
-  system.precondition(z, false);
-  EXPECT_LT((z - system.model().mass.cwiseInverse().asDiagonal() * g).norm(), 1e-12 * z.norm());
-  system.multiplyK(z, kz);
-  EXPECT_LT((kz - g).norm(), 1e-12 * g.norm());
-  system.setContactPreconditioning(false);
-  system.precondition(z = g, false);
-  system.multiplyK(z, kz);
-  EXPECT_GT((kz - g).norm(), 0.1 * g.norm());
+  expectInvertedExactly(system, g);
 }
 
 // Whole steps with pairs, stuck and slipping: fewer GMRES iterations than the factor alone, and
@@ -254,24 +262,10 @@ TEST(AdjointSolvers, ContactPreconditionerInvertsStuckPairsExactly) {
 TEST(AdjointSolvers, ContactPreconditionerCutsIterationsOnPairs) {
   for (const double friction : {0.9, 0.1}) {
     const std::unique_ptr<ContactStep> step = lastContactStep(restingOnAFixedCloth(friction, 0.2));
-    AdjointSystem& system = *step->system;
-    ASSERT_TRUE(system.hasContact());
     const ContactBranch branch = friction > 0.2 ? ContactBranch::Stick : ContactBranch::Slip;
     ASSERT_EQ(pairsOn(step->trajectory.contacts.back(), branch).size(), 25u);
-    const NodeMatrix g = randomBlock(system.nodeCount(), 15);
-    NodeMatrix exact, a, b;
-    ASSERT_TRUE(DirectLuSolver().solve(system, g, exact).converged);
-    GmresSolver withContact(1e-10, 1000, 1000), factorOnly(1e-10, 1000, 1000);
-    const LinearSolveResult ra = withContact.solve(system, g, a);
-    system.setContactPreconditioning(false);
-    const LinearSolveResult rb = factorOnly.solve(system, g, b);
-    ASSERT_TRUE(ra.converged);
-    ASSERT_TRUE(rb.converged);
-    EXPECT_LT((a - exact).norm(), 1e-8 * exact.norm());
-    EXPECT_LT((b - exact).norm(), 1e-8 * exact.norm());
-    std::printf("pairs at friction %.1f: iterations to 1e-10 with the pair part %d, P alone %d\n",
-                friction, ra.iterations, rb.iterations);
-    EXPECT_LT(ra.iterations, rb.iterations);
+    expectFewerIterationsAndTheSameSolution(*step->system, 15,
+                                            "pairs, friction " + std::to_string(friction));
   }
 }
 
