@@ -141,8 +141,9 @@ class AdjointSystem {
   mutable std::vector<NodeMatrix> rows_;  // per-constraint derivative rows (work buffers)
   const ContactAdjoint* contact_ = nullptr;
   bool contactPreconditioning_ = true;
-  // precondition()'s blocks per contact node (prepare()): the directions it pins, Pi, and the map
-  // Q from the factor's solution to z on the others (S's inverse there).
+  // precondition()'s blocks per pinned contact (prepare()): the directions it pins, Pi, and the
+  // map Q from the factor's solution to z on the others (S's inverse there), both acting on the
+  // node's velocity or on the pair's relative one.
   struct PinnedBlock {
     int node, partner;  // (partner -1: an obstacle contact)
     Mat3 pinned, freeMap;
