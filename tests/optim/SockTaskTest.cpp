@@ -148,7 +148,8 @@ TEST(SockTask, RecordedContactsAreTheStateTheStepWasSolvedWith) {
       ++checked;
     }
   }
-  std::printf("converged steps finished by the PD iteration %d, contacts checked %d\n", continued, checked);
+  std::printf("converged steps finished by the PD iteration %d, contacts checked %d\n", continued,
+              checked);
   EXPECT_GE(continued, 3);
   EXPECT_GE(checked, 500);
 }
