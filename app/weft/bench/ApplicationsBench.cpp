@@ -45,8 +45,8 @@
 #include <weft/io/AtomicFile.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/optim/Optimizer.h>
-#include <weft/optim/SearchBox.h>
 #include <weft/optim/SimulationObjective.h>
+#include <weft/optim/StartingPoint.h>
 #include <weft/scene/SceneLoader.h>
 
 #include <omp.h>
@@ -65,7 +65,6 @@
 #include <map>
 #include <mutex>
 #include <optional>
-#include <random>
 #include <sstream>
 #include <thread>
 
@@ -153,22 +152,8 @@ struct TaskResult {
   std::optional<paper::PaperScene> paperScene;  // --paper-meshes, for tasks that have one
   int garmentVertices = 0;
   PassTiming timing;
+  std::vector<StartingPoint> starts;  // seed s at s - 1 (StartingPoint.h)
 };
-
-// Seed s's starting point, shared by every method (Table 2: "All methods start the optimization
-// with the same initial random seed set"): uniform within a quarter of each variable's box width
-// (SearchBox's width, capped for open boxes) on either side of the scene's values, projected
-// into the box. Its own random stream, apart from the evolution strategies' (seeded with s too).
-Eigen::VectorXd randomStart(const ParameterSpace& space, unsigned seed) {
-  const Eigen::VectorXd z0 = space.toCoordinates(space.initialValues());
-  const SearchBox box(z0, space.lowerCoordinates(), space.upperCoordinates());
-  std::seed_seq sequence{seed, 0x5eedu};
-  std::mt19937_64 random(sequence);
-  std::uniform_real_distribution<double> uniform(-0.25, 0.25);
-  Eigen::VectorXd u(z0.size());
-  for (int i = 0; i < u.size(); ++i) u[i] = uniform(random);
-  return box.repairedCoordinates(u);
-}
 
 PassTiming timePasses(const Scene& scene, const ParameterSet& parameters) {
   PassTiming timing;
@@ -329,7 +314,7 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
 // What a stored run depends on besides its task, method and seed.
 nlohmann::json runSettings(const CommandLine& cl, long long budgetOption, bool quick,
                            const std::string& paperMeshes) {
-  return {{"format", "weft bench applications runs 1"},
+  return {{"format", "weft bench applications runs 2"},
           {"budget",
            cl.has("--budget") ? nlohmann::json(budgetOption) : nlohmann::json("task default")},
           {"quick", quick},
@@ -532,7 +517,9 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         const TaskScene& ts = loaded[job.task];
         const int m = job.method;
         const Eigen::VectorXd start =
-            randomStart(ts.probe->space(), static_cast<unsigned>(job.seed));
+            drawStartingPoint(*ts.scene, *ts.parameters, ts.probe->space(),
+                              static_cast<unsigned>(job.seed))
+                .coordinates;
         std::fprintf(stderr, "applications: %s, %s, seed %d...\n", task->name, kMethods[m].name,
                      job.seed);
         SimulationObjective objective(*ts.scene, *ts.parameters);
@@ -612,6 +599,10 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     std::fprintf(stderr, "applications: %s, one forward and backward pass, timed...\n",
                  result.task->name);
     result.timing = timePasses(*loaded[t].scene, *loaded[t].parameters);
+    for (int seed = 1; seed <= seeds; ++seed)
+      result.starts.push_back(drawStartingPoint(*loaded[t].scene, *loaded[t].parameters,
+                                                loaded[t].probe->space(),
+                                                static_cast<unsigned>(seed)));
   }
   BenchTable csv(kRunColumns);
   for (const TaskResult& r : results)
@@ -857,8 +848,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         " read back from stored run files; a run's wall s is its own). Each seed draws one "
         "starting point (uniform within a quarter of each "
         "parameter's box width "
-        "around the scene's values; box widths capped at 2 optimiser units), shared by the three "
-        "methods; "
+        "around the scene's values; box widths capped at 2 optimiser units; a draw whose handle "
+        "targets enter an obstacle is drawn again), shared by the three methods; "
         "the evolution strategies are also seeded with it. Every run has the same budget of "
         "simulated steps: "
         "L-BFGS-B pays a forward and a backward step per simulated step (2 x time.steps per "
@@ -880,6 +871,26 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
             "two bounding-box centres coincide; every vertex list of the scene is remapped to the "
             "nearest vertices of the new mesh (repeats dropped, except keypoints).\n\n"
          << meshNotes << "\n";
+    }
+    {
+      std::string redrawn, unavoidable;
+      for (const TaskResult& r : results)
+        for (std::size_t i = 0; i < r.starts.size(); ++i) {
+          const std::string name = std::string(r.task->name) + " seed " + std::to_string(i + 1);
+          if (!r.starts[i].handlesOutsideObstacles)
+            unavoidable += (unavoidable.empty() ? "" : ", ") + name;
+          else if (r.starts[i].draws > 1)
+            redrawn += (redrawn.empty() ? "" : ", ") + name + " (" +
+                       std::to_string(r.starts[i].draws) + " draws)";
+        }
+      md << "Starts: "
+         << (redrawn.empty()
+                 ? "every seed's first draw kept its handles outside the obstacles."
+                 : "drawn again because a handle's targets entered an obstacle: " + redrawn + ".");
+      if (!unavoidable.empty())
+        md << " Handles inside an obstacle at the start (the scene's own values, or no draw out of "
+           << kMaxStartingPointDraws << ", kept them out): " << unavoidable << ".";
+      md << "\n\n";
     }
     losses.writeMarkdown(md, "Loss reached (DiffCloth Table 2)",
                          "Final %: the method's final loss as a percentage of the minimum initial "
