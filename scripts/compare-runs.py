@@ -18,29 +18,22 @@ Standard library only (the .npy reader handles Weft's little-endian float64 arra
 """
 
 import argparse
-import ast
 import csv
 import math
 import os
-import struct
 import sys
+
+from npyfile import open_npy, read_values
 
 
 def read_npy(path):
     """(shape, flat tuple of values) of a little-endian float64 C-order .npy file."""
-    with open(path, "rb") as f:
-        if f.read(6) != b"\x93NUMPY":
-            sys.exit(f"error: {path}: not a .npy file")
-        major = f.read(2)[0]
-        length = struct.unpack("<H" if major == 1 else "<I", f.read(2 if major == 1 else 4))[0]
-        header = ast.literal_eval(f.read(length).decode("latin1"))
-        if header["descr"] != "<f8" or header["fortran_order"]:
-            sys.exit(f"error: {path}: expected little-endian float64 in C order")
-        shape = header["shape"]
+    shape, f = open_npy(path)
+    with f:
         count = 1
         for s in shape:
             count *= s
-        values = struct.unpack(f"<{count}d", f.read(count * 8))
+        values = read_values(f, count)
     return shape, values
 
 

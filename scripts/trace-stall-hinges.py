@@ -20,28 +20,21 @@ ratio well below 1 is a curved hinge pressed flat, where the bending energy is s
 Standard library only (the .npy reader handles Weft's little-endian float64 arrays).
 """
 
-import ast
 import csv
 import math
 import re
-import struct
 import sys
+
+from npyfile import open_npy, read_values
 
 
 def read_positions(path, frame):
-    with open(path, "rb") as f:
-        if f.read(6) != b"\x93NUMPY":
-            sys.exit(f"error: {path}: not a .npy file")
-        major = f.read(2)[0]
-        length = struct.unpack("<H" if major == 1 else "<I", f.read(2 if major == 1 else 4))[0]
-        header = ast.literal_eval(f.read(length).decode("latin1"))
-        if header["descr"] != "<f8" or header["fortran_order"]:
-            sys.exit(f"error: {path}: expected little-endian float64 in C order")
-        frames, nodes, _ = header["shape"]
+    (frames, nodes, _), f = open_npy(path)
+    with f:
         if not 0 <= frame < frames:
             sys.exit(f"error: {path}: no frame {frame} (it has {frames})")
         f.seek(frame * nodes * 3 * 8, 1)
-        values = struct.unpack(f"<{nodes * 3}d", f.read(nodes * 3 * 8))
+        values = read_values(f, nodes * 3)
     return [values[3 * i : 3 * i + 3] for i in range(nodes)]
 
 
