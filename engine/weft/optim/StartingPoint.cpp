@@ -27,8 +27,9 @@ StartingPoint drawStartingPoint(const Scene& scene, const ParameterSet& paramete
   // (No handle or no obstacle: handlesEnteringObstacles returns at once, and this is the draw.)
   if (!inside(start.coordinates)) return start;
   // Nothing to keep out when the scene's own handles already enter an obstacle: its author's
-  // choice, and the draws around it may all do so.
-  if (inside(z0)) {
+  // choice, and the draws around it may all do so. (z0 maps back to the scene's own values
+  // exactly: ParameterSpace.h.)
+  if (!handlesEnteringObstacles(scene).empty()) {
     start.handlesOutsideObstacles = false;
     return start;
   }

@@ -25,8 +25,8 @@ namespace weft {
 struct StartingPoint {
   Eigen::VectorXd coordinates;  // optimiser coordinates (ParameterSpace)
   int draws = 1;                // how many draws it took (1: the first)
-  // False when none of kMaxDraws draws kept the handles outside the obstacles (or the scene's
-  // own values do not): the first draw is returned.
+  // False when none of kMaxStartingPointDraws draws kept the handles outside the obstacles, or
+  // the scene's own values do not: the first draw is returned.
   bool handlesOutsideObstacles = true;
 };
 
