@@ -74,6 +74,14 @@ Scenes:
   z = 0.06 m (the opening hooked over the toe and half-way along the foot); at N = 400 the
   same four around the leg capsule at y = 0.22 m, and the toe-cap pole at the foot's toe tip
   (0, 0.05, 0.205 + 0.001) m.
+  Clearance (Weft's addition; the paper does not say how its paths stayed clear of the foot):
+  task.loss.handle_clearance with weight SOCK_CLEARANCE_WEIGHT = 1000 /s and margin THICKNESS
+  (the contact's skin), a time integral of the squared depth of every held vertex's target
+  inside the leg or the foot (diff/HandleClearanceLoss.h). The keypoint loss alone rewards paths
+  that drive a handle through the foot: over the first two seeds every optimiser run that got far
+  below its start did so with a handle 32-39 mm inside (docs/applications.md, "The Sock"). At
+  1000 /s one handle (three vertices) 1 cm deep for 0.25 s costs 0.09, as much as a whole
+  starting loss; targets 1 mm or more off the skin cost nothing.
 
 Solver: Newton-PCG, pd_tolerance 1e-4 m/s^2, pd_iterations 500 (README, "Contact": stiff
 contact scenes need many iterations), GMRES adjoint at 1e-6 with the direct fallback; the Sock
@@ -113,6 +121,7 @@ FOOT = ((0.0, 0.05, 0.0), (0.0, 0.05, 0.17), 0.035)
 SOCK_CUFF_Z = 0.24
 SOCK_SPLINE_END = 2.0
 SOCK_MIN_CLEARANCE = 0.005
+SOCK_CLEARANCE_WEIGHT = 1000.0  # 1/s
 # The starting guess: per handle (+X, +Y, -X, -Y side of the cuff) the Bezier control points
 # P1, P2 and the end point P3 of its path, absolute, m (docstring, "Sock").
 SOCK_PATHS = [
@@ -414,8 +423,10 @@ def sock_scene(rings, vertex_count):
         "and 2 s; both tangents and the end point per spline, 36 DoFs); 400 steps of 1/160 s. "
         "Loss: squared distances of keypoints to points on the foot model (analytic): the cuff's "
         "four diagonal vertices %s around the middle of the foot at step 200, around the leg at "
-        "step 400, and the toe pole (%d) at the foot's toe tip at step 400. The step size, step "
-        "count, DoFs and loss form are the paper's; the sock, foot, material, start pose, spline "
+        "step 400, and the toe pole (%d) at the foot's toe tip at step 400; plus a penalty on "
+        "handle targets inside the leg or the foot (handle_clearance, not in the paper: without "
+        "it every optimiser found paths through the foot). The step size, step "
+        "count, DoFs and keypoint loss form are the paper's; the sock, foot, material, start pose, spline "
         "timing, keypoints, starting guess and bounds were chosen here. Written by %s (see its "
         "docstring); do not edit by hand." % (vertex_count, keyed, toe, SCRIPT))
     return {
@@ -439,7 +450,7 @@ def sock_scene(rings, vertex_count):
             "loss": {"keypoints": {"points": [
                 {"step": 200, "vertices": keyed, "positions": middle},
                 {"step": 400, "vertices": keyed + [toe], "positions": end + [toe_tip]},
-            ]}},
+            ]}, "handle_clearance": {"weight": SOCK_CLEARANCE_WEIGHT, "margin": THICKNESS}},
             "parameters": parameters,
             "bounds": spline_bounds(parameters),
         },

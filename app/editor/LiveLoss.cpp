@@ -52,6 +52,11 @@ const LossValue& LiveLoss::evaluate(const EditorDocument& document, const Simula
         value_.terms.emplace_back(term->name(), v);
         value_.total += v;
       }
+    if (fileTerms_ && fileTerms_->clearance()) {
+      const double v = fileTerms_->clearance()->value(*scene);
+      value_.terms.emplace_back(fileTerms_->clearance()->name(), v);
+      value_.total += v;
+    }
     if (!targets.empty()) {
       const nlohmann::json& term = scene->task->loss.at("final");
       std::vector<int> vertices;

@@ -246,7 +246,7 @@ int landscapeCommand(const std::vector<std::string>& args) {
           scene, Eigen::Map<const Eigen::VectorXd>(point.data(), point.size()));
       const ForwardPass pass = runForwardPass(at);
       unconverged += pass.unconvergedSteps;
-      value = loss.value(pass.trajectory);
+      value = loss.value(at, pass.trajectory);
     } catch (const InputError& e) {
       throw InputError(e.file(), e.path(), e.reason() + " (at grid point " + name + ")");
     } catch (const NumericalError& e) {

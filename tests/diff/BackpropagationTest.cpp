@@ -96,7 +96,7 @@ TEST(Backpropagation, StateGradientMatchesFiniteDifferencesMidRun) {
       whole.positions[std::size_t(n + k)] = rest.positions[std::size_t(k)];
       whole.velocities[std::size_t(n + k)] = rest.velocities[std::size_t(k)];
     }
-    return loss.value(whole);
+    return loss.value(scene, whole);
   };
   const double eps = 1e-6;
   for (const auto& [node, axis] : {std::pair{44, 0}, std::pair{48, 2}, std::pair{10, 1}}) {

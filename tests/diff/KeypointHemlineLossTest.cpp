@@ -159,7 +159,7 @@ TEST(TaskLoss, SumsItsWeightedTerms) {
   for (int n : {12, 20})
     for (int i = 42; i <= 48; ++i) hem += std::pow(t.positions[n](i, 1) - 0.83, 2);
   expected += 4.0 * hem / 7.0;
-  EXPECT_NEAR(loss.value(t), expected, 1e-12 * expected);
+  EXPECT_NEAR(loss.value(scene, t), expected, 1e-12 * expected);
 }
 
 const std::vector<std::string> kMaterial = {"cloths.0.material.stretch", "cloths.0.material.bend",

@@ -57,7 +57,7 @@ TEST(SphereTask, TargetIsTheMotionOfTheHiddenFriction) {
   const auto loss = [](double mu) {
     const Scene scene = test::loadAssetScene(
         "sphere_sysid", {{"time.steps", "90"}, {"obstacles.0.friction", std::to_string(mu)}});
-    return TaskLoss(scene).value(runForwardPass(scene).trajectory);
+    return TaskLoss(scene).value(scene, runForwardPass(scene).trajectory);
   };
   const double atStart = loss(kStartFriction);
   EXPECT_GT(atStart, 1e-4);

@@ -230,7 +230,7 @@ TEST(TShirtTask, TargetIsTheMotionOfTheHiddenValues) {
     for (int c = 0; c < 3; ++c) ASSERT_NEAR(target.data[3 * i + c], rest(i, c), 1e-12) << i;
   const auto loss = [](const std::map<std::string, double>& values) {
     const Scene s = withValues(test::loadAssetScene("tshirt", {{"time.steps", "12"}}), values);
-    return TaskLoss(s).value(runForwardPass(s).trajectory);
+    return TaskLoss(s).value(s, runForwardPass(s).trajectory);
   };
   const double atStart = loss({});
   EXPECT_GT(atStart, 1e-3);  // m^2

@@ -14,7 +14,7 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
                              const ParameterSet& parameters, const BackwardSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
   GradientResult result;
-  result.loss = loss.value(trajectory);
+  result.loss = loss.value(scene, trajectory);
   result.gradient = Eigen::VectorXd::Zero(parameters.size());
 
   AdjointSystem system(scene);
@@ -73,6 +73,8 @@ GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, c
   result.dLdv0 = dLdvNext;
   result.dLdx = std::move(dLdx);  // already computed: keeping it costs nothing
   partials.accumulateInitial(result.dLdv0, result.gradient);
+  // Terms of the parameters themselves (the handles' clearance): no state in between.
+  loss.addParameterGradient(scene, parameters.parameters(), result.gradient);
   result.solver = solver.stats();
   result.solver.adjointGrowth = growth.factor();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

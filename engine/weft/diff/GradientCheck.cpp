@@ -54,7 +54,7 @@ GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parame
       const ForwardPass run = runForwardPass(perturbed);
       ++report.forwardRuns;
       report.unconvergedSteps += run.unconvergedSteps;
-      side[s] = loss.value(run.trajectory);
+      side[s] = loss.value(perturbed, run.trajectory);
     }
     e.finiteDifference = (side[0] - side[1]) / (2.0 * e.step);
     e.adjoint = adjoint.gradient[k];

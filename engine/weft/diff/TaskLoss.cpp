@@ -130,6 +130,21 @@ std::unique_ptr<LossTerm> makeHemlineLoss(const Scene& scene, const JsonReader& 
   return std::make_unique<HemlineLoss>(std::move(vertices), std::move(states), up, height, weight);
 }
 
+// task.loss.handle_clearance (HandleClearanceLoss.h): needs a handle and an obstacle to keep
+// apart, or the term would be zero whatever the parameters.
+HandleClearanceLoss makeHandleClearanceLoss(const Scene& scene, const JsonReader& term) {
+  const double weight = term.has("weight") ? term.at("weight").positive() : 1.0;
+  const double margin = term.has("margin") ? term.at("margin").number(0.0) : 0.0;
+  bool handles = false;
+  for (const Cloth& cloth : scene.cloths)
+    for (const Attachment& a : cloth.attachments) handles |= a.kind == Attachment::Kind::Handle;
+  if (!handles || scene.obstacles.empty())
+    term.fail(
+        "needs a handle attachment and an obstacle (it keeps handle targets out of "
+        "obstacles)");
+  return HandleClearanceLoss(weight, margin);
+}
+
 }  // namespace
 
 TaskLoss::TaskLoss(const Scene& scene) {
@@ -148,10 +163,14 @@ TaskLoss::TaskLoss(const Scene& scene) {
       terms_.push_back(makeHemlineLoss(scene, JsonReader(term, scene.file, where)));
       continue;
     }
+    if (it.key() == "handle_clearance") {
+      clearance_ = makeHandleClearanceLoss(scene, JsonReader(term, scene.file, where));
+      continue;
+    }
     if (it.key() != "trajectory" && it.key() != "final")
-      throw InputError(
-          scene.file, where,
-          "unknown loss term '" + it.key() + "' (trajectory, final, keypoints or hemline)");
+      throw InputError(scene.file, where,
+                       "unknown loss term '" + it.key() +
+                           "' (trajectory, final, keypoints, hemline or handle_clearance)");
     const double weight = term.value("weight", 1.0);
     std::vector<int> vertices = readVertices(scene, term, where);
     TargetFile target = readTarget(scene, where + ".target", term["target"].get<std::string>());
@@ -171,10 +190,17 @@ TaskLoss::TaskLoss(const Scene& scene) {
   }
 }
 
-double TaskLoss::value(const Trajectory& trajectory) const {
+double TaskLoss::value(const Scene& scene, const Trajectory& trajectory) const {
   double sum = 0.0;
   for (const auto& t : terms_) sum += t->value(trajectory);
+  if (clearance_) sum += clearance_->value(scene);
   return sum;
+}
+
+void TaskLoss::addParameterGradient(const Scene& scene,
+                                    const std::vector<SceneParameter>& parameters,
+                                    Eigen::VectorXd& gradient) const {
+  if (clearance_) clearance_->addParameterGradient(scene, parameters, gradient);
 }
 
 std::vector<NodeMatrix> TaskLoss::gradient(const Trajectory& trajectory) const {

@@ -53,7 +53,7 @@ double SimulationObjective::value(const Eigen::VectorXd& z) {
   const Scene scene = parameters_.withValues(scene_, space_.toValues(z));
   const ForwardPass forward = runForwardPass(scene);
   unconverged_ += forward.unconvergedSteps;
-  const double loss = loss_.value(forward.trajectory);
+  const double loss = loss_.value(scene, forward.trajectory);
   const double seconds = secondsSince(start);
   forwardSeconds_ += seconds;
   ++forwardPasses_;

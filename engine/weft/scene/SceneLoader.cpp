@@ -404,7 +404,7 @@ Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string&
   Task task;
   const JsonReader loss = r.at("loss").object();
   if (loss.value().empty()) loss.fail("needs at least one loss term");
-  loss.allowOnly({"trajectory", "final", "keypoints", "hemline"});
+  loss.allowOnly({"trajectory", "final", "keypoints", "hemline", "handle_clearance"});
   for (auto it = loss.value().begin(); it != loss.value().end(); ++it) {
     const JsonReader term = loss.at(it.key()).object();
     if (it.key() == "trajectory" || it.key() == "final") {
@@ -417,6 +417,10 @@ Task readTask(const JsonReader& r, const nlohmann::json& doc, const std::string&
                         // built
     } else if (it.key() == "keypoints") {
       checkKeypointsTerm(term, steps, vertices);
+    } else if (it.key() == "handle_clearance") {
+      term.allowOnly({"weight", "margin"});
+      if (term.has("weight")) term.at("weight").positive();
+      if (term.has("margin")) term.at("margin").number(0.0);
     } else {
       checkHemlineTerm(term, steps, vertices);
     }
