@@ -106,7 +106,7 @@ TEST(FinalTargets, WrittenFileIsWhatTheEngineReadsAndComesBackOnOpen) {
   t.positions = {rest, rest};
   const double expected = (rest.row(20) - targets[0].position.transpose()).squaredNorm() +
                           (rest.row(24) - targets[1].position.transpose()).squaredNorm();
-  EXPECT_NEAR(TaskLoss(scene).value(t), expected, 1e-15);
+  EXPECT_NEAR(TaskLoss(scene).value(scene, t), expected, 1e-15);
 
   // Opening the scene again makes the targets editable, to be written to the editor's own file.
   const nlohmann::json back = readFinalTargets(scene);
@@ -149,7 +149,7 @@ TEST(LiveLoss, IsTheEngineLossOfTheCachedRun) {
   Simulator simulator(*doc.scene());
   Trajectory own;
   simulator.run(6, own);
-  const double engine = TaskLoss(*doc.scene()).value(own);
+  const double engine = TaskLoss(*doc.scene()).value(*doc.scene(), own);
   EXPECT_GT(engine, 0.0);
   // The worker may use another OpenMP thread count than this test: agreement to rounding.
   EXPECT_NEAR(value.total, engine, 1e-9 * engine);
