@@ -23,7 +23,7 @@ import math
 import os
 import sys
 
-from npyfile import open_npy, read_values
+from npyfile import bad_input, open_npy, read_values
 
 
 def read_npy(path):
@@ -52,7 +52,7 @@ def main():
     for out in (args.a, args.b):
         for name in ("positions.npy", "stats.csv"):
             if not os.path.exists(os.path.join(out, name)):
-                sys.exit(f"error: {out}: no {name} (a `weft simulate --out` folder is expected)")
+                bad_input(f"error: {out}: no {name} (a `weft simulate --out` folder is expected)")
         shape, positions = read_npy(os.path.join(out, "positions.npy"))
         branches = None
         if os.path.exists(os.path.join(out, "contact_branches.npy")):
@@ -60,7 +60,7 @@ def main():
         runs.append((shape, positions, branches, read_stats(os.path.join(out, "stats.csv"))))
     (shape_a, pos_a, br_a, stats_a), (shape_b, pos_b, br_b, stats_b) = runs
     if shape_a != shape_b:
-        sys.exit(f"error: {args.b}: positions of shape {shape_b}, {args.a} has {shape_a}")
+        bad_input(f"error: {args.b}: positions of shape {shape_b}, {args.a} has {shape_a}")
     states, nodes, _ = shape_a
     print("step  max distance (m)  residual A  conv A  residual B  conv B  branch differences")
     unconverged = [0, 0]

@@ -8,7 +8,7 @@ WEFT_PACKAGES=(
   nlohmann-json3-dev libtinyobjloader-dev libassimp-dev liblbfgspp-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libimgui-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev
-  gnuplot-nox xvfb clang-format
+  gnuplot-nox xvfb clang-format python3
 )
 
 weft_missing_packages() {

@@ -25,14 +25,14 @@ import math
 import re
 import sys
 
-from npyfile import open_npy, read_values
+from npyfile import bad_input, open_npy, read_values
 
 
 def read_positions(path, frame):
     (frames, nodes, _), f = open_npy(path)
     with f:
         if not 0 <= frame < frames:
-            sys.exit(f"error: {path}: no frame {frame} (it has {frames})")
+            bad_input(f"error: {path}: no frame {frame} (it has {frames})")
         f.seek(frame * nodes * 3 * 8, 1)
         values = read_values(f, nodes * 3)
     return [values[3 * i : 3 * i + 3] for i in range(nodes)]
@@ -98,7 +98,7 @@ def curvature(nodes, weights, x):
 
 def main():
     if len(sys.argv) != 3:
-        sys.exit(__doc__)
+        bad_input(__doc__)
     trace, out = sys.argv[1], sys.argv[2]
     vertices, faces = read_obj(out + "/rest.obj")
     all_hinges = hinges(vertices, faces)

@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""The repository's Python scripts (scripts/), run as a user runs them.
+
+- The scene generators reproduce the committed assets byte for byte (their docstrings promise
+  it, and the task scenes must not drift from the code that documents their choices).
+- evaluation-sets.py, compare-gradients.py and compare-runs.py compute what they print, and
+  refuse bad input with `error: <file>: <what>` and exit status 2.
+
+Run by ctest (tests/CMakeLists.txt), one test per class:
+  WEFT_SOURCE_DIR=. WEFT_BINARY=build/app/weft python3 tests/scripts/test_scripts.py Generators
+Standard library only.
+"""
+
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SOURCE = os.path.abspath(os.environ.get("WEFT_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..")))
+WEFT = os.environ.get("WEFT_BINARY", os.path.join(SOURCE, "build", "app", "weft"))
+SCRIPTS = os.path.join(SOURCE, "scripts")
+sys.path.insert(0, SCRIPTS)
+from npyfile import open_npy, read_values  # noqa: E402
+
+
+def read_npy(path):
+    shape, f = open_npy(path)
+    with f:
+        return shape, read_values(f, math.prod(shape))
+
+
+def run(args, **kwargs):
+    return subprocess.run(args, capture_output=True, text=True, **kwargs)
+
+
+def script(name, *args):
+    return run([sys.executable, os.path.join(SCRIPTS, name), *args])
+
+
+def written_files(root):
+    for folder, _, files in os.walk(root):
+        for f in files:
+            path = os.path.join(folder, f)
+            yield os.path.relpath(path, root)
+
+
+class Generators(unittest.TestCase):
+    """Each generator, run into an empty folder, writes exactly the committed bytes."""
+
+    def check(self, name, args, out, committed, simulated=()):
+        """Every file `name` writes into `out` equals the one in `committed`: byte for byte, except
+        the files in `simulated`, motions recorded by weft, which may move by rounding when the
+        solver changes (they are recorded to 1e-8 m/s^2): those within 1e-5 m."""
+        result = script(name, *args)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        files = sorted(written_files(out))
+        self.assertTrue(files, f"{name} wrote nothing")
+        for rel in files:
+            with self.subTest(script=name, file=rel):
+                mine, theirs = os.path.join(out, rel), os.path.join(committed, rel)
+                if rel in simulated:
+                    (sa, a), (sb, b) = read_npy(mine), read_npy(theirs)
+                    self.assertEqual(sa, sb)
+                    gap = max(abs(p - q) for p, q in zip(a, b))
+                    self.assertLess(gap, 1e-5, f"{name}: {rel} moved by {gap:.3g} m")
+                    continue
+                with open(mine, "rb") as fa, open(theirs, "rb") as fb:
+                    self.assertTrue(fa.read() == fb.read(), f"{name}: {rel} differs from the committed file")
+
+    def test_asset_generators(self):
+        assets = os.path.join(SOURCE, "assets")
+        for name in ("make-garments.py", "make-tshirt.py", "make-dress.py"):
+            with tempfile.TemporaryDirectory() as out:
+                self.check(name, [out], out, assets)
+
+    def test_napkins_and_meshes(self):
+        with tempfile.TemporaryDirectory() as out:
+            self.check("make-napkins.py", [out], out, os.path.join(SOURCE, "assets", "scenes"))
+        with tempfile.TemporaryDirectory() as out:
+            self.check("make-meshes.py", [out], out, os.path.join(SOURCE, "assets", "meshes"))
+
+    def test_flag_scene_and_its_recorded_target(self):
+        # make-flag.py records the target motion with weft itself, from the hidden values.
+        with tempfile.TemporaryDirectory() as out:
+            self.check("make-flag.py", ["--weft", WEFT, out], out, os.path.join(SOURCE, "assets", "scenes"),
+                       simulated=("targets/flag.npy",))
+
+
+class EvaluationSets(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.csv = os.path.join(self.dir.name, "loss.csv")
+        with open(self.csv, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["evaluation", "steps", "wall_s", "loss", "cloths.0.material.stretch", "wind.direction.2"])
+            w.writerow(["1", "50", "0.5", "0.25", "300", "1"])
+            w.writerow(["2", "100", "1.1", "0.125", "287.52000000000001", "-0.031250000000000003"])
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_prints_the_rows_parameters_as_stored(self):
+        r = script("evaluation-sets.py", self.csv, "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.strip(),
+                         "--set cloths.0.material.stretch=287.52000000000001 "
+                         "--set wind.direction.2=-0.031250000000000003")
+
+    def test_bad_input_is_exit_2_naming_the_file(self):
+        r = script("evaluation-sets.py", self.csv, "7")
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(r.stderr.strip(), f"error: {self.csv}: evaluation 7: no such row")
+        with open(self.csv, "a") as f:
+            f.write("3,150,1.5\n")
+        r = script("evaluation-sets.py", self.csv, "3")
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(r.stderr.strip(), f"error: {self.csv}: line 4: 3 values, header has 6")
+        missing = os.path.join(self.dir.name, "none.csv")
+        r = script("evaluation-sets.py", missing, "1")
+        self.assertEqual(r.returncode, 2)
+        self.assertTrue(r.stderr.startswith(f"error: {missing}: "), r.stderr)
+
+
+class CompareGradients(unittest.TestCase):
+    def write(self, name, x, loss, g):
+        path = os.path.join(self.dir.name, name)
+        with open(path, "w") as f:
+            json.dump({"initial_parameters": x, "initial_loss": loss, "gradient": g}, f)
+        return path
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_prediction_and_gradient_change(self):
+        # x moves by (3, 4): distance 5; g_A . dx = 1*3 + 2*4 = 11; g_B - g_A = (0, -1).
+        a = self.write("a.json", {"p": 0.0, "q": 0.0}, 1.0, {"p": 1.0, "q": 2.0})
+        b = self.write("b.json", {"p": 3.0, "q": 4.0}, 12.5, {"p": 1.0, "q": 1.0})
+        r = script("compare-gradients.py", a, b)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        values = {line[:30].strip(): line[30:].split() for line in r.stdout.splitlines()}
+        self.assertAlmostEqual(float(values["distance |x_B - x_A|"][0]), 5.0)
+        self.assertAlmostEqual(float(values["loss change"][0]), 11.5)
+        self.assertAlmostEqual(float(values["predicted g_A . (x_B - x_A)"][0]), 11.0)
+        self.assertAlmostEqual(float(values["|g_B - g_A| / |g_A|"][0]), 1.0 / math.sqrt(5.0), places=4)
+        self.assertAlmostEqual(float(values["cosine(g_A, g_B)"][0]), 3.0 / math.sqrt(10.0), places=5)
+        self.assertAlmostEqual(float(values["|g_B - g_A| / |x_B - x_A|"][0]), 0.2, places=4)
+
+    def test_other_parameters_are_exit_2(self):
+        a = self.write("a.json", {"p": 0.0}, 1.0, {"p": 1.0})
+        b = self.write("b.json", {"r": 0.0}, 1.0, {"r": 1.0})
+        r = script("compare-gradients.py", a, b)
+        self.assertEqual(r.returncode, 2)
+        self.assertTrue(r.stderr.startswith(f"error: {b}: gradient: "), r.stderr)
+        c = os.path.join(self.dir.name, "c.json")
+        with open(c, "w") as f:
+            json.dump({"initial_loss": 1.0}, f)
+        r = script("compare-gradients.py", a, c)
+        self.assertEqual(r.returncode, 2)
+        self.assertTrue(r.stderr.startswith(f"error: {c}: initial_parameters: missing"), r.stderr)
+
+
+class CompareRuns(unittest.TestCase):
+    """Two `weft simulate` runs of the hanging cloth, one 10 % heavier: they part from step 1."""
+
+    def test_distances_between_two_runs(self):
+        scene = os.path.join(SOURCE, "tests", "data", "scenes", "hanging.json")
+        with tempfile.TemporaryDirectory() as d:
+            a, b = os.path.join(d, "a"), os.path.join(d, "b")
+            for out, density in ((a, "0.1"), (b, "0.11")):
+                r = run([WEFT, "simulate", scene, "--threads", "1", "--set",
+                         f"cloths.0.material.density={density}", "--out", out])
+                self.assertEqual(r.returncode, 0, r.stderr)
+            same = script("compare-runs.py", a, a, "--every", "1")
+            self.assertEqual(same.returncode, 0, same.stderr)
+            rows = [l.split() for l in same.stdout.splitlines()[1:-1]]
+            self.assertEqual([int(r[0]) for r in rows], list(range(1, 21)))
+            self.assertTrue(all(float(r[1]) == 0.0 for r in rows))
+            self.assertEqual(same.stdout.splitlines()[-1], "unconverged steps: 0 (A), 0 (B)")
+            other = script("compare-runs.py", a, b, "--every", "5")
+            self.assertEqual(other.returncode, 0, other.stderr)
+            rows = [l.split() for l in other.stdout.splitlines()[1:-1]]
+            self.assertEqual([int(r[0]) for r in rows], [5, 10, 15, 20])
+            # Gravity pulls both cloths alike (mass cancels), but the stiffness does not scale with
+            # the mass, so the heavier one swings further: tens of micrometres apart.
+            distances = [float(r[1]) for r in rows]
+            self.assertTrue(all(1e-6 < x < 1e-3 for x in distances), distances)
+            r = script("compare-runs.py", a, d)
+            self.assertEqual(r.returncode, 2)
+            self.assertTrue(r.stderr.startswith(f"error: {d}: no positions.npy"), r.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
