@@ -21,7 +21,6 @@ import argparse
 import csv
 import math
 import os
-import sys
 
 from npyfile import bad_input, open_npy, read_values
 
