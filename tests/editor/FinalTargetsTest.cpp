@@ -173,5 +173,44 @@ TEST(LiveLoss, IsTheEngineLossOfTheCachedRun) {
   EXPECT_FALSE(live.evaluate(doc, cache).available);
 }
 
+// A handle_clearance term (diff/HandleClearanceLoss.h) is a term of the scene, not of the motion:
+// the live loss lists it beside the motion's terms with the engine's value.
+TEST(LiveLoss, ListsTheHandleClearanceTermWithTheEngineValue) {
+  TempDir dir;
+  nlohmann::json document = test::hangingClothScene(1.0, 4, 0.01, 6, 500.0);
+  // Top corner 4 (at x = 0.5, y = 1.5) on a handle held still, 1 cm inside a sphere.
+  document["cloths"][0]["attachments"] = nlohmann::json::array(
+      {{{"vertices", {0}}, {"kind", "fixed"}},
+       {{"vertices", {4}},
+        {"kind", "handle"},
+        {"trajectory", {{"keyframes", {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}}}}}}}});
+  nlohmann::json sphere;
+  sphere["sphere"]["center"] = {0.5, 1.5, 0.09};
+  sphere["sphere"]["radius"] = 0.1;
+  document["obstacles"] = nlohmann::json::array({sphere});
+  document["task"]["loss"]["keypoints"]["points"] =
+      nlohmann::json::array({{{"step", 6}, {"vertices", {12}}, {"positions", {{0.0, 0.5, 0.0}}}}});
+  document["task"]["loss"]["handle_clearance"] = {{"weight", 2.0}};
+  EditorDocument doc(document);
+  doc.saveAs(dir.file("scene.json"));
+
+  SimulationCache cache;
+  LiveLoss live;
+  cache.start(doc.sharedScene(), 6);
+  cache.wait();
+  ASSERT_EQ(cache.status(), SimulationCache::Status::Done);
+  const LossValue& value = live.evaluate(doc, cache);
+  ASSERT_TRUE(value.available) << value.note;
+  ASSERT_EQ(value.terms.size(), 2u);
+  EXPECT_EQ(value.terms[1].first, "handle_clearance");
+  // 2 /s x 6 steps x 0.01 s x (1 cm)^2.
+  EXPECT_NEAR(value.terms[1].second, 2.0 * 6 * 0.01 * 1e-4, 1e-12);
+  Simulator simulator(*doc.scene());
+  Trajectory own;
+  simulator.run(6, own);
+  const double engine = TaskLoss(*doc.scene()).value(*doc.scene(), own);
+  EXPECT_NEAR(value.total, engine, 1e-9 * engine);
+}
+
 }  // namespace
 }  // namespace weft::editor
