@@ -25,6 +25,21 @@ nlohmann::json windClothScene(int quads, int steps) {
   return doc;
 }
 
+nlohmann::json handleScene(int steps) {
+  nlohmann::json doc = test::windClothScene(6, steps);
+  doc["cloths"][0]["attachments"] = nlohmann::json::array(
+      {{{"vertices", {0}}, {"kind", "fixed"}, {"stiffness", 2000.0}},
+       {{"vertices", {6}},
+        {"kind", "handle"},
+        {"stiffness", 500.0},
+        {"trajectory",
+         {{"hermite",
+           {{"times", {0.0, 0.1, 0.2}},
+            {"points", {{0.0, 0.0, 0.0}, {0.02, 0.03, 0.05}, {0.05, 0.02, 0.12}}},
+            {"tangents", {{0.2, 0.1, 0.3}, {0.3, 0.0, 0.8}, {0.1, -0.1, 0.2}}}}}}}}});
+  return doc;
+}
+
 std::string writeTargetTrajectory(const nlohmann::json& document, const std::string& path) {
   const Scene scene = withTightForwardSolver(parse(document), 1e-8);
   const ForwardPass pass = runForwardPass(scene);

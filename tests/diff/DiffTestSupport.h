@@ -27,6 +27,12 @@ std::string writeTargetTrajectory(const nlohmann::json& document, const std::str
 void addTask(nlohmann::json& document, const std::string& kind, const std::string& target,
              const std::vector<std::string>& parameters);
 
+// The hanging wind cloth above (6 x 6 quads, 0.4 m, wind, a nodal force) with corner 0
+// fixed and the other top corner (vertex 6) on a handle: a Hermite spline through three knots at
+// 0, 0.1 and 0.2 s (the run lasts 0.25 s, so the last steps hold the end point), attachment
+// stiffness 500 N/m so that the handle's spring is soft enough to matter.
+nlohmann::json handleScene(int steps = 25);
+
 // The same cloth made soft and heavy (stretch 30 N/m, density 1 kg/m^2): h^2 k is below the nodal
 // mass, so rho(P^{-1} Delta P) < 1 and DiffCloth's fixed-point iteration converges. On the stiff
 // scene above it does not (compressed triangles make rho > 1; see AdjointSolverTest).

@@ -20,23 +20,6 @@ namespace {
 
 const std::string kSpline = "cloths.0.attachments.1.trajectory.hermite.";
 
-// The hanging wind cloth (6x6 quads, 0.4 m) with its top corner vertex 6 on a Hermite handle
-// through three knots at 0, 0.1 and 0.2 s; the run lasts `steps` steps of 0.01 s.
-nlohmann::json handleScene(int steps) {
-  nlohmann::json doc = test::windClothScene(6, steps);
-  doc["cloths"][0]["attachments"] = nlohmann::json::array(
-      {{{"vertices", {0}}, {"kind", "fixed"}, {"stiffness", 2000.0}},
-       {{"vertices", {6}},
-        {"kind", "handle"},
-        {"stiffness", 500.0},
-        {"trajectory",
-         {{"hermite",
-           {{"times", {0.0, 0.1, 0.2}},
-            {"points", {{0.0, 0.0, 0.0}, {0.02, 0.03, 0.05}, {0.05, 0.02, 0.12}}},
-            {"tangents", {{0.2, 0.1, 0.3}, {0.3, 0.0, 0.8}, {0.1, -0.1, 0.2}}}}}}}}});
-  return doc;
-}
-
 Vec3 vertexSix(const nlohmann::json& doc) {
   return test::parse(doc).cloths[0].mesh.vertices.row(6).transpose();
 }
@@ -57,7 +40,7 @@ nlohmann::json sphere(const Vec3& centre, double radius) {
 // A handle held still (keyframes at offset 0) against a sphere whose surface is `depth` beyond its
 // target: the term is weight * N * h * (margin + depth)^2, zero once the sphere is out of reach.
 TEST(HandleClearanceLoss, ValueIsTheTimeIntegralOfTheSquaredPenetration) {
-  nlohmann::json doc = handleScene(20);
+  nlohmann::json doc = test::handleScene(20);
   doc["cloths"][0]["attachments"][1]["trajectory"] = {
       {"keyframes", {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}}}}};
   const Vec3 p = vertexSix(doc);
@@ -80,7 +63,7 @@ TEST(HandleClearanceLoss, ValueIsTheTimeIntegralOfTheSquaredPenetration) {
 // passing through a sphere and a capsule that rotates about the vertical axis (the normal is
 // carried back to the world frame).
 TEST(HandleClearanceLoss, ParameterGradientMatchesFiniteDifferences) {
-  nlohmann::json doc = handleScene(25);
+  nlohmann::json doc = test::handleScene(25);
   const Vec3 p = vertexSix(doc);
   nlohmann::json capsule = {{"capsule",
                              {{"a", json3(p + Vec3(-0.02, 0.035, 0.052))},
@@ -130,7 +113,7 @@ TEST(HandleClearanceLoss, ParameterGradientMatchesFiniteDifferences) {
 // states' part plus the term's direct part. The sphere stays just outside the handle's path
 // (within the margin), so the cloth never touches it and the run needs no contact.
 TEST(HandleClearanceLoss, AdjointGradientOfATaskWithTheTermMatchesFiniteDifferences) {
-  nlohmann::json doc = handleScene(20);
+  nlohmann::json doc = test::handleScene(20);
   const Vec3 p = vertexSix(doc);
   doc["obstacles"] = nlohmann::json::array({sphere(p + Vec3(0.045, 0.05, 0.08), 0.01)});
   doc["task"] = {{"loss",
@@ -152,7 +135,7 @@ TEST(HandleClearanceLoss, AdjointGradientOfATaskWithTheTermMatchesFiniteDifferen
 }
 
 TEST(HandleClearanceLoss, ATermThatCannotWorkIsAnInputErrorNamingItsPath) {
-  nlohmann::json doc = handleScene(5);
+  nlohmann::json doc = test::handleScene(5);
   doc["task"] = {{"loss", {{"handle_clearance", {{"weight", 1.0}}}}},
                  {"parameters", {kSpline + "points.1.0"}}};
   // No obstacle: the term would be zero whatever the parameters.

@@ -81,29 +81,10 @@ TEST(HandleTrajectory, ControlWeightsAreTheDerivativesOfTheOffset) {
   EXPECT_EQ(hermite().controlWeight(-1.0, Control::Offset, 0), 1.0);
 }
 
-// The hanging cloth of DiffTestSupport (6 x 6 quads, 0.4 m, wind, a nodal force) with corner 0
-// fixed and the other top corner (vertex 6) on a handle: a Hermite spline through three knots at
-// 0, 0.1 and 0.2 s (the run lasts 0.25 s, so the last steps hold the end point), attachment
-// stiffness 500 N/m so that the handle's spring is soft enough to matter.
-nlohmann::json handleScene(int steps = 25) {
-  nlohmann::json doc = test::windClothScene(6, steps);
-  doc["cloths"][0]["attachments"] = nlohmann::json::array(
-      {{{"vertices", {0}}, {"kind", "fixed"}, {"stiffness", 2000.0}},
-       {{"vertices", {6}},
-        {"kind", "handle"},
-        {"stiffness", 500.0},
-        {"trajectory",
-         {{"hermite",
-           {{"times", {0.0, 0.1, 0.2}},
-            {"points", {{0.0, 0.0, 0.0}, {0.02, 0.03, 0.05}, {0.05, 0.02, 0.12}}},
-            {"tangents", {{0.2, 0.1, 0.3}, {0.3, 0.0, 0.8}, {0.1, -0.1, 0.2}}}}}}}}});
-  return doc;
-}
-
 const std::string kHandle = "cloths.0.attachments.1.";
 
 TEST(HandleParameter, ResolvesTheTrajectoryKnotsAndStiffness) {
-  nlohmann::json doc = handleScene(5);
+  nlohmann::json doc = test::handleScene(5);
   const nlohmann::json keys = nlohmann::json::array(
       {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.1}, {"offset", {0, 1, 0}}}});
   doc["cloths"][0]["attachments"].push_back(
@@ -150,7 +131,7 @@ TEST(HandleParameter, ResolvesTheTrajectoryKnotsAndStiffness) {
 // The Hat task in miniature: a final-frame target made by the same scene with another spline.
 TEST(HandleParameter, SplineGradientsMatchFiniteDifferencesForAFinalFrameTarget) {
   TempDir dir;
-  nlohmann::json doc = handleScene();
+  nlohmann::json doc = test::handleScene();
   nlohmann::json targetDoc = doc;
   nlohmann::json& spline = targetDoc["cloths"][0]["attachments"][1]["trajectory"]["hermite"];
   spline["points"][2] = {0.08, 0.0, 0.15};
@@ -166,7 +147,7 @@ TEST(HandleParameter, SplineGradientsMatchFiniteDifferencesForAFinalFrameTarget)
 
 // The Sock task in miniature: keypoints at the middle and the end of the run, on keyframes.
 TEST(HandleParameter, KeyframeGradientsMatchFiniteDifferencesForKeypoints) {
-  nlohmann::json doc = handleScene(20);
+  nlohmann::json doc = test::handleScene(20);
   doc["cloths"][0]["attachments"][1]["trajectory"] = {
       {"keyframes",
        {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}},

@@ -44,11 +44,6 @@ class HandleClearanceLoss {
                             Eigen::VectorXd& gradient) const;
 
  private:
-  // Calls visit(cloth, attachment, time, penetration * normal) for every (handle vertex, obstacle,
-  // step n = 1..N) with penetration = margin - d > 0: what value and gradient both sum.
-  template <class Visit>
-  void forEachPenetration(const Scene& scene, Visit&& visit) const;
-
   double weight_, margin_;
 };
 
