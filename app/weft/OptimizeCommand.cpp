@@ -1,6 +1,9 @@
 // `weft optimize SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]
-//                      [--max-evaluations N] [--learning-rate R] [--set PATH=VALUE ...]
-//                      [--threads N] [--quiet]`
+//                      [--max-evaluations N] [--learning-rate R] [--first-step L]
+//                      [--min-curvature-step L] [--set PATH=VALUE ...] [--threads N] [--quiet]`
+// --first-step and --min-curvature-step are L-BFGS-B's (optim/LbfgsbOptimizer.h): the first trial
+// step's length and the shortest step whose curvature pair is kept, in optimiser coordinates
+// (defaults 1 and 0, LBFGSpp's behaviour).
 // Minimises the scene's task loss over its task.parameters and
 // writes, into DIR (default out/optimize-<scene name>), staged so that a failed run never
 // replaces a good folder:
@@ -56,7 +59,7 @@ nlohmann::json parameterObject(const ParameterSpace& space, const Eigen::VectorX
 int optimizeCommand(const std::vector<std::string>& args) {
   CommandLine cl(args,
                  {"--method", "--seed", "--budget", "--out", "--max-evaluations", "--learning-rate",
-                  "--set", "--threads"},
+                  "--first-step", "--min-curvature-step", "--set", "--threads"},
                  {"--quiet"});
   if (cl.positional().size() != 1) cl.fail("SCENE", "optimize takes exactly one scene file");
   const std::string file = cl.positional()[0];
@@ -70,6 +73,16 @@ int optimizeCommand(const std::vector<std::string>& args) {
   settings.maxEvaluations = cl.integer("--max-evaluations", 0, 0, 100000000);
   settings.learningRate = cl.number("--learning-rate", settings.learningRate);
   if (!(settings.learningRate > 0.0)) cl.fail("--learning-rate", "must be > 0");
+  settings.lbfgsbFirstStep = cl.number("--first-step", settings.lbfgsbFirstStep);
+  if (!(settings.lbfgsbFirstStep > 0.0 && std::isfinite(settings.lbfgsbFirstStep)))
+    cl.fail("--first-step", "must be a finite length > 0 (optimiser coordinates)");
+  settings.lbfgsbMinCurvatureStep =
+      cl.number("--min-curvature-step", settings.lbfgsbMinCurvatureStep);
+  if (!(settings.lbfgsbMinCurvatureStep >= 0.0 && std::isfinite(settings.lbfgsbMinCurvatureStep)))
+    cl.fail("--min-curvature-step", "must be a finite length >= 0 (optimiser coordinates)");
+  if ((cl.has("--first-step") || cl.has("--min-curvature-step")) && method != "lbfgsb")
+    cl.fail(cl.has("--first-step") ? "--first-step" : "--min-curvature-step",
+            "is an L-BFGS-B setting; --method is '" + method + "'");
   const double budgetOption = cl.number("--budget", 0.0);
   if (cl.has("--budget") &&
       !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
@@ -151,6 +164,10 @@ int optimizeCommand(const std::vector<std::string>& args) {
       {"method", method},
       {"seed", settings.seed},
       {"budget", settings.budget},
+      {"lbfgsb", method == "lbfgsb"
+                     ? nlohmann::json{{"first_step", settings.lbfgsbFirstStep},
+                                      {"min_curvature_step", settings.lbfgsbMinCurvatureStep}}
+                     : null},
       {"initial_parameters", parameterObject(space, space.initialValues())},
       {"initial_loss", log.entries().front().loss},
       {"final_parameters", parameterObject(space, finalValues)},

@@ -25,7 +25,8 @@ const char* kUsage =
     "         [--backward gmres|fixed_point|direct] [--forward-tolerance T] [--backward-tolerance "
     "T]\n"
     "  optimize SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]\n"
-    "         [--max-evaluations N] [--learning-rate R] [--set PATH=VALUE ...]\n"
+    "         [--max-evaluations N] [--learning-rate R] [--first-step L]\n"
+    "         [--min-curvature-step L] [--set PATH=VALUE ...]\n"
     "  landscape SCENE --param A [--param B] [--grid N] [--range PATH=LO:HI ...] [--out DIR]\n"
     "         [--set PATH=VALUE ...] [--threads N] [--quiet]\n"
     "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";

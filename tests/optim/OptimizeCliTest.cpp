@@ -9,6 +9,8 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -129,6 +131,26 @@ struct BadOptimize {
   const char* phrase;
 };
 
+// --first-step reaches L-BFGS-B: its first trial point lies that far from the start in optimiser
+// coordinates (log stretch, wind strength over its starting 1.5), and result.json records it.
+TEST(OptimizeCli, FirstStepIsTheFirstTrialLengthInOptimiserCoordinates) {
+  TempDir dir;
+  const std::string scene = writeTinyScene(dir);
+  const std::string out = dir.file("opt");
+  const auto r = runWeft({"optimize", scene, "--max-evaluations", "2", "--first-step", "0.02",
+                          "--out", out, "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const auto lines = splitLines(test::readFile(out + "/loss.csv"));
+  ASSERT_EQ(lines.size(), 3u);
+  const auto a = splitCommas(lines[1]), b = splitCommas(lines[2]);
+  const double dz0 = std::log(std::stod(b[4]) / std::stod(a[4]));
+  const double dz1 = (std::stod(b[5]) - std::stod(a[5])) / 1.5;
+  EXPECT_NEAR(std::hypot(dz0, dz1), 0.02, 1e-12);
+  const nlohmann::json result = nlohmann::json::parse(test::readFile(out + "/result.json"));
+  EXPECT_EQ(result["lbfgsb"]["first_step"].get<double>(), 0.02);
+  EXPECT_EQ(result["lbfgsb"]["min_curvature_step"].get<double>(), 0.0);
+}
+
 TEST(OptimizeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
   TempDir dir;
   const std::string scene = writeTinyScene(dir);
@@ -147,6 +169,15 @@ TEST(OptimizeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
        "no backward"},
       {"NoTask", {noTask}, "task: ", "no task"},
       {"UnknownSet", {scene, "--set", "solver.nope.x=1"}, "--set solver.nope.x: ", "unknown path"},
+      {"ZeroFirstStep", {scene, "--first-step", "0"}, "--first-step: ", "finite length > 0"},
+      {"NegativeCurvatureStep",
+       {scene, "--min-curvature-step", "-1"},
+       "--min-curvature-step: ",
+       "finite length >= 0"},
+      {"FirstStepForCmaes",
+       {scene, "--method", "cmaes", "--first-step", "0.1"},
+       "--first-step: ",
+       "L-BFGS-B setting"},
   };
   for (const BadOptimize& c : cases) {
     SCOPED_TRACE(c.name);

@@ -26,6 +26,10 @@ struct OptimizerSettings {
   double lossTolerance = 1e-12;     // relative loss change between iterations
   unsigned seed = 0;                // the evolution strategies' random stream (std::mt19937_64)
   double learningRate = 0.05;       // Adam's step in optimiser coordinates
+  // L-BFGS-B (LbfgsbOptimizer.h): the first trial step's length in optimiser coordinates (1 is
+  // LBFGSpp's), and the shortest step whose curvature pair enters the BFGS matrix (0: all).
+  double lbfgsbFirstStep = 1.0;
+  double lbfgsbMinCurvatureStep = 0.0;
 };
 
 struct OptimizationResult {
