@@ -28,7 +28,7 @@ int benchCommand(const std::vector<std::string>& arguments) {
   CommandLine cl(args,
                  {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks",
                   "--methods", "--seeds", "--budget", "--jobs", "--contact", "--paper-meshes",
-                  "--subdivisions", "--resolution"},
+                  "--subdivisions", "--resolution", "--first-step", "--min-curvature-step"},
                  {"--quick", "--resume", "--calibrate"});
   if (cl.positional().size() != 1)
     cl.fail("NAME",
@@ -47,8 +47,8 @@ int benchCommand(const std::vector<std::string>& arguments) {
     if (cl.has("--contact")) cl.fail("--contact", "applies to the contact benchmark only");
     return applicationsBenchmark(cl, out);
   }
-  for (const char* option :
-       {"--tasks", "--methods", "--seeds", "--budget", "--jobs", "--resume", "--paper-meshes"})
+  for (const char* option : {"--tasks", "--methods", "--seeds", "--budget", "--jobs", "--resume",
+                             "--paper-meshes", "--first-step", "--min-curvature-step"})
     if (cl.has(option)) cl.fail(option, "applies to the applications benchmark only");
   if (name == "contact") return contactBenchmark(cl, out);
   if (cl.has("--contact") && name != "continuity")

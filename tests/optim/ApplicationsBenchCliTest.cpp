@@ -5,6 +5,7 @@
 #include <app/CliSupport.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <map>
@@ -109,6 +110,34 @@ TEST(ApplicationsBenchCli, PaperTasksArePrintedBesideThePublishedFigures) {
   EXPECT_GT(std::stod(p[5]), 0.0);  // backward s
 }
 
+// L-BFGS-B's settings reach its runs, are named in applications.md and stored with the runs, and
+// a store made with other settings is not resumed with these.
+TEST(ApplicationsBenchCli, LbfgsbSettingsAreRecordedWithTheRuns) {
+  TempDir dir;
+  const std::string out = dir.file("bench");
+  const std::vector<std::string> common = {
+      "bench",    "applications", "--tasks",   "napkin_4x4", "--seeds",   "1",
+      "--budget", "300",          "--methods", "lbfgsb",     "--threads", "1"};
+  std::vector<std::string> args = common;
+  args.insert(args.end(), {"--first-step", "0.01", "--out", out});
+  const auto r = runWeft(args);
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const std::string md = test::readFile(out + "/applications.md");
+  EXPECT_NE(md.find("L-BFGS-B: first trial step 0.01 (optimiser coordinates; LBFGSpp's is 1), "
+                    "curvature pairs of steps shorter than 0 left out"),
+            std::string::npos)
+      << md;
+  const nlohmann::json settings =
+      nlohmann::json::parse(test::readFile(out + "/runs/settings.json"));
+  EXPECT_EQ(settings["lbfgsb_first_step"].get<double>(), 0.01);
+  EXPECT_TRUE(settings["lbfgsb_min_curvature_step"].is_null());
+  // Resuming those runs with L-BFGS-B's defaults would mix two methods under one name.
+  std::vector<std::string> resume = common;
+  resume.insert(resume.end(), {"--resume", "--seeds", "2", "--out", out});
+  test::expectBadInput("bench", {resume.begin() + 1, resume.end()},
+                       "lbfgsb_first_step: ", "--first-step 0.01");
+}
+
 TEST(ApplicationsBenchCli, BadInputExitsTwo) {
   TempDir dir;
   const std::string out = dir.file("kept");
@@ -120,6 +149,10 @@ TEST(ApplicationsBenchCli, BadInputExitsTwo) {
                        "--budget: ", "at least one gradient evaluation");
   test::expectBadInput("bench", {"forward", "--tasks", "napkin_4x4", "--out", out},
                        "--tasks: ", "applications benchmark only");
+  test::expectBadInput("bench", {"applications", "--first-step", "0", "--out", out},
+                       "--first-step: ", "finite length > 0");
+  test::expectBadInput("bench", {"backward", "--min-curvature-step", "0.1", "--out", out},
+                       "--min-curvature-step: ", "applications benchmark only");
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 

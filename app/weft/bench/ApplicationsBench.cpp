@@ -1,5 +1,6 @@
 // `weft bench applications [--tasks a,b] [--methods m,n] [--seeds N] [--budget STEPS] [--quick]
-//                          [--out DIR] [--threads N] [--jobs J] [--resume] [--paper-meshes [DIR]]`:
+//                          [--out DIR] [--threads N] [--jobs J] [--resume] [--paper-meshes [DIR]]
+//                          [--first-step L] [--min-curvature-step L]`:
 // DiffCloth's comparison of gradient-based and gradient-free optimisation (Sec. 5.2 and Fig. 4, the
 // Flying Napkin; Sec. 6, Tables 2-3; Appendix C, Tables 5-6). Every task scene is optimised by
 // L-BFGS-B (adjoint gradients), CMA-ES and the (1+1)-ES (values alone) from the same random
@@ -28,6 +29,9 @@
 // others are still read back and tabulated, so a comparison too long for one sitting (the Sock's
 // runs take hours each) can be made a method at a time, and one method rerun after a fix (its run
 // files deleted from the store) without repeating the others.
+// --first-step and --min-curvature-step are L-BFGS-B's settings (optim/LbfgsbOptimizer.h), for
+// every task; without them L-BFGS-B is LBFGSpp's. They are stored with the runs (settings.json,
+// absent = the default, so stores made before they existed resume as they were).
 // --jobs J makes J runs at once, each on its own thread with --threads OpenMP threads (on this
 // 2-core machine: --jobs 2 --threads 1); the stored runs are the same whatever J, their wall
 // seconds are not.
@@ -313,13 +317,20 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
 
 // What a stored run depends on besides its task, method and seed.
 nlohmann::json runSettings(const CommandLine& cl, long long budgetOption, bool quick,
-                           const std::string& paperMeshes) {
-  return {{"format", "weft bench applications runs 2"},
-          {"budget",
-           cl.has("--budget") ? nlohmann::json(budgetOption) : nlohmann::json("task default")},
-          {"quick", quick},
-          {"paper_meshes",
-           paperMeshes.empty() ? nlohmann::json(nullptr) : nlohmann::json(paperMeshes)}};
+                           const std::string& paperMeshes, const OptimizerSettings& lbfgsb) {
+  const OptimizerSettings defaults;
+  auto unlessDefault = [](double value, double fallback) {
+    return value == fallback ? nlohmann::json(nullptr) : nlohmann::json(value);
+  };
+  return {
+      {"format", "weft bench applications runs 2"},
+      {"budget",
+       cl.has("--budget") ? nlohmann::json(budgetOption) : nlohmann::json("task default")},
+      {"quick", quick},
+      {"paper_meshes", paperMeshes.empty() ? nlohmann::json(nullptr) : nlohmann::json(paperMeshes)},
+      {"lbfgsb_first_step", unlessDefault(lbfgsb.lbfgsbFirstStep, defaults.lbfgsbFirstStep)},
+      {"lbfgsb_min_curvature_step",
+       unlessDefault(lbfgsb.lbfgsbMinCurvatureStep, defaults.lbfgsbMinCurvatureStep)}};
 }
 
 std::string describeSetting(const std::string& key, const nlohmann::json& v) {
@@ -330,6 +341,11 @@ std::string describeSetting(const std::string& key, const nlohmann::json& v) {
   if (key == "quick") return v == nlohmann::json(true) ? "--quick" : "no --quick";
   if (key == "paper_meshes")
     return v.is_string() ? "--paper-meshes " + v.get<std::string>() : "the tasks' own meshes";
+  if (key == "lbfgsb_first_step")
+    return v.is_number() ? "--first-step " + v.dump() : "L-BFGS-B's default first step";
+  if (key == "lbfgsb_min_curvature_step")
+    return v.is_number() ? "--min-curvature-step " + v.dump()
+                         : "L-BFGS-B's default curvature pairs";
   return v.is_null() ? "none" : v.is_string() ? v.get<std::string>() : v.dump();
 }
 
@@ -342,7 +358,8 @@ void checkStoredSettings(const std::string& file, const nlohmann::json& settings
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, "<json>", std::string("invalid JSON: ") + e.what());
   }
-  for (const char* key : {"format", "budget", "quick", "paper_meshes"}) {
+  for (const char* key : {"format", "budget", "quick", "paper_meshes", "lbfgsb_first_step",
+                          "lbfgsb_min_curvature_step"}) {
     const nlohmann::json have = stored.contains(key) ? stored[key] : nlohmann::json(nullptr);
     if (have != settings[key])
       throw InputError(file, key,
@@ -400,6 +417,13 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   if (cl.has("--budget") &&
       !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
     cl.fail("--budget", "must be a positive whole number of simulated steps");
+  OptimizerSettings lbfgsb;  // L-BFGS-B's own settings, for every task
+  lbfgsb.lbfgsbFirstStep = cl.number("--first-step", lbfgsb.lbfgsbFirstStep);
+  if (!(lbfgsb.lbfgsbFirstStep > 0.0 && std::isfinite(lbfgsb.lbfgsbFirstStep)))
+    cl.fail("--first-step", "must be a finite length > 0 (optimiser coordinates)");
+  lbfgsb.lbfgsbMinCurvatureStep = cl.number("--min-curvature-step", lbfgsb.lbfgsbMinCurvatureStep);
+  if (!(lbfgsb.lbfgsbMinCurvatureStep >= 0.0 && std::isfinite(lbfgsb.lbfgsbMinCurvatureStep)))
+    cl.fail("--min-curvature-step", "must be a finite length >= 0 (optimiser coordinates)");
   // --paper-meshes [DIR]: BenchCommand hands a bare --paper-meshes over as an empty value.
   std::string paperDir;
   if (cl.has("--paper-meshes")) {
@@ -441,7 +465,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   }
   const int storedRuns =
       openRunStore(store, finalDir + "/runs", resume,
-                   runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir));
+                   runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir, lbfgsb));
   if (storedRuns > 0)
     std::fprintf(stderr, "applications: %d stored run(s) in %s\n", storedRuns, store.c_str());
 
@@ -535,6 +559,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         OptimizerSettings settings;
         settings.budget = results[job.task].budget;
         settings.seed = static_cast<unsigned>(job.seed);
+        settings.lbfgsbFirstStep = lbfgsb.lbfgsbFirstStep;
+        settings.lbfgsbMinCurvatureStep = lbfgsb.lbfgsbMinCurvatureStep;
         std::unique_ptr<Optimizer> optimizer = makeOptimizer(kMethods[m].name, settings);
         // A run can take hours (the Sock's); one progress line per kProgressSeconds of it.
         double reported = 0.0;
@@ -897,6 +923,15 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         md << " Handles inside an obstacle at the start (the scene's own values, or no draw out of "
            << kMaxStartingPointDraws << ", kept them out): " << unavoidable << ".";
       md << "\n\n";
+    }
+    {
+      const OptimizerSettings defaults;
+      if (lbfgsb.lbfgsbFirstStep != defaults.lbfgsbFirstStep ||
+          lbfgsb.lbfgsbMinCurvatureStep != defaults.lbfgsbMinCurvatureStep)
+        md << "L-BFGS-B: first trial step " << formatNumber(lbfgsb.lbfgsbFirstStep, 4)
+           << " (optimiser coordinates; LBFGSpp's is 1), curvature pairs of steps shorter than "
+           << formatNumber(lbfgsb.lbfgsbMinCurvatureStep, 4)
+           << " left out (optim/LbfgsbOptimizer.h).\n\n";
     }
     losses.writeMarkdown(md, "Loss reached (DiffCloth Table 2)",
                          "Final %: the method's final loss as a percentage of the minimum initial "
