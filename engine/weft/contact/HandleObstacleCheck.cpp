@@ -1,4 +1,3 @@
-#include <weft/contact/ContactObstacle.h>
 #include <weft/contact/HandleObstacleCheck.h>
 #include <weft/contact/HandleTargetSamples.h>
 
@@ -12,12 +11,13 @@ std::vector<std::string> handlesEnteringObstacles(const Scene& scene) {
   struct Entry {
     int cloth = -1, attachment = -1, obstacle = -1;
     double first = 0.0, deepest = 0.0;
+    const char* shape = "";
   };
   std::vector<Entry> entries;
   forEachHandleTargetNearObstacle(scene, 0, 0.0, [&](const HandleTargetSample& s) {
     if (entries.empty() || entries.back().cloth != s.cloth ||
         entries.back().attachment != s.attachment || entries.back().obstacle != s.obstacle)
-      entries.push_back({s.cloth, s.attachment, s.obstacle, s.time, 0.0});
+      entries.push_back({s.cloth, s.attachment, s.obstacle, s.time, 0.0, s.shape});
     entries.back().deepest = std::max(entries.back().deepest, -s.distance);
   });
   std::vector<std::string> messages;
@@ -28,9 +28,7 @@ std::vector<std::string> handlesEnteringObstacles(const Scene& scene) {
         "cloths.%d.attachments.%d: the handle's targets enter obstacles.%d (%s) from t = "
         "%.3g s, up to %.1f mm deep; the attachment will pull its vertices into the obstacle "
         "against the contact, and steps may not converge",
-        e.cloth, e.attachment, e.obstacle,
-        makeObstacleShape(scene.obstacles[static_cast<std::size_t>(e.obstacle)])->name(), e.first,
-        1e3 * e.deepest);
+        e.cloth, e.attachment, e.obstacle, e.shape, e.first, 1e3 * e.deepest);
     messages.push_back(scene.file + ": " + what);
   }
   return messages;

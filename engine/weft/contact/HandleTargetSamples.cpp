@@ -38,6 +38,7 @@ void forEachHandleTargetNearObstacle(const Scene& scene, int firstStep, double r
             sample.time = t;
             sample.distance = s.distance;
             sample.normal = pose.rotation * s.normal;
+            sample.shape = shapes[k]->name();
             visit(sample);
           }
         }

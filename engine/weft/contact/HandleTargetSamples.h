@@ -15,6 +15,7 @@ struct HandleTargetSample {
   double time = 0.0;      // t_n = n * time.dt
   double distance = 0.0;  // signed distance of the target to the obstacle's surface (< 0 inside)
   Vec3 normal = Vec3::UnitY();  // the surface's outward normal there, in the world frame
+  const char* shape = "";       // the obstacle shape's name (a string literal)
 };
 
 // Calls visit for every handle vertex's target at t_n = n * time.dt, n = firstStep..time.steps,
