@@ -55,5 +55,48 @@ TEST(ParameterSpace, OtherCoordinatesFollowTheLogAndLinearMaps) {
   EXPECT_DOUBLE_EQ(space.toValues(z)[1], v[1]);
 }
 
+TEST(ParameterSpace, AHandleKnotsTaskBoxSetsItsScaleNotItsStartingValue) {
+  // Two components of one spline knot in the same [-0.5, 0.5] m box, starting at 0.02 and 0.03
+  // m: both are value / 0.5, so one unit moves either by 0.5 m (by their starts, 0.02 and
+  // 0.03). A tangent in [-1, 1] m/s: value / 1 (its start is 0.2). A knot with a half-open box,
+  // and the wind strength (a magnitude, not a path coordinate) even with a finite box, keep
+  // their starting magnitudes.
+  test::TempDir dir;
+  nlohmann::json doc = test::handleScene(3);
+  const std::string knot = "cloths.0.attachments.1.trajectory.hermite.";
+  test::addTask(doc, "trajectory", test::writeTargetTrajectory(doc, dir.file("t.npy")),
+                {knot + "points.1.0", knot + "points.1.2", knot + "tangents.0.0",
+                 knot + "points.1.1", "wind.strength"});
+  const double strength = doc["wind"]["strength"].get<double>();
+  doc["task"]["bounds"] = {{knot + "points.1.0", {-0.5, 0.5}},
+                           {knot + "points.1.2", {-0.5, 0.5}},
+                           {knot + "tangents.0.0", {-1.0, 1.0}},
+                           {knot + "points.1.1", {nullptr, 1.0}},
+                           {"wind.strength", {0.0, 10.0 * strength}}};
+  const Scene scene = test::parse(doc);
+  const ParameterSpace space(scene, ParameterSet::fromTask(scene));
+  EXPECT_EQ(space.linearScale(0), 0.5);
+  EXPECT_EQ(space.linearScale(1), 0.5);
+  EXPECT_EQ(space.linearScale(2), 1.0);
+  EXPECT_EQ(space.linearScale(3), 0.03);      // half-open box: its start
+  EXPECT_EQ(space.linearScale(4), strength);  // not a knot: its start
+  const Eigen::VectorXd z = space.toCoordinates(space.initialValues());
+  EXPECT_DOUBLE_EQ(z[0], 0.02 / 0.5);
+  EXPECT_DOUBLE_EQ(space.lowerCoordinates()[0], -1.0);
+  EXPECT_DOUBLE_EQ(space.upperCoordinates()[1], 1.0);
+  EXPECT_DOUBLE_EQ(space.upperCoordinates()[4], 10.0);
+  Eigen::VectorXd step = z;
+  step[0] += 1.0, step[1] += 1.0;
+  const Eigen::VectorXd v = space.toValues(step);
+  EXPECT_DOUBLE_EQ(v[0], 0.02 + 0.5);
+  EXPECT_DOUBLE_EQ(v[1], 0.05 + 0.5);
+  // The chain rule with the same scales.
+  const Eigen::VectorXd g = Eigen::VectorXd::Ones(space.size());
+  const Eigen::VectorXd gz = space.gradientToCoordinates(z, g);
+  EXPECT_DOUBLE_EQ(gz[0], 0.5);
+  EXPECT_DOUBLE_EQ(gz[4], strength);
+  EXPECT_DOUBLE_EQ(space.gradientToValues(z, gz)[3], 1.0);
+}
+
 }  // namespace
 }  // namespace weft

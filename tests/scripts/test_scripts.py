@@ -15,6 +15,7 @@ import csv
 import json
 import math
 import os
+import struct
 import subprocess
 import sys
 import tempfile
@@ -194,6 +195,77 @@ class CompareRuns(unittest.TestCase):
             r = script("compare-runs.py", a, d)
             self.assertEqual(r.returncode, 2)
             self.assertTrue(r.stderr.startswith(f"error: {d}: no positions.npy"), r.stderr)
+
+
+def write_npy(path, shape, values):
+    """A little-endian float64 C-order .npy (format 1.0), as weft writes positions.npy."""
+    header = "{'descr': '<f8', 'fortran_order': False, 'shape': %s, }" % (tuple(shape),)
+    header += " " * (63 - (10 + len(header)) % 64) + "\n"
+    with open(path, "wb") as f:
+        f.write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode("latin1"))
+        f.write(struct.pack(f"<{len(values)}d", *values))
+
+
+class TraceStallHinges(unittest.TestCase):
+    """trace-stall-hinges.py on a made-up run: a hinge curved at rest (nodes 0-3), one flat at rest
+    (4-7), and a trace whose unconverged steps put their residual on one, the other, or neither.
+
+    The curvature vector e = sum_k w_k x_k is linear in the positions and its weights sum to zero,
+    so a frame that is the rest shape rotated, scaled by k and moved has |e| / |e_rest| = k
+    exactly, whatever the weights: the test knows the answer without recomputing the script's
+    geometry. k differs per frame, so the ratio also shows which frame was read."""
+
+    REST = [(0, 0, 0), (1, 0, 0), (0.4, 0.8, 0.3), (0.6, -0.7, 0.5),  # curved hinge, edge 0-1
+            (3, 0, 0), (4, 0, 0), (3.5, 1, 0), (3.4, -1, 0)]  # flat hinge, edge 4-5
+    FACES = [(0, 1, 2), (1, 0, 3), (4, 5, 6), (5, 4, 7)]
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        d = self.dir.name
+        with open(os.path.join(d, "rest.obj"), "w") as f:
+            f.writelines(f"v {x} {y} {z}\n" for x, y, z in self.REST)
+            f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in self.FACES)
+        # Frame n: the rest shape turned about z by n radians, scaled by (n + 1) / 4 (frame 1:
+        # 0.5), moved by (n, 2n, 3n).
+        values = []
+        for n in range(5):
+            c, s_, k = math.cos(n), math.sin(n), (n + 1) / 4
+            for x, y, z in self.REST:
+                values += [k * (c * x - s_ * y) + n, k * (s_ * x + c * y) + 2 * n, k * z + 3 * n]
+        write_npy(os.path.join(d, "positions.npy"), (5, len(self.REST), 3), values)
+        with open(os.path.join(d, "stats.csv"), "w") as f:
+            f.write("step,residual,converged\n1,12.5,0\n2,3.0,0\n3,0.001,1\n4,7.0,0\n")
+        trace = []
+        for step, nodes in ((1, (2, 0, 1, 3, 6)), (2, (5, 7, 4, 6)), (3, (0, 1, 2, 3)), (4, (0, 4, 2, 6))):
+            trace.append(f"step {step}: newton contact solve, residual 1.0e+00\n")
+            trace += [f"  residual at node {n}: share 0.200, x (0, 0, 0), contact none\n" for n in nodes]
+        self.trace = os.path.join(d, "trace.log")
+        with open(self.trace, "w") as f:
+            f.writelines(trace)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_each_unconverged_step_names_its_hinge_and_ratio(self):
+        r = script("trace-stall-hinges.py", self.trace, self.dir.name)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = r.stdout.splitlines()
+        self.assertEqual(rows[0], "step,residual,top4_share,hinge,ratio")
+        # Step 3 converged: left out. Step 1: its four largest nodes are the curved hinge's.
+        self.assertEqual(rows[1:], ["1,12.5,0.800,0-1-2-3,0.500", "2,3.0,0.800,4-5-6-7,flat",
+                                    "4,7.0,0.800,,"])
+        self.assertIn("3 traced unconverged steps; on one hinge curved at rest: 1 "
+                      "(|e|/|e_rest|: median 0.500, below 0.3: 0, below 0.5: 0, above 1: 0); "
+                      "on one hinge flat at rest: 1", r.stderr)
+
+    def test_bad_input_is_exit_2(self):
+        r = script("trace-stall-hinges.py", self.trace)
+        self.assertEqual(r.returncode, 2)
+        os.remove(os.path.join(self.dir.name, "positions.npy"))
+        r = script("trace-stall-hinges.py", self.trace, self.dir.name)
+        self.assertEqual(r.returncode, 2)
+        self.assertTrue(r.stderr.startswith("error: " + os.path.join(self.dir.name, "positions.npy")),
+                        r.stderr)
 
 
 if __name__ == "__main__":

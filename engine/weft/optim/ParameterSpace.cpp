@@ -53,11 +53,13 @@ ParameterSpace::ParameterSpace(const Scene& scene, const ParameterSet& set)
     SceneParameter& p = parameters_[i];
     applyDefaultBounds(p);
     std::string where = p.path;
+    bool explicitBox = false;
     if (scene.task)
       for (const Task::Bound& b : scene.task->bounds)
         if (b.path == p.path) {
           p.lower = b.lower, p.upper = b.upper;
           where = "task.bounds." + p.path;
+          explicitBox = true;
         }
     // A log-scaled parameter needs a positive box; explicit bounds reaching 0 or below switch
     // it to linear coordinates (the loader still rejects values it cannot use).
@@ -69,7 +71,13 @@ ParameterSpace::ParameterSpace(const Scene& scene, const ParameterSet& set)
         << p.lower << ", " << p.upper << "]";
       throw InputError(scene.file, where, s.str());
     }
-    scale_[i] = v != 0.0 ? std::abs(v) : 1.0;
+    // A handle knot's task box, else the start (header).
+    using K = SceneParameter::Kind;
+    const bool knot = p.kind == K::HandleOffset || p.kind == K::HandleTangent;
+    const double halfWidth = 0.5 * (p.upper - p.lower);
+    scale_[i] = knot && explicitBox && std::isfinite(halfWidth) ? halfWidth
+                : v != 0.0                                      ? std::abs(v)
+                                                                : 1.0;
   }
   initialCoordinates_ = toCoordinates(initial_);
 }

@@ -8,7 +8,8 @@
 // kMaxWidth optimiser units. The cap stands in for the box of variables that are open (forces,
 // wind direction) or whose default box spans decades (stretch, 1e-3..1e9 N/m): ParameterSpace
 // coordinates are log(value) for stiffness and density, value / |starting value| otherwise, so 2
-// units is a factor e^2 or twice the starting magnitude. The initial step size of both methods
+// units is a factor e^2 or twice the starting magnitude (a handle knot with a task box: the
+// whole box, ParameterSpace.h). The initial step size of both methods
 // is kInitialStepFraction of that width: a quarter of the box (pycma's advice for sigma0 on a
 // bounded domain), so that start +- 2 sigma spans it.
 //
