@@ -17,6 +17,7 @@
 // gradient-based methods (lbfgsb, adam) and N for the gradient-free ones (cmaes, es1p1). The
 // default budget is the same for every method: 100 gradient evaluations' worth.
 
+#include "BuildInfo.h"
 #include "CommandLine.h"
 #include "Commands.h"
 #include "SceneOverrideOption.h"
@@ -161,6 +162,7 @@ int optimizeCommand(const std::vector<std::string>& args) {
   const AdjointSolverStats& b = objective.backwardStats();
   nlohmann::json report = {
       {"scene", file},
+      {"build", buildInfoJson()},
       {"method", method},
       {"seed", settings.seed},
       {"budget", settings.budget},

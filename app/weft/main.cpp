@@ -2,6 +2,7 @@
 // 3 numerical failure (the contract of the product spec).
 
 #include "../process/PassiveOpenMpWait.h"
+#include "BuildInfo.h"
 #include "Commands.h"
 
 #include <weft/core/Error.h>
@@ -29,6 +30,7 @@ const char* kUsage =
     "         [--min-curvature-step L] [--set PATH=VALUE ...]\n"
     "  landscape SCENE --param A [--param B] [--grid N] [--range PATH=LO:HI ...] [--out DIR]\n"
     "         [--set PATH=VALUE ...] [--threads N] [--quiet]\n"
+    "  --version                                 (the commit this build was made from)\n"
     "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";
 
 }  // namespace
@@ -39,6 +41,11 @@ int main(int argc, char** argv) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::printf("weft %s, %s\n", WEFT_VERSION,
+                weft::cli::describeBuild(weft::cli::buildInfoJson()).c_str());
+    return 0;
   }
   const std::string verb = args[0];
   args.erase(args.begin());

@@ -138,6 +138,55 @@ TEST(ApplicationsBenchCli, LbfgsbSettingsAreRecordedWithTheRuns) {
                        "lbfgsb_first_step: ", "--first-step 0.01");
 }
 
+// The build that made the runs is stored with them and named in applications.md; a store made by
+// a build with other engine sources is not resumed (a docs-only commit, i.e. another commit with
+// the same engine, CLI and assets, is).
+TEST(ApplicationsBenchCli, RunsRecordTheirBuildAndOtherEnginesDoNotResumeThem) {
+  const auto version = runWeft({"--version"});
+  ASSERT_EQ(version.exitCode, 0) << describe(version);
+  TempDir dir;
+  const std::string out = dir.file("bench");
+  const std::vector<std::string> args = {
+      "bench", "applications", "--tasks", "napkin_4x4", "--seeds", "1",     "--budget",
+      "300",   "--methods",    "lbfgsb",  "--threads",  "1",       "--out", out};
+  const auto r = runWeft(args);
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const std::string settingsFile = out + "/runs/settings.json";
+  nlohmann::json settings = nlohmann::json::parse(test::readFile(settingsFile));
+  ASSERT_TRUE(settings.contains("build"));
+  const nlohmann::json build = settings["build"];
+  if (!build["commit"].is_string()) GTEST_SKIP() << "built without git: nothing recorded";
+  const std::string commit = build["commit"].get<std::string>();
+  EXPECT_EQ(commit.size(), 40u);
+  for (const char* key : {"engine", "app", "assets"})
+    EXPECT_EQ(build[key].get<std::string>().size(), 40u) << key;
+  EXPECT_NE(version.out.find("commit " + commit.substr(0, 12)), std::string::npos) << version.out;
+  const std::string md = test::readFile(out + "/applications.md");
+  EXPECT_NE(md.find("Build: runs made by commit " + commit.substr(0, 12)), std::string::npos) << md;
+
+  // Another engine made these runs: refused, the runs kept.
+  nlohmann::json other = settings;
+  other["build"]["engine"] = std::string(40, '0');
+  dir.write("bench/runs/settings.json", other.dump(2));
+  std::vector<std::string> resume(args.begin() + 1, args.end());
+  resume.insert(resume.end(), {"--resume", "--seeds", "2"});
+  test::expectBadInput("bench", resume,
+                       "settings.json: build.engine: ", "engine/ sources differ from this build's");
+  EXPECT_TRUE(std::filesystem::exists(out + "/runs/napkin_4x4_lbfgsb_1.csv"));
+
+  // Another commit with the same sources: resumed, and the page says which build wrote it.
+  other = settings;
+  other["build"]["commit"] = std::string(40, 'a');
+  dir.write("bench/runs/settings.json", other.dump(2));
+  resume.insert(resume.begin(), "bench");
+  const auto resumed = runWeft(resume);
+  ASSERT_EQ(resumed.exitCode, 0) << describe(resumed);
+  const std::string md2 = test::readFile(out + "/applications.md");
+  EXPECT_NE(md2.find("Build: runs made by commit aaaaaaaaaaaa"), std::string::npos) << md2;
+  EXPECT_NE(md2.find("; tables written by commit " + commit.substr(0, 12)), std::string::npos)
+      << md2;
+}
+
 TEST(ApplicationsBenchCli, BadInputExitsTwo) {
   TempDir dir;
   const std::string out = dir.file("kept");

@@ -36,6 +36,7 @@
 // 2-core machine: --jobs 2 --threads 1); the stored runs are the same whatever J, their wall
 // seconds are not.
 
+#include "../BuildInfo.h"
 #include "../CommandLine.h"
 #include "BenchAssets.h"
 #include "BenchTable.h"
@@ -330,7 +331,8 @@ nlohmann::json runSettings(const CommandLine& cl, long long budgetOption, bool q
       {"paper_meshes", paperMeshes.empty() ? nlohmann::json(nullptr) : nlohmann::json(paperMeshes)},
       {"lbfgsb_first_step", unlessDefault(lbfgsb.lbfgsbFirstStep, defaults.lbfgsbFirstStep)},
       {"lbfgsb_min_curvature_step",
-       unlessDefault(lbfgsb.lbfgsbMinCurvatureStep, defaults.lbfgsbMinCurvatureStep)}};
+       unlessDefault(lbfgsb.lbfgsbMinCurvatureStep, defaults.lbfgsbMinCurvatureStep)},
+      {"build", buildInfoJson()}};
 }
 
 std::string describeSetting(const std::string& key, const nlohmann::json& v) {
@@ -367,11 +369,30 @@ void checkStoredSettings(const std::string& file, const nlohmann::json& settings
                            ", this command asks for " + describeSetting(key, settings[key]) +
                            "; resume with the same settings, or use another --out");
   }
+  // The build: runs made by different engines, CLIs or task assets are not one comparison (the
+  // T-shirt's and Sphere's targets are even recorded by the build). The commit alone may differ
+  // (a docs commit). A store or build without git information is not checked.
+  const nlohmann::json have = stored.value("build", nlohmann::json());
+  const nlohmann::json& want = settings["build"];
+  if (have.is_object() && have.value("commit", nlohmann::json()).is_string() &&
+      want.value("commit", nlohmann::json()).is_string())
+    for (const char* key : {"engine", "app", "assets", "modified"}) {
+      const nlohmann::json a = have.value(key, nlohmann::json()),
+                           b = want.value(key, nlohmann::json());
+      if (a != b)
+        throw InputError(file, std::string("build.") + key,
+                         "the stored runs were made by " + describeBuild(have) + ", whose " +
+                             (std::string(key) == "modified" ? std::string("uncommitted changes")
+                                                             : std::string(key) + "/ sources") +
+                             " differ from this build's (" + describeBuild(want) +
+                             "); their results would not be one comparison: use another --out");
+    }
 }
 
 // The run store: DIR.partial/ while the comparison runs. Returns the number of stored runs.
+// *storedBuild: the build that made the store's first runs (settings.json's "build").
 int openRunStore(const std::string& store, const std::string& finished, bool resume,
-                 const nlohmann::json& settings) {
+                 const nlohmann::json& settings, nlohmann::json* storedBuild) {
   std::error_code ec;
   const std::string settingsFile = store + "/settings.json";
   if (fs::exists(store, ec) && !resume)
@@ -389,7 +410,10 @@ int openRunStore(const std::string& store, const std::string& finished, bool res
   }
   if (fs::exists(settingsFile, ec)) {
     checkStoredSettings(settingsFile, settings);
+    std::ifstream in(settingsFile);
+    *storedBuild = nlohmann::json::parse(in).value("build", nlohmann::json());
   } else {
+    *storedBuild = settings["build"];
     fs::create_directories(store, ec);
     if (ec) throw InputError(store, "--out", "cannot create the run folder: " + ec.message());
     writeFileAtomically(settingsFile, settings.dump(2) + "\n");
@@ -463,9 +487,10 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                               " simulated steps)");
     results.push_back(std::move(result));
   }
-  const int storedRuns =
-      openRunStore(store, finalDir + "/runs", resume,
-                   runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir, lbfgsb));
+  nlohmann::json storedBuild;
+  const int storedRuns = openRunStore(
+      store, finalDir + "/runs", resume,
+      runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir, lbfgsb), &storedBuild);
   if (storedRuns > 0)
     std::fprintf(stderr, "applications: %d stored run(s) in %s\n", storedRuns, store.c_str());
 
@@ -892,6 +917,13 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     std::ofstream md(out.file("applications.md"));
     md << "# Gradient-based vs gradient-free optimisation (weft bench applications)\n\n"
        << "Tasks: " << taskList << ". " << setup << "\n\n";
+    {
+      // Which sources made the runs: checked equal on --resume but for the commit itself.
+      const std::string made = describeBuild(storedBuild), now = describeBuild(buildInfoJson());
+      md << "Build: runs made by " << made
+         << (made == now ? "" : "; tables written by " + now + " (same engine, CLI and assets)")
+         << ".\n\n";
+    }
     if (paperDir.empty()) {
       md << "Meshes: every task on its own mesh (assets/meshes, or a grid).\n\n";
     } else {

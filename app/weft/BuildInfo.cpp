@@ -1,0 +1,30 @@
+#include "BuildInfo.h"
+
+namespace weft::cli {
+
+namespace {
+nlohmann::json orNull(const char* s) {
+  return *s ? nlohmann::json(s) : nlohmann::json(nullptr);
+}
+}  // namespace
+
+nlohmann::json buildInfoJson() {
+  const BuildInfo& b = buildInfo();
+  return {{"commit", orNull(b.commit)},
+          {"engine", orNull(b.engineTree)},
+          {"app", orNull(b.appTree)},
+          {"assets", orNull(b.assetsTree)},
+          {"modified", orNull(b.modification)}};
+}
+
+std::string describeBuild(const nlohmann::json& build) {
+  if (!build.is_object() || !build.value("commit", nlohmann::json()).is_string())
+    return "an unknown build (no git)";
+  std::string s = "commit " + build["commit"].get<std::string>().substr(0, 12);
+  const nlohmann::json modified = build.value("modified", nlohmann::json());
+  if (modified.is_string())
+    s += " with uncommitted changes (diff " + modified.get<std::string>().substr(0, 12) + ")";
+  return s;
+}
+
+}  // namespace weft::cli
