@@ -185,6 +185,16 @@ TEST(ApplicationsBenchCli, RunsRecordTheirBuildAndOtherEnginesDoNotResumeThem) {
   EXPECT_NE(md2.find("Build: runs made by commit aaaaaaaaaaaa"), std::string::npos) << md2;
   EXPECT_NE(md2.find("; tables written by commit " + commit.substr(0, 12)), std::string::npos)
       << md2;
+
+  // A store from before builds were recorded: resumed, and not said to match.
+  other = nlohmann::json::parse(test::readFile(settingsFile));
+  other.erase("build");
+  dir.write("bench/runs/settings.json", other.dump(2));
+  const auto old = runWeft(resume);
+  ASSERT_EQ(old.exitCode, 0) << describe(old);
+  const std::string md3 = test::readFile(out + "/applications.md");
+  EXPECT_NE(md3.find("Build: the stored runs carry no build record"), std::string::npos) << md3;
+  EXPECT_EQ(md3.find("same engine"), std::string::npos) << md3;
 }
 
 TEST(ApplicationsBenchCli, BadInputExitsTwo) {

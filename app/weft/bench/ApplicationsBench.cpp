@@ -918,11 +918,27 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     md << "# Gradient-based vs gradient-free optimisation (weft bench applications)\n\n"
        << "Tasks: " << taskList << ". " << setup << "\n\n";
     {
-      // Which sources made the runs: checked equal on --resume but for the commit itself.
-      const std::string made = describeBuild(storedBuild), now = describeBuild(buildInfoJson());
-      md << "Build: runs made by " << made
-         << (made == now ? "" : "; tables written by " + now + " (same engine, CLI and assets)")
-         << ".\n\n";
+      // Which sources made the runs: checked equal on --resume (checkStoredSettings) when both
+      // builds are known, but for the commit itself.
+      const nlohmann::json current = buildInfoJson();
+      const auto known = [](const nlohmann::json& b) {
+        return b.is_object() && b.value("commit", nlohmann::json()).is_string();
+      };
+      const std::string now = describeBuild(current);
+      md << "Build: ";
+      if (storedBuild.is_null())
+        md << "the stored runs carry no build record (made before builds were recorded); tables "
+              "written by "
+           << now;
+      else if (!known(storedBuild) || !known(current))
+        md << "runs made by " << describeBuild(storedBuild) << "; tables written by " << now
+           << " (not compared: no git record)";
+      else if (storedBuild == current)
+        md << "runs made by " << now;
+      else
+        md << "runs made by " << describeBuild(storedBuild) << "; tables written by " << now
+           << " (same engine, CLI and assets)";
+      md << ".\n\n";
     }
     if (paperDir.empty()) {
       md << "Meshes: every task on its own mesh (assets/meshes, or a grid).\n\n";
