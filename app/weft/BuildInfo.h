@@ -22,7 +22,12 @@ const BuildInfo& buildInfo();
 // {"commit", "engine", "app", "assets", "modified"}: nulls for unknown or unmodified.
 nlohmann::json buildInfoJson();
 
-// One line: "commit <hash>[, modified (diff <sha1>)]" or "unknown build (no git)".
+// Whether `build` (buildInfoJson's form, as stored) names a commit: false for a missing record
+// or a build without git, which cannot be compared.
+bool isKnownBuild(const nlohmann::json& build);
+
+// One line: "commit <12 hex>[ with uncommitted changes (diff <12 hex>)]" or "an unknown build
+// (no git)".
 std::string describeBuild(const nlohmann::json& build);
 
 }  // namespace weft::cli

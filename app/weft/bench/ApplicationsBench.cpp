@@ -351,8 +351,8 @@ std::string describeSetting(const std::string& key, const nlohmann::json& v) {
   return v.is_null() ? "none" : v.is_string() ? v.get<std::string>() : v.dump();
 }
 
-// Throws unless the settings stored in `file` are `settings`.
-void checkStoredSettings(const std::string& file, const nlohmann::json& settings) {
+// Throws unless the settings stored in `file` are `settings`; returns the stored settings.
+nlohmann::json checkStoredSettings(const std::string& file, const nlohmann::json& settings) {
   nlohmann::json stored;
   try {
     std::ifstream in(file);
@@ -374,8 +374,7 @@ void checkStoredSettings(const std::string& file, const nlohmann::json& settings
   // (a docs commit). A store or build without git information is not checked.
   const nlohmann::json have = stored.value("build", nlohmann::json());
   const nlohmann::json& want = settings["build"];
-  if (have.is_object() && have.value("commit", nlohmann::json()).is_string() &&
-      want.value("commit", nlohmann::json()).is_string())
+  if (isKnownBuild(have) && isKnownBuild(want))
     for (const char* key : {"engine", "app", "assets", "modified"}) {
       const nlohmann::json a = have.value(key, nlohmann::json()),
                            b = want.value(key, nlohmann::json());
@@ -387,6 +386,7 @@ void checkStoredSettings(const std::string& file, const nlohmann::json& settings
                              " differ from this build's (" + describeBuild(want) +
                              "); their results would not be one comparison: use another --out");
     }
+  return stored;
 }
 
 // The run store: DIR.partial/ while the comparison runs. Returns the number of stored runs.
@@ -409,9 +409,7 @@ int openRunStore(const std::string& store, const std::string& finished, bool res
                        "cannot copy the runs of " + finished + ": " + ec.message());
   }
   if (fs::exists(settingsFile, ec)) {
-    checkStoredSettings(settingsFile, settings);
-    std::ifstream in(settingsFile);
-    *storedBuild = nlohmann::json::parse(in).value("build", nlohmann::json());
+    *storedBuild = checkStoredSettings(settingsFile, settings).value("build", nlohmann::json());
   } else {
     *storedBuild = settings["build"];
     fs::create_directories(store, ec);
@@ -921,16 +919,13 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       // Which sources made the runs: checked equal on --resume (checkStoredSettings) when both
       // builds are known, but for the commit itself.
       const nlohmann::json current = buildInfoJson();
-      const auto known = [](const nlohmann::json& b) {
-        return b.is_object() && b.value("commit", nlohmann::json()).is_string();
-      };
       const std::string now = describeBuild(current);
       md << "Build: ";
       if (storedBuild.is_null())
         md << "the stored runs carry no build record (made before builds were recorded); tables "
               "written by "
            << now;
-      else if (!known(storedBuild) || !known(current))
+      else if (!isKnownBuild(storedBuild) || !isKnownBuild(current))
         md << "runs made by " << describeBuild(storedBuild) << "; tables written by " << now
            << " (not compared: no git record)";
       else if (storedBuild == current)

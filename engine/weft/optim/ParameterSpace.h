@@ -21,7 +21,9 @@
 // constant's or the wind's magnitude is a scale, and there the box is not better: with every
 // finite box used so, the reduced T-shirt and Flag identifications (TShirtTask, FlagTask tests)
 // ended their evaluation caps with the wind phase 2.2 % and 9.8 % off, against within 2 %.
-// dL/dz = dL/dtheta * dtheta/dz, with dtheta/dz = theta (log) or s (linear).
+//
+// Gradients follow by the chain rule: dL/dz = dL/dtheta * dtheta/dz, with dtheta/dz = theta (log)
+// or s (linear).
 //
 // The start maps back exactly: exp(log(v)) is not always v (500 comes back as
 // 499.99999999999983), and a scene whose forward solve stops unconverged on some steps moves by
