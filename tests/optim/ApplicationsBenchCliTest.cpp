@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
 
 namespace weft {
 namespace {
@@ -197,12 +198,42 @@ TEST(ApplicationsBenchCli, RunsRecordTheirBuildAndOtherEnginesDoNotResumeThem) {
   EXPECT_EQ(md3.find("same engine"), std::string::npos) << md3;
 }
 
+TEST(ApplicationsBenchCli, SeedsPerTaskMakeThatManySeedsOfThatTask) {
+  TempDir dir;
+  const std::string out = dir.file("bench");
+  // napkin_4x4 and napkin_5x5: 50 steps each, so 200 steps is two gradient evaluations or four
+  // values per run.
+  const auto r = runWeft({"bench", "applications", "--tasks", "napkin_4x4,napkin_5x5", "--seeds",
+                          "1,napkin_5x5=2", "--budget", "200", "--out", out, "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  std::map<std::string, std::set<std::string>> seeds;  // task -> seeds with runs
+  const auto lines = splitLines(test::readFile(out + "/applications.csv"));
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto f = splitCommas(lines[i]);
+    ASSERT_EQ(f.size(), 7u) << lines[i];
+    seeds[f[0]].insert(f[2]);
+  }
+  EXPECT_EQ(seeds["napkin_4x4"], (std::set<std::string>{"1"}));
+  EXPECT_EQ(seeds["napkin_5x5"], (std::set<std::string>{"1", "2"}));
+  const std::string md = test::readFile(out + "/applications.md");
+  for (const char* text : {"| napkin_4x4 | 48 | 1 | 200 |", "| napkin_5x5 | 75 | 2 | 200 |",
+                           "1 seed(s) per task (1..1), napkin_5x5 2 (1..2)"})
+    EXPECT_NE(md.find(text), std::string::npos) << text;
+}
+
 TEST(ApplicationsBenchCli, BadInputExitsTwo) {
   TempDir dir;
   const std::string out = dir.file("kept");
   test::expectBadInput("bench", {"applications", "--tasks", "napkin_3x3", "--out", out},
                        "--tasks: ", "unknown task");
   test::expectBadInput("bench", {"applications", "--seeds", "0", "--out", out}, "--seeds", "");
+  test::expectBadInput(
+      "bench", {"applications", "--tasks", "napkin_4x4", "--seeds", "2,sock=1", "--out", out},
+      "--seeds: ", "not one of the tasks run");
+  test::expectBadInput("bench", {"applications", "--seeds", "2,sock", "--out", out},
+                       "--seeds: ", "is not task=M");
+  test::expectBadInput("bench", {"applications", "--seeds", "2,sock=x", "--out", out},
+                       "--seeds: ", "whole numbers 1..100");
   test::expectBadInput("bench",
                        {"applications", "--tasks", "napkin_4x4", "--budget", "60", "--out", out},
                        "--budget: ", "at least one gradient evaluation");

@@ -1,4 +1,5 @@
-// `weft bench applications [--tasks a,b] [--methods m,n] [--seeds N] [--budget STEPS] [--quick]
+// `weft bench applications [--tasks a,b] [--methods m,n] [--seeds N[,task=M...]] [--budget STEPS]
+//                          [--quick]
 //                          [--out DIR] [--threads N] [--jobs J] [--resume] [--paper-meshes [DIR]]
 //                          [--first-step L] [--min-curvature-step L]`:
 // DiffCloth's comparison of gradient-based and gradient-free optimisation (Sec. 5.2 and Fig. 4, the
@@ -25,6 +26,8 @@
 // Runs are written as they finish, atomically, into DIR.partial/ (kept when the comparison is
 // killed or fails); --resume reads the runs stored there (or in DIR/runs/ of a finished
 // comparison) instead of running them again, and refuses runs stored with other settings.
+// --seeds N,task=M,... runs M seeds of the tasks named and N of the others (seeds are not
+// settings of the store: more seeds of a task resume from the runs of fewer).
 // --methods m,n (of lbfgsb, cmaes, es1p1) makes the runs of those methods only; stored runs of the
 // others are still read back and tabulated, so a comparison too long for one sitting (the Sock's
 // runs take hours each) can be made a method at a time, and one method rerun after a fix (its run
@@ -158,6 +161,7 @@ struct TaskResult {
   int garmentVertices = 0;
   PassTiming timing;
   std::vector<StartingPoint> starts;  // seed s at s - 1 (StartingPoint.h)
+  int seeds = 0;                      // seeds 1..seeds (--seeds)
 };
 
 PassTiming timePasses(const Scene& scene, const ParameterSet& parameters) {
@@ -205,6 +209,51 @@ std::vector<const ApplicationTask*> selectTasks(const CommandLine& cl, bool quic
   if (out.empty())
     cl.fail("--tasks", "expects a comma-separated list of tasks (known: " + known + ")");
   return out;
+}
+
+// --seeds N[,task=M,...]: N seeds per task, M for the tasks named (the Sock's runs take hours
+// each, so one command can run it with fewer seeds than the rest). Returns the count per task of
+// `tasks`, in their order.
+std::vector<int> selectSeeds(const CommandLine& cl, bool quick,
+                             const std::vector<const ApplicationTask*>& tasks) {
+  const std::string text = cl.value("--seeds", quick ? "1" : "3");
+  const auto count = [&](const std::string& item) {
+    char* end = nullptr;
+    const long n = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || *end || n < 1 || n > 100)
+      cl.fail("--seeds", "expects N or N,task=M,... with whole numbers 1..100, got '" + item + "'");
+    return static_cast<int>(n);
+  };
+  std::stringstream items(text);
+  std::string item;
+  std::getline(items, item, ',');
+  std::vector<int> seeds(tasks.size(), count(item));
+  while (std::getline(items, item, ',')) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos)
+      cl.fail("--seeds", "expects N or N,task=M,...: '" + item + "' is not task=M");
+    const std::string name = item.substr(0, eq);
+    bool found = false;
+    for (std::size_t t = 0; t < tasks.size(); ++t)
+      if (name == tasks[t]->name) seeds[t] = count(item.substr(eq + 1)), found = true;
+    if (!found) cl.fail("--seeds", "names '" + name + "', which is not one of the tasks run");
+  }
+  return seeds;
+}
+
+// "3 seed(s) per task (1..3)", then the tasks that have another count: ", sock 2 (1..2)".
+std::string describeSeeds(const std::vector<TaskResult>& results) {
+  std::map<int, int> tasksWith;
+  for (const TaskResult& r : results) ++tasksWith[r.seeds];
+  int common = results.empty() ? 0 : results.front().seeds;
+  for (const auto& [n, k] : tasksWith)
+    if (k > tasksWith[common]) common = n;
+  const auto range = [](int n) { return " (1.." + std::to_string(n) + ")"; };
+  std::string text = std::to_string(common) + " seed(s) per task" + range(common);
+  for (const TaskResult& r : results)
+    if (r.seeds != common)
+      text += ", " + std::string(r.task->name) + " " + std::to_string(r.seeds) + range(r.seeds);
+  return text;
 }
 
 // --methods: which methods make runs (all by default).
@@ -431,7 +480,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   const bool resume = cl.has("--resume");
   const std::vector<const ApplicationTask*> tasks = selectTasks(cl, quick);
   const std::array<bool, kMethodCount> methods = selectMethods(cl);
-  const int seeds = cl.integer("--seeds", quick ? 1 : 3, 1, 100);
+  const std::vector<int> taskSeeds = selectSeeds(cl, quick, tasks);
   const int threads = cl.integer("--threads", 1, 1, 1024);
   const int jobCount = cl.integer("--jobs", 1, 1, 64);
   omp_set_num_threads(threads);
@@ -466,13 +515,15 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
 
   // Every task's budget is checked before anything runs.
   std::vector<TaskResult> results;
-  for (const ApplicationTask* task : tasks) {
+  for (std::size_t t = 0; t < tasks.size(); ++t) {
+    const ApplicationTask* task = tasks[t];
     const std::string file = assetFile(task->scene);
     const Scene scene = loadScene(file, {});
     const ParameterSet parameters = ParameterSet::fromTask(scene);
     if (parameters.empty()) throw InputError(file, "task.parameters", "no parameters to optimise");
     TaskResult result;
     result.task = task;
+    result.seeds = taskSeeds[t];
     result.parameters = parameters.size();
     result.garmentVertices = scene.vertexCount();
     result.budget = cl.has("--budget") ? static_cast<long long>(budgetOption)
@@ -522,7 +573,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     if (!result.starts.empty()) return;
     prepare(t);
     const TaskScene& ts = loaded[t];
-    for (int seed = 1; seed <= seeds; ++seed)
+    for (int seed = 1; seed <= result.seeds; ++seed)
       result.starts.push_back(drawStartingPoint(*ts.scene, *ts.parameters, ts.probe->space(),
                                                 static_cast<unsigned>(seed)));
   };
@@ -546,7 +597,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                                                 store + "/targets", /*reuseTarget=*/true);
       result.garmentVertices = result.paperScene->vertices;
     }
-    for (int seed = 1; seed <= seeds; ++seed)
+    for (int seed = 1; seed <= result.seeds; ++seed)
       for (int m = 0; m < kMethodCount; ++m) {
         const std::string runFile = store + "/" + runFileName(*task, m, seed);
         if (fs::exists(runFile)) {
@@ -661,7 +712,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   }
   BenchTable csv(kRunColumns);
   for (const TaskResult& r : results)
-    for (int seed = 1; seed <= seeds; ++seed)
+    for (int seed = 1; seed <= r.seeds; ++seed)
       for (int m = 0; m < kMethodCount; ++m)
         for (const Run& run : r.runs)
           if (run.seed == seed && run.method == m)
@@ -731,7 +782,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         speedup[m - 1].y.push_back(ratio);
       }
     }
-    losses.add({r.task->name, std::to_string(r.parameters), std::to_string(seeds),
+    losses.add({r.task->name, std::to_string(r.parameters), std::to_string(r.seeds),
                 std::to_string(r.budget), formatNumber(minInitial, 4),
                 percent(finalLoss(0), minInitial), percent(finalLoss(1), minInitial),
                 percent(lossAt(envelope[1], lbfgsbConverged), minInitial),
@@ -759,7 +810,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       const auto ratio = [](long long a, long long b) {
         return a > 0 && b > 0 ? formatNumber(double(a) / double(b), 3) : std::string("-");
       };
-      beside.add({r.task->name, "Weft", std::to_string(r.parameters), std::to_string(seeds),
+      beside.add({r.task->name, "Weft", std::to_string(r.parameters), std::to_string(r.seeds),
                   percent(finalLoss(0), minInitial), percent(finalLoss(1), minInitial),
                   percent(lossAt(envelope[1], lbfgsbConverged), minInitial),
                   percent(finalLoss(2), minInitial),
@@ -782,7 +833,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                stepsText(toThreshold[0]), stepsText(toThreshold[1]), stepsText(toThreshold[2]),
                speedupText[0], speedupText[1]});
 
-    for (int seed = 1; seed <= seeds; ++seed) {
+    for (int seed = 1; seed <= r.seeds; ++seed) {
       const Run* bySeed[kMethodCount] = {nullptr, nullptr, nullptr};
       for (const Run& run : r.runs)
         if (run.seed == seed) bySeed[run.method] = &run;
@@ -816,11 +867,11 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       plot.push_back(std::move(s));
     }
     std::string reason;
-    if (!plotSeries(
-            out.file(std::string("loss_") + r.task->name + ".png"),
-            std::string(r.task->name) + ": minimum loss over " + std::to_string(seeds) + " seed(s)",
-            "simulated steps (L-BFGS-B: forward + backward; ES: forward)", "loss", plot, false,
-            minInitial > 0.0, reason))
+    if (!plotSeries(out.file(std::string("loss_") + r.task->name + ".png"),
+                    std::string(r.task->name) + ": minimum loss over " + std::to_string(r.seeds) +
+                        " seed(s)",
+                    "simulated steps (L-BFGS-B: forward + backward; ES: forward)", "loss", plot,
+                    false, minInitial > 0.0, reason))
       plotNotes.push_back(reason);
   }
   if (!speedup[0].x.empty() || !speedup[1].x.empty()) {
@@ -897,9 +948,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         "Machine: " + machineDescription() + ", " + std::to_string(threads) +
         " thread(s) per run, " +
         std::to_string(std::min<int>(jobCount, std::max<int>(1, newRuns))) + " run(s) at a time. " +
-        std::to_string(seeds) + " seed(s) per task (1.." + std::to_string(seeds) + "), " +
-        formatNumber(benchSeconds, 4) + " s in this invocation (" + std::to_string(newRuns) +
-        " run(s) made, " + std::to_string(resumedRuns) +
+        describeSeeds(results) + ", " + formatNumber(benchSeconds, 4) + " s in this invocation (" +
+        std::to_string(newRuns) + " run(s) made, " + std::to_string(resumedRuns) +
         " read back from stored run files; a run's wall s is its own). Each seed draws one "
         "starting point (uniform within a quarter of each "
         "parameter's box width "
@@ -1031,10 +1081,11 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     fs::remove_all(store, ec);  // everything it held is in DIR/runs now
   }
   std::printf(
-      "bench applications: %zu task(s) x %d method(s) x %d seed(s), %d run(s) made, %d resumed, "
+      "bench applications: %zu task(s) x %d method(s), %s, %d run(s) made, %d resumed, "
       "%s meshes, %.1f s -> %s/applications.{csv,md}, loss_<task>.png, runs/\n",
-      results.size(), static_cast<int>(std::count(methods.begin(), methods.end(), true)), seeds,
-      newRuns, resumedRuns, paperDir.empty() ? "own" : "paper", benchSeconds, outDir.c_str());
+      results.size(), static_cast<int>(std::count(methods.begin(), methods.end(), true)),
+      describeSeeds(results).c_str(), newRuns, resumedRuns, paperDir.empty() ? "own" : "paper",
+      benchSeconds, outDir.c_str());
   return 0;
 }
 
