@@ -5,6 +5,8 @@
   it, and the task scenes must not drift from the code that documents their choices).
 - evaluation-sets.py, compare-gradients.py and compare-runs.py compute what they print, and
   refuse bad input with `error: <file>: <what>` and exit status 2.
+- embed-applications.py puts a bench output into a document and replaces it there, keeping the
+  rest.
 
 Run by ctest (tests/CMakeLists.txt), one test per class:
   WEFT_SOURCE_DIR=. WEFT_BINARY=build/app/weft python3 tests/scripts/test_scripts.py Generators
@@ -266,6 +268,94 @@ class TraceStallHinges(unittest.TestCase):
         self.assertEqual(r.returncode, 2)
         self.assertTrue(r.stderr.startswith("error: " + os.path.join(self.dir.name, "positions.npy")),
                         r.stderr)
+
+
+class EmbedApplications(unittest.TestCase):
+    """embed-applications.py: a made-up bench output put into a made-up document, then again
+    with new tables; the section's own text, the other sections and the plots' copies checked."""
+
+    BENCH = ("# Gradient-based vs gradient-free optimisation (weft bench applications)\n\n"
+             "Tasks: hat. Setup {}.\n\n## Loss reached (DiffCloth Table 2)\n\n| task |\n| --- |\n"
+             "| hat |\n\n## Every seed (DiffCloth Tables 5-6)\n\n| seed |\n")
+    DOC = "# Doc\n\n## Hat\n\nHow the runs were made.\n\n## Other\n\nKept as is.\n"
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        d = self.dir.name
+        self.out = os.path.join(d, "bench")
+        os.makedirs(self.out)
+        self.write(os.path.join(self.out, "applications.md"), self.BENCH.format(1))
+        for name, data in (("loss_hat.png", b"hat plot"), ("speedup.png", b"speedup plot")):
+            with open(os.path.join(self.out, name), "wb") as f:
+                f.write(data)
+        self.doc = os.path.join(d, "docs", "applications.md")
+        os.makedirs(os.path.dirname(self.doc))
+        self.write(self.doc, self.DOC)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    @staticmethod
+    def write(path, text):
+        with open(path, "w") as f:
+            f.write(text)
+
+    @staticmethod
+    def read(path):
+        with open(path) as f:
+            return f.read()
+
+    def test_the_tables_nest_under_the_heading_and_replace_their_earlier_copy(self):
+        r = script("embed-applications.py", self.out, self.doc, "Hat")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = self.read(self.doc)
+        head, rest = doc.split("<!-- generated: scripts/embed-applications.py " + self.out + " -->\n")
+        self.assertEqual(head, "# Doc\n\n## Hat\n\nHow the runs were made.\n\n")
+        block, tail = rest.split("<!-- end generated -->\n")
+        self.assertEqual(tail, "\n## Other\n\nKept as is.\n")
+        self.assertEqual(block, "\nTasks: hat. Setup 1.\n\n### Loss reached (DiffCloth Table 2)\n\n"
+                         "| task |\n| --- |\n| hat |\n\n### Every seed (DiffCloth Tables 5-6)\n\n"
+                         "| seed |\n\n![hat](images/applications-loss-hat.png)\n\n"
+                         "![speedup](images/applications-speedup.png)\n\n")
+        images = os.path.join(os.path.dirname(self.doc), "images")
+        self.assertEqual(self.read(os.path.join(images, "applications-loss-hat.png")), "hat plot")
+        self.assertEqual(self.read(os.path.join(images, "applications-speedup.png")), "speedup plot")
+
+        # Narrative after the block stays; new tables replace the old ones, once.
+        self.write(self.doc, doc.replace("<!-- end generated -->\n", "<!-- end generated -->\n\nWhy.\n"))
+        self.write(os.path.join(self.out, "applications.md"), self.BENCH.format(2))
+        r = script("embed-applications.py", self.out, self.doc, "Hat", "--images-prefix", "x-")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        again = self.read(self.doc)
+        self.assertEqual(again.count("<!-- generated:"), 1)
+        self.assertIn("Setup 2.", again)
+        self.assertNotIn("Setup 1.", again)
+        self.assertIn("How the runs were made.", again)
+        self.assertIn("<!-- end generated -->\n\nWhy.\n\n## Other", again)
+        self.assertIn("![hat](images/x-loss-hat.png)", again)
+
+        # A heading the document lacks becomes a new last section.
+        r = script("embed-applications.py", self.out, self.doc, "Sock")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("Kept as is.\n\n## Sock\n\n<!-- generated:", self.read(self.doc))
+
+    def test_bad_input_is_exit_2_and_leaves_the_document(self):
+        missing = os.path.join(self.dir.name, "none")
+        r = script("embed-applications.py", missing, self.doc, "Hat")
+        self.assertEqual(r.returncode, 2)
+        self.assertTrue(r.stderr.startswith("error: " + missing + ": "), r.stderr)
+        os.remove(os.path.join(self.out, "applications.md"))
+        r = script("embed-applications.py", self.out, self.doc, "Hat")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("applications.md: not found", r.stderr)
+        self.write(os.path.join(self.out, "applications.md"), self.BENCH.format(1))
+        broken = self.DOC.replace("How", "<!-- end generated -->\n<!-- generated: x -->\nHow")
+        self.write(self.doc, broken)
+        r = script("embed-applications.py", self.out, self.doc, "Hat")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("markers", r.stderr)
+        self.assertEqual(self.read(self.doc), broken)
+        self.assertFalse(os.path.exists(os.path.join(os.path.dirname(self.doc), "images")))
 
 
 if __name__ == "__main__":
