@@ -198,6 +198,114 @@ TEST(ApplicationsBenchCli, RunsRecordTheirBuildAndOtherEnginesDoNotResumeThem) {
   EXPECT_EQ(md3.find("same engine"), std::string::npos) << md3;
 }
 
+// A build whose app/weft/ differs (a new table, a corrected report) may tabulate a store whose
+// runs are all made, with the same engine and assets; it may not add runs to it.
+TEST(ApplicationsBenchCli, AnotherCliTabulatesAFinishedStoreButAddsNoRuns) {
+  TempDir dir;
+  const std::string out = dir.file("bench");
+  const std::vector<std::string> args = {
+      "bench", "applications", "--tasks", "napkin_4x4", "--seeds", "1",     "--budget",
+      "300",   "--methods",    "lbfgsb",  "--threads",  "1",       "--out", out};
+  const auto r = runWeft(args);
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  nlohmann::json settings = nlohmann::json::parse(test::readFile(out + "/runs/settings.json"));
+  if (!settings["build"]["commit"].is_string()) GTEST_SKIP() << "built without git";
+  settings["build"]["app"] = std::string(40, '0');
+  dir.write("bench/runs/settings.json", settings.dump(2));
+
+  std::vector<std::string> more(args.begin() + 1, args.end());
+  more.insert(more.end(), {"--resume", "--seeds", "2"});
+  test::expectBadInput("bench", more,
+                       "settings.json: build.app: ", "1 run(s) are still to be made");
+  EXPECT_TRUE(std::filesystem::exists(out + "/runs/napkin_4x4_lbfgsb_1.csv"));
+
+  std::vector<std::string> same = args;
+  same.push_back("--resume");
+  const auto tabulated = runWeft(same);
+  ASSERT_EQ(tabulated.exitCode, 0) << describe(tabulated);
+  EXPECT_NE(tabulated.out.find("0 run(s) made, 1 resumed"), std::string::npos) << tabulated.out;
+  const std::string md = test::readFile(out + "/applications.md");
+  EXPECT_NE(md.find("its app/weft/ differs, so it made no runs"), std::string::npos) << md;
+  // Tasks without handles get no handle table.
+  EXPECT_EQ(md.find("Handles at each run's best point"), std::string::npos) << md;
+
+  // Another engine still may not even tabulate.
+  settings["build"]["engine"] = std::string(40, '0');
+  dir.write("bench/runs/settings.json", settings.dump(2));
+  test::expectBadInput("bench", std::vector<std::string>(same.begin() + 1, same.end()),
+                       "settings.json: build.engine: ", "engine/ sources differ");
+}
+
+// The table of where each run's best point puts the handles, from the committed Hat store
+// (docs/runs/hat, made before builds were recorded, so any build tabulates it): every row agrees
+// with the scene check `weft simulate` prints for that run's best parameter values.
+TEST(ApplicationsBenchCli, HandleTableAgreesWithTheSceneCheckAtEachBestPoint) {
+  const std::filesystem::path stored =
+      std::filesystem::path(WEFT_ASSET_DIR).parent_path() / "docs" / "runs" / "hat";
+  if (!std::filesystem::exists(stored / "settings.json")) GTEST_SKIP() << "no stored Hat runs";
+  TempDir dir;
+  const std::string out = dir.file("bench");
+  std::filesystem::create_directories(out);
+  std::filesystem::copy(stored, out + "/runs", std::filesystem::copy_options::recursive);
+  const auto r = runWeft({"bench", "applications", "--tasks", "hat", "--seeds", "3", "--resume",
+                          "--threads", "1", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const std::string md = test::readFile(out + "/applications.md");
+  const std::size_t table = md.find("Handles at each run's best point");
+  ASSERT_NE(table, std::string::npos) << md;
+  int checked = 0, inside = 0;
+  const char* methods[] = {"lbfgsb", "cmaes", "es1p1"};
+  for (int seed = 1; seed <= 3; ++seed) {
+    const std::string prefix = "| hat | " + std::to_string(seed) + " | ";
+    const std::size_t row = md.find(prefix, table);
+    ASSERT_NE(row, std::string::npos) << prefix;
+    const auto cells = splitCommas([&] {
+      std::string line = md.substr(row + prefix.size(), md.find('\n', row) - row - prefix.size());
+      for (char& c : line) c = c == '|' ? ',' : c;
+      return line;
+    }());
+    for (int m = 0; m < 3; ++m) {
+      const double depth = std::stod(cells[m]);
+      // The run's best evaluation and its parameter values, as a user would find them.
+      const std::string name = std::string("hat_") + methods[m] + "_" + std::to_string(seed);
+      const auto runRows = splitLines(test::readFile(out + "/runs/" + name + ".csv"));
+      std::string best;
+      double bestLoss = 1e300;
+      for (std::size_t i = 1; i < runRows.size(); ++i) {
+        const auto f = splitCommas(runRows[i]);
+        if (std::stod(f[6]) < bestLoss) bestLoss = std::stod(f[6]), best = f[3];
+      }
+      const auto parameterRows =
+          splitLines(test::readFile(out + "/runs/parameters/" + name + ".csv"));
+      const auto paths = splitCommas(parameterRows[0]);
+      std::vector<std::string> args = {
+          "simulate",    std::string(WEFT_ASSET_DIR) + "/scenes/hat.json",
+          "--steps",     "1",
+          "--quiet",     "--out",
+          dir.file(name)};
+      for (std::size_t i = 1; i < parameterRows.size(); ++i) {
+        const auto f = splitCommas(parameterRows[i]);
+        if (f[0] != best) continue;
+        for (std::size_t k = 1; k < f.size(); ++k)
+          args.insert(args.end(), {"--set", paths[k] + "=" + f[k]});
+      }
+      ASSERT_GT(args.size(), 7u) << name << " evaluation " << best;
+      const auto sim = runWeft(args);
+      ASSERT_EQ(sim.exitCode, 0) << describe(sim);
+      // The warning's deepest depth ("up to D mm deep") over the scene's handles, 0 without one.
+      double warned = 0.0;
+      for (std::size_t at = sim.err.find("up to "); at != std::string::npos;
+           at = sim.err.find("up to ", at + 1))
+        warned = std::max(warned, std::stod(sim.err.substr(at + 6)));
+      EXPECT_NEAR(depth, warned, 0.05 + 1e-3 * warned) << name << "\n" << sim.err;
+      ++checked;
+      inside += depth > 0.0;
+    }
+  }
+  EXPECT_EQ(checked, 9);
+  EXPECT_GT(inside, 0) << "the stored runs include best points with a handle in the head";
+}
+
 TEST(ApplicationsBenchCli, SeedsPerTaskMakeThatManySeedsOfThatTask) {
   TempDir dir;
   const std::string out = dir.file("bench");

@@ -14,7 +14,9 @@
 //                     (steps to converge and to reach a loss threshold, speedups) and the
 //                     Table 4 analogue (seconds per forward and backward pass, share of
 //                     converged iterative backward solves), the same beside DiffCloth's
-//                     published figures, and the Tables 5-6 analogue (every seed)
+//                     published figures, the Tables 5-6 analogue (every seed), and for tasks
+//                     with handles and obstacles how deep each run's best point puts a handle
+//                     target inside an obstacle
 //   passes.csv        the Table 4 analogue
 //   loss_<task>.png   loss against steps, the minimum envelope over seeds (Fig. 4 bottom left)
 //   speedup.png       speedup against the parameter count (Fig. 4 bottom right)
@@ -28,6 +30,8 @@
 // comparison) instead of running them again, and refuses runs stored with other settings.
 // --seeds N,task=M,... runs M seeds of the tasks named and N of the others (seeds are not
 // settings of the store: more seeds of a task resume from the runs of fewer).
+// A store made by a build with other app/weft/ sources (same engine and assets) can be tabulated
+// again when all its runs are made, not added to.
 // --methods m,n (of lbfgsb, cmaes, es1p1) makes the runs of those methods only; stored runs of the
 // others are still read back and tabulated, so a comparison too long for one sitting (the Sock's
 // runs take hours each) can be made a method at a time, and one method rerun after a fix (its run
@@ -43,9 +47,11 @@
 #include "../CommandLine.h"
 #include "BenchAssets.h"
 #include "BenchTable.h"
+#include "HandleDepth.h"
 #include "LossEnvelope.h"
 #include "PaperMeshScenes.h"
 #include "PaperTables.h"
+#include "StoredParameters.h"
 
 #include <weft/core/Error.h>
 #include <weft/core/ProcessCpuTime.h>
@@ -134,7 +140,16 @@ struct Run {
   std::string stop;
   std::vector<std::vector<std::string>> rows;  // its rows of applications.csv
   bool resumed = false;
+  // Tasks with handles and obstacles: the deepest handle target inside an obstacle at the run's
+  // best evaluation (m, 0 when none enters; HandleObstacleCheck.h).
+  double handleDepth = 0.0;
 };
+
+// The evaluation (1-based, as logged) with the run's lowest loss, the first of equals.
+int bestEvaluation(const Run& run) {
+  const auto best = std::min_element(run.curve.loss.begin(), run.curve.loss.end());
+  return std::stoi(run.rows[static_cast<std::size_t>(best - run.curve.loss.begin())][3]);
+}
 
 const std::vector<std::string> kRunColumns = {"task",  "method", "seed", "evaluation",
                                               "steps", "wall_s", "loss"};
@@ -162,6 +177,7 @@ struct TaskResult {
   PassTiming timing;
   std::vector<StartingPoint> starts;  // seed s at s - 1 (StartingPoint.h)
   int seeds = 0;                      // seeds 1..seeds (--seeds)
+  bool handles = false;               // handles and obstacles: Run::handleDepth is measured
 };
 
 PassTiming timePasses(const Scene& scene, const ParameterSet& parameters) {
@@ -401,7 +417,10 @@ std::string describeSetting(const std::string& key, const nlohmann::json& v) {
 }
 
 // Throws unless the settings stored in `file` are `settings`; returns the stored settings.
-nlohmann::json checkStoredSettings(const std::string& file, const nlohmann::json& settings) {
+// *appDiffers (when given) receives the refusal for runs made by other app/weft/ sources instead
+// of the throw: such a build may still tabulate a store whose runs are all made.
+nlohmann::json checkStoredSettings(const std::string& file, const nlohmann::json& settings,
+                                   std::string* appDiffers = nullptr) {
   nlohmann::json stored;
   try {
     std::ifstream in(file);
@@ -427,21 +446,29 @@ nlohmann::json checkStoredSettings(const std::string& file, const nlohmann::json
     for (const char* key : {"engine", "app", "assets", "modified"}) {
       const nlohmann::json a = have.value(key, nlohmann::json()),
                            b = want.value(key, nlohmann::json());
-      if (a != b)
+      if (a == b) continue;
+      const std::string made = "the stored runs were made by " + describeBuild(have) + ", whose ";
+      const std::string mine = " differ from this build's (" + describeBuild(want) + ")";
+      if (std::string(key) == "app" && appDiffers)
+        *appDiffers = made + "app/ sources" + mine;
+      else
         throw InputError(file, std::string("build.") + key,
-                         "the stored runs were made by " + describeBuild(have) + ", whose " +
+                         made +
                              (std::string(key) == "modified" ? std::string("uncommitted changes")
                                                              : std::string(key) + "/ sources") +
-                             " differ from this build's (" + describeBuild(want) +
-                             "); their results would not be one comparison: use another --out");
+                             mine +
+                             "; their results would not be one comparison: use another --out");
     }
   return stored;
 }
 
 // The run store: DIR.partial/ while the comparison runs. Returns the number of stored runs.
-// *storedBuild: the build that made the store's first runs (settings.json's "build").
+// *storedBuild: the build that made the store's first runs (settings.json's "build");
+// *appDiffers: checkStoredSettings's; *copied: whether the store was made here, a copy of the
+// finished comparison's runs.
 int openRunStore(const std::string& store, const std::string& finished, bool resume,
-                 const nlohmann::json& settings, nlohmann::json* storedBuild) {
+                 const nlohmann::json& settings, nlohmann::json* storedBuild,
+                 std::string* appDiffers, bool* copied) {
   std::error_code ec;
   const std::string settingsFile = store + "/settings.json";
   if (fs::exists(store, ec) && !resume)
@@ -450,15 +477,17 @@ int openRunStore(const std::string& store, const std::string& finished, bool res
                      "remove the folder to start over");
   if (resume && !fs::exists(store, ec) && fs::is_regular_file(finished + "/settings.json", ec)) {
     // A finished comparison: continue from its runs (more seeds, more tasks) without touching it.
-    checkStoredSettings(finished + "/settings.json", settings);
+    checkStoredSettings(finished + "/settings.json", settings, appDiffers);
     fs::create_directories(store, ec);
     fs::copy(finished, store, fs::copy_options::recursive, ec);
+    *copied = true;
     if (ec)
       throw InputError(store, "--resume",
                        "cannot copy the runs of " + finished + ": " + ec.message());
   }
   if (fs::exists(settingsFile, ec)) {
-    *storedBuild = checkStoredSettings(settingsFile, settings).value("build", nlohmann::json());
+    *storedBuild =
+        checkStoredSettings(settingsFile, settings, appDiffers).value("build", nlohmann::json());
   } else {
     *storedBuild = settings["build"];
     fs::create_directories(store, ec);
@@ -537,11 +566,12 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     results.push_back(std::move(result));
   }
   nlohmann::json storedBuild;
-  const int storedRuns = openRunStore(
-      store, finalDir + "/runs", resume,
-      runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir, lbfgsb), &storedBuild);
-  if (storedRuns > 0)
-    std::fprintf(stderr, "applications: %d stored run(s) in %s\n", storedRuns, store.c_str());
+  std::string appDiffers;
+  bool storeCopied = false;
+  const int storedRuns =
+      openRunStore(store, finalDir + "/runs", resume,
+                   runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir, lbfgsb),
+                   &storedBuild, &appDiffers, &storeCopied);
 
   // The scenes of the tasks that still have runs to make (or a pass to time), loaded once.
   struct TaskScene {
@@ -611,6 +641,29 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         jobs.push_back({t, seed, m, {}});
       }
   }
+  // Runs made by other app/weft/ sources (the CLI, this bench, the task budgets) are read back
+  // only to be tabulated again (a new table, a corrected report); a run this build made would
+  // not be one comparison with them, and a stored run must fit this build's budget.
+  if (!appDiffers.empty()) {
+    if (!jobs.empty()) {
+      std::error_code ec;
+      if (storeCopied) fs::remove_all(store, ec);  // the finished comparison is left as it was
+      throw InputError(store + "/settings.json", "build.app",
+                       appDiffers + ": it may tabulate them, but not add runs to them (" +
+                           std::to_string(jobs.size()) +
+                           " run(s) are still to be made); build the commit that made them to "
+                           "continue, or use another --out");
+    }
+    for (const TaskResult& r : results)
+      for (const Run& run : r.runs)
+        if (run.curve.steps.back() > r.budget)
+          throw InputError(store + "/" + runFileName(*r.task, run.method, run.seed), "steps",
+                           "the stored run used " + std::to_string(run.curve.steps.back()) +
+                               " steps, over this build's budget of " + std::to_string(r.budget) +
+                               " for " + r.task->name);
+  }
+  if (storedRuns > 0)
+    std::fprintf(stderr, "applications: %d stored run(s) in %s\n", storedRuns, store.c_str());
 
   // The runs to make, `jobs` at a time (--jobs), each on its own thread with --threads OpenMP
   // threads: the runs are independent and each is deterministic, so the stored runs do not depend
@@ -709,6 +762,19 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                  result.task->name);
     result.timing = timePasses(*loaded[t].scene, *loaded[t].parameters);
     drawStarts(t);
+    // Where each run's answer puts the handles, from the values stored with the run: an answer
+    // that drives a handle through the body is not a motion a manipulator can make, however low
+    // its loss (the Sock, docs/applications.md).
+    result.handles = hasHandlesAndObstacles(*loaded[t].scene);
+    if (result.handles)
+      for (Run& run : result.runs) {
+        const std::string file =
+            store + "/parameters/" + runFileName(*result.task, run.method, run.seed);
+        const Eigen::VectorXd values =
+            storedParameterValues(file, *loaded[t].parameters, bestEvaluation(run));
+        run.handleDepth =
+            deepestHandleTargetDepth(loaded[t].parameters->withValues(*loaded[t].scene, values));
+      }
   }
   BenchTable csv(kRunColumns);
   for (const TaskResult& r : results)
@@ -734,6 +800,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                      "CMA-ES equal-step %", "(1+1)-ES final %", "(1+1)-ES equal-step %",
                      "L-BFGS-B conv. steps", "CMA-ES conv. steps", "(1+1)-ES conv. steps",
                      "CMA-ES / L-BFGS-B steps", "iter. conv. %", "forward s", "backward s"});
+  BenchTable handles({"task", "seed", "L-BFGS-B (mm)", "CMA-ES (mm)", "(1+1)-ES (mm)"});
   BenchTable perSeed({"task", "seed", "initial loss", "L-BFGS-B final", "CMA-ES final",
                       "(1+1)-ES final", "L-BFGS-B %", "CMA-ES %", "(1+1)-ES %",
                       "L-BFGS-B conv. steps", "CMA-ES conv. steps", "(1+1)-ES conv. steps",
@@ -833,6 +900,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                stepsText(toThreshold[0]), stepsText(toThreshold[1]), stepsText(toThreshold[2]),
                speedupText[0], speedupText[1]});
 
+    const bool hasHandles = r.handles;
     for (int seed = 1; seed <= r.seeds; ++seed) {
       const Run* bySeed[kMethodCount] = {nullptr, nullptr, nullptr};
       for (const Run& run : r.runs)
@@ -856,6 +924,12 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       for (const auto* group : {&finals, &percents, &conv, &walls})
         row.insert(row.end(), group->begin(), group->end());
       perSeed.add(row);
+      if (hasHandles) {
+        std::vector<std::string> depths = {r.task->name, std::to_string(seed)};
+        for (int m = 0; m < kMethodCount; ++m)
+          depths.push_back(bySeed[m] ? formatNumber(1e3 * bySeed[m]->handleDepth, 3) : "-");
+        handles.add(depths);
+      }
     }
 
     std::vector<PlotSeries> plot;
@@ -980,6 +1054,9 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
            << " (not compared: no git record)";
       else if (storedBuild == current)
         md << "runs made by " << now;
+      else if (!appDiffers.empty())
+        md << "runs made by " << describeBuild(storedBuild) << "; tables written by " << now
+           << " (same engine and assets; its app/weft/ differs, so it made no runs)";
       else
         md << "runs made by " << describeBuild(storedBuild) << "; tables written by " << now
            << " (same engine, CLI and assets)";
@@ -1073,6 +1150,16 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         md, "Every seed (DiffCloth Tables 5-6)",
         "Final: the run's best loss; %: of that seed's initial loss; conv. steps: as above, for "
         "the single run; wall s: the run's wall-clock seconds.");
+    if (!handles.rows().empty()) {
+      md << "\n";
+      handles.writeMarkdown(
+          md, "Handles at each run's best point",
+          "Tasks whose handles move among obstacles: how deep the handle targets of each run's "
+          "best evaluation go inside an obstacle (mm, its skin not counted; 0: they stay "
+          "outside), sampled at every step's end time from the parameter values stored with "
+          "the run (runs/parameters/). Not in the paper: a loss on the cloth alone can reward "
+          "paths through the body, which no manipulator can follow.");
+    }
     if (!md) throw InputError(out.file("applications.md"), "output", "write failed");
   }
   out.commit();
