@@ -139,22 +139,48 @@ TEST(ApplicationsBenchCli, LbfgsbSettingsAreRecordedWithTheRuns) {
                        "lbfgsb_first_step: ", "--first-step 0.01");
 }
 
+// A finished comparison of one L-BFGS-B run of the smallest napkin: the command that made it and
+// the settings stored with its runs.
+struct FinishedStore {
+  TempDir dir;
+  std::string out = dir.file("bench");
+  std::vector<std::string> args = {
+      "bench", "applications", "--tasks", "napkin_4x4", "--seeds", "1",     "--budget",
+      "300",   "--methods",    "lbfgsb",  "--threads",  "1",       "--out", out};
+  nlohmann::json settings;
+};
+
+void makeFinishedStore(FinishedStore& store) {
+  const auto r = runWeft(store.args);
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  store.settings = nlohmann::json::parse(test::readFile(store.out + "/runs/settings.json"));
+  ASSERT_TRUE(store.settings.contains("build"));
+}
+
+// With the store's settings.json replaced by `stored`, resuming it with one more seed is refused
+// as `option`: `what`, and its runs are kept.
+void expectMoreSeedsRefused(FinishedStore& store, const nlohmann::json& stored,
+                            const std::string& option, const std::string& what) {
+  store.dir.write("bench/runs/settings.json", stored.dump(2));
+  std::vector<std::string> more(store.args.begin() + 1, store.args.end());
+  more.insert(more.end(), {"--resume", "--seeds", "2"});
+  test::expectBadInput("bench", more, option, what);
+  EXPECT_TRUE(std::filesystem::exists(store.out + "/runs/napkin_4x4_lbfgsb_1.csv"));
+}
+
 // The build that made the runs is stored with them and named in applications.md; a store made by
 // a build with other engine sources is not resumed (a docs-only commit, i.e. another commit with
 // the same engine, CLI and assets, is).
 TEST(ApplicationsBenchCli, RunsRecordTheirBuildAndOtherEnginesDoNotResumeThem) {
   const auto version = runWeft({"--version"});
   ASSERT_EQ(version.exitCode, 0) << describe(version);
-  TempDir dir;
-  const std::string out = dir.file("bench");
-  const std::vector<std::string> args = {
-      "bench", "applications", "--tasks", "napkin_4x4", "--seeds", "1",     "--budget",
-      "300",   "--methods",    "lbfgsb",  "--threads",  "1",       "--out", out};
-  const auto r = runWeft(args);
-  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  FinishedStore store;
+  ASSERT_NO_FATAL_FAILURE(makeFinishedStore(store));
+  TempDir& dir = store.dir;
+  const std::string& out = store.out;
+  const std::vector<std::string>& args = store.args;
   const std::string settingsFile = out + "/runs/settings.json";
-  nlohmann::json settings = nlohmann::json::parse(test::readFile(settingsFile));
-  ASSERT_TRUE(settings.contains("build"));
+  const nlohmann::json& settings = store.settings;
   const nlohmann::json build = settings["build"];
   if (!build["commit"].is_string()) GTEST_SKIP() << "built without git: nothing recorded";
   const std::string commit = build["commit"].get<std::string>();
@@ -168,12 +194,10 @@ TEST(ApplicationsBenchCli, RunsRecordTheirBuildAndOtherEnginesDoNotResumeThem) {
   // Another engine made these runs: refused, the runs kept.
   nlohmann::json other = settings;
   other["build"]["engine"] = std::string(40, '0');
-  dir.write("bench/runs/settings.json", other.dump(2));
+  expectMoreSeedsRefused(
+      store, other, "settings.json: build.engine: ", "engine/ sources differ from this build's");
   std::vector<std::string> resume(args.begin() + 1, args.end());
   resume.insert(resume.end(), {"--resume", "--seeds", "2"});
-  test::expectBadInput("bench", resume,
-                       "settings.json: build.engine: ", "engine/ sources differ from this build's");
-  EXPECT_TRUE(std::filesystem::exists(out + "/runs/napkin_4x4_lbfgsb_1.csv"));
 
   // Another commit with the same sources: resumed, and the page says which build wrote it.
   other = settings;
@@ -201,23 +225,16 @@ TEST(ApplicationsBenchCli, RunsRecordTheirBuildAndOtherEnginesDoNotResumeThem) {
 // A build whose app/weft/ differs (a new table, a corrected report) may tabulate a store whose
 // runs are all made, with the same engine and assets; it may not add runs to it.
 TEST(ApplicationsBenchCli, AnotherCliTabulatesAFinishedStoreButAddsNoRuns) {
-  TempDir dir;
-  const std::string out = dir.file("bench");
-  const std::vector<std::string> args = {
-      "bench", "applications", "--tasks", "napkin_4x4", "--seeds", "1",     "--budget",
-      "300",   "--methods",    "lbfgsb",  "--threads",  "1",       "--out", out};
-  const auto r = runWeft(args);
-  ASSERT_EQ(r.exitCode, 0) << describe(r);
-  nlohmann::json settings = nlohmann::json::parse(test::readFile(out + "/runs/settings.json"));
+  FinishedStore store;
+  ASSERT_NO_FATAL_FAILURE(makeFinishedStore(store));
+  TempDir& dir = store.dir;
+  const std::string& out = store.out;
+  const std::vector<std::string>& args = store.args;
+  nlohmann::json settings = store.settings;
   if (!settings["build"]["commit"].is_string()) GTEST_SKIP() << "built without git";
   settings["build"]["app"] = std::string(40, '0');
-  dir.write("bench/runs/settings.json", settings.dump(2));
-
-  std::vector<std::string> more(args.begin() + 1, args.end());
-  more.insert(more.end(), {"--resume", "--seeds", "2"});
-  test::expectBadInput("bench", more,
-                       "settings.json: build.app: ", "1 run(s) are still to be made");
-  EXPECT_TRUE(std::filesystem::exists(out + "/runs/napkin_4x4_lbfgsb_1.csv"));
+  expectMoreSeedsRefused(store, settings,
+                         "settings.json: build.app: ", "1 run(s) are still to be made");
 
   std::vector<std::string> same = args;
   same.push_back("--resume");
