@@ -10,7 +10,8 @@
 //   loss.csv     evaluation,steps,wall_s,loss,<parameter paths...>  (one row per evaluation)
 //   result.json  method, seed, initial/final parameters and loss, evaluations, steps, gradient
 //                norm (null for the gradient-free methods), stop reason, timing, backward-solver
-//                counts
+//                counts, and final_handles_entering_obstacles: the scene check's messages for
+//                the final parameters (handles driven into an obstacle; also printed as warnings)
 //   loss.png     loss against simulated steps (gnuplot; skipped, with a note, without it)
 // The budget is in simulated steps as DiffCloth's tables count them: a forward step is one, a
 // backward step one more, so one evaluation of a scene with N steps costs 2N for the
@@ -24,6 +25,7 @@
 #include "SceneWarnings.h"
 #include "bench/BenchTable.h"
 
+#include <weft/contact/HandleObstacleCheck.h>
 #include <weft/core/Error.h>
 #include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/Backpropagation.h>
@@ -148,6 +150,12 @@ int optimizeCommand(const std::vector<std::string>& args) {
 
   const OptimizationLog& log = optimizer->log();
   const Eigen::VectorXd finalValues = space.toValues(result.x);
+  // An answer whose handles pass through an obstacle is no motion a manipulator can make, however
+  // low its loss (the Sock, docs/applications.md): checked as the scene itself was, at load.
+  const std::vector<std::string> entering =
+      handlesEnteringObstacles(parameters.withValues(scene, finalValues));
+  for (const std::string& w : entering)
+    std::fprintf(stderr, "warning: the final parameters: %s\n", w.c_str());
   // The gradient-free methods never compute one: the report says null rather than spend a
   // backward pass outside the budget.
   const nlohmann::json null(nullptr);
@@ -197,6 +205,7 @@ int optimizeCommand(const std::vector<std::string>& args) {
         {"fallbacks", b.fallbacks},
         {"adjoint_growth", b.adjointGrowth}}},
       {"unconverged_forward_steps", objective.unconvergedForwardSteps()},
+      {"final_handles_entering_obstacles", entering},
   };
   if (usesGradient) {
     const std::string growth =

@@ -105,6 +105,45 @@ TEST(OptimizeCli, WritesLossCsvResultJsonAndPlot) {
   }
 }
 
+// The final parameters are checked as a scene is at load: handles driven into an obstacle are
+// warned about and listed in result.json (none for the tiny scene, which has no handle).
+TEST(OptimizeCli, FinalHandlesEnteringAnObstacleAreReported) {
+  TempDir dir;
+  const std::string clean = writeTinyScene(dir);
+  const auto r = runWeft({"optimize", clean, "--max-evaluations", "1", "--out", dir.file("clean"),
+                          "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const nlohmann::json none = nlohmann::json::parse(test::readFile(dir.file("clean/result.json")));
+  EXPECT_EQ(none["final_handles_entering_obstacles"], nlohmann::json::array());
+
+  // A handle on the bottom-left corner whose keyframes end 5 cm inside a sphere below it: one
+  // evaluation, so the final parameters are the scene's own.
+  nlohmann::json doc = nlohmann::json::parse(test::readFile(clean));
+  const int corner = 4 * 5;  // the 4 x 4 grid's first vertex of its last row
+  const Vec3 p = test::parse(doc, "tiny").cloths[0].mesh.vertices.row(corner).transpose();
+  doc["obstacles"] = {
+      {{"sphere", {{"center", {p.x(), p.y() - 0.3, p.z()}}, {"radius", 0.2}}}, {"friction", 0.0}}};
+  doc["cloths"][0]["attachments"].push_back(
+      {{"vertices", {corner}},
+       {"kind", "handle"},
+       {"trajectory",
+        {{"keyframes",
+          {{{"time", 0.0}, {"offset", {0.0, 0.0, 0.0}}},
+           {{"time", kSteps * doc["time"]["dt"].get<double>()},
+            {"offset", {0.0, -0.15, 0.0}}}}}}}});
+  const std::string inside = test::writeScene(dir.file("inside.json"), doc);
+  const auto h = runWeft({"optimize", inside, "--max-evaluations", "1", "--out", dir.file("inside"),
+                          "--quiet", "--threads", "1"});
+  ASSERT_EQ(h.exitCode, 0) << describe(h);
+  EXPECT_THAT(h.err, HasSubstr("warning: the final parameters: "));
+  const nlohmann::json result =
+      nlohmann::json::parse(test::readFile(dir.file("inside/result.json")));
+  ASSERT_EQ(result["final_handles_entering_obstacles"].size(), 1u) << result.dump(2);
+  const std::string message = result["final_handles_entering_obstacles"][0];
+  EXPECT_THAT(message, HasSubstr("attachments.1: the handle's targets enter obstacles.0 (sphere)"));
+  EXPECT_THAT(message, HasSubstr("up to 50.0 mm deep"));
+}
+
 TEST(OptimizeCli, AdamLowersTheLossAndIsReproducible) {
   TempDir dir;
   const std::string scene = writeTinyScene(dir);
