@@ -516,6 +516,42 @@ TEST(PaperMeshScenes, HatTargetSitsOnTheHead) {
   EXPECT_NEAR(centre(t).z(), 0.0, 1e-6);
 }
 
+// Handle paths move with their remapped vertices' rest positions: each handle still starts at
+// its new vertices, and its last knot puts the handle (the mean of its vertices' targets) where
+// the task's own handle ended.
+TEST(PaperMeshScenes, HandlePathsEndWhereTheTasksHandlesEnd) {
+  REQUIRE_PAPER_MESHES();
+  for (const char* task : {"hat", "sock"}) {
+    TempDir dir;
+    const Built b = build(dir, task, 3);
+    const auto& before = b.original.cloths[0].attachments;
+    const auto& after = b.scene.cloths[0].attachments;
+    ASSERT_EQ(before.size(), after.size()) << task;
+    int handles = 0;
+    for (std::size_t a = 0; a < after.size(); ++a) {
+      if (after[a].kind != Attachment::Kind::Handle) continue;
+      ++handles;
+      const double end = after[a].trajectory.times.back();
+      const auto meanTarget = [](const Attachment& at, const NodeMatrix& rest, double t) {
+        Vec3 sum = Vec3::Zero();
+        for (int v : at.vertices) sum += at.trajectory.target(rest.row(v).transpose(), t);
+        return Vec3(sum / static_cast<double>(at.vertices.size()));
+      };
+      const NodeMatrix& x0 = b.original.cloths[0].mesh.vertices;
+      const NodeMatrix& x = b.scene.cloths[0].mesh.vertices;
+      EXPECT_LT((meanTarget(after[a], x, end) - meanTarget(before[a], x0, end)).norm(), 1e-9)
+          << task << " attachment " << a;
+      for (int v : after[a].vertices)
+        EXPECT_LT(
+            (after[a].trajectory.target(x.row(v).transpose(), 0.0) - x.row(v).transpose()).norm(),
+            1e-12)
+            << task << " attachment " << a << " starts at its vertex " << v;
+    }
+    EXPECT_EQ(handles, std::string(task) == "hat" ? 2 : 4);
+    EXPECT_EQ(b.paper.handleShifts.size(), static_cast<std::size_t>(handles));
+  }
+}
+
 TEST(PaperMeshScenes, SockKeepsItsKeypointsAndHoldsTheCuff) {
   REQUIRE_PAPER_MESHES();
   TempDir dir;

@@ -994,6 +994,11 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     }
     writeFileAtomically(out.file("paper_scenes/" + std::string(r.task->name) + ".json"),
                         doc.dump(2) + "\n");
+    std::string shifts;
+    for (const paper::HandleShift& h : p.handleShifts)
+      shifts += (shifts.empty() ? " Handle paths' later knots moved with their vertices: " : "; ") +
+                h.path + " " + formatNumber(1e3 * h.distance, 3) + " mm";
+    if (!shifts.empty()) shifts += ".";
     std::string remaps;
     for (const paper::IndexRemap& m : p.remaps)
       remaps += (remaps.empty() ? "" : "; ") + m.path + " " + std::to_string(m.original) + " -> " +
@@ -1007,7 +1012,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                  formatNumber(p.rotateDeg.z(), 5) + ") deg (" + pm->why + "), scaled by " +
                  formatNumber(p.scale, 6) + ", translated (" + formatNumber(p.translate.x(), 4) +
                  ", " + formatNumber(p.translate.y(), 4) + ", " + formatNumber(p.translate.z(), 4) +
-                 ") m. Remapped: " + remaps + "." +
+                 ") m. Remapped: " + remaps + "." + shifts +
                  (p.target.empty() ? ""
                   : r.paperScene->document["task"]["loss"].contains("trajectory")
                       ? " Target motion recorded on this mesh from the scene's hidden values."

@@ -5,7 +5,8 @@
 // and the Flag), a uniform scale mapping the largest bounding-box extent onto the task garment's
 // largest extent, and a translation putting the two bounding-box centres together. Every vertex
 // index list of the scene (every "vertices" key: attachments, forces, loss vertices, keypoints,
-// hemline) is remapped to the nearest vertices of the new mesh; recorded-motion targets
+// hemline) is remapped to the nearest vertices of the new mesh, and a handle's path after its
+// first knot moves with its vertices (shiftHandlePaths); recorded-motion targets
 // (trajectory loss) are re-recorded in-process from the hidden values the scene's description
 // names (`weft simulate ... --set P=V ...`, what weft_task_targets runs at build time), and a
 // final-pose target that is the rest shape translated (the Hat) is rebuilt as the new rest shape
@@ -94,6 +95,12 @@ struct IndexRemap {
   double maxDistance = 0.0;  // m, from an original vertex's rest position to its new vertex
 };
 
+// A handle whose path was moved with its vertices (shiftHandlePaths).
+struct HandleShift {
+  std::string path;       // JSON path of the attachment
+  double distance = 0.0;  // m, how far its knots after the first moved
+};
+
 struct PaperScene {
   nlohmann::json document;  // the scene, ready for parseScene
   std::string meshFile;     // absolute
@@ -101,6 +108,7 @@ struct PaperScene {
   Vec3 rotateDeg = Vec3::Zero(), translate = Vec3::Zero();
   int vertices = 0, originalVertices = 0;
   std::vector<IndexRemap> remaps;
+  std::vector<HandleShift> handleShifts;
   std::string target;  // the target file written, or "" when the task needs none
 };
 
@@ -156,6 +164,44 @@ inline void remapIndexLists(nlohmann::json& node, const std::string& path, const
   } else if (node.is_array()) {
     for (std::size_t i = 0; i < node.size(); ++i)
       remapIndexLists(node[i], path + "." + std::to_string(i), from, to, out);
+  }
+}
+
+// A handle's targets are its vertices' rest positions plus the trajectory's offsets. The remap
+// moves those rest positions, by up to 9 cm on the Sock, whose cuff the uniform fit does not put
+// where the task's cuff is, and the whole path moves with them: into the foot and the leg. So
+// every knot after the first (a Hermite point or a keyframe offset) is moved back by the mean
+// displacement of the attachment's vertices. The path still starts at the new vertices, but it
+// ends where the task's handle ended. `original` is the scene before the remap.
+inline void shiftHandlePaths(nlohmann::json& doc, const nlohmann::json& original,
+                             const NodeMatrix& from, const NodeMatrix& to,
+                             std::vector<HandleShift>& out) {
+  const nlohmann::json& before = original["cloths"][0].value("attachments", nlohmann::json());
+  nlohmann::json& attachments = doc["cloths"][0]["attachments"];
+  if (!attachments.is_array()) return;
+  const auto mean = [](const nlohmann::json& vertices, const NodeMatrix& x) {
+    Vec3 sum = Vec3::Zero();
+    for (const nlohmann::json& v : vertices) sum += x.row(v.get<int>()).transpose();
+    return Vec3(sum / static_cast<double>(vertices.size()));
+  };
+  for (std::size_t a = 0; a < attachments.size(); ++a) {
+    nlohmann::json& attachment = attachments[a];
+    if (attachment.value("kind", "") != "handle" || !attachment.contains("trajectory")) continue;
+    const Vec3 d = mean(before[a]["vertices"], from) - mean(attachment["vertices"], to);
+    nlohmann::json& trajectory = attachment["trajectory"];
+    const auto move = [&](nlohmann::json& offset) {
+      for (int i = 0; i < 3; ++i) offset[i] = offset[i].get<double>() + d[i];
+    };
+    if (trajectory.contains("hermite")) {
+      nlohmann::json& points = trajectory["hermite"]["points"];
+      for (std::size_t k = 1; k < points.size(); ++k) move(points[k]);
+    } else if (trajectory.contains("keyframes")) {
+      nlohmann::json& keys = trajectory["keyframes"];
+      for (std::size_t k = 1; k < keys.size(); ++k) move(keys[k]["offset"]);
+    } else {
+      continue;
+    }
+    out.push_back({"cloths.0.attachments." + std::to_string(a), d.norm()});
   }
 }
 
@@ -223,6 +269,7 @@ inline PaperScene makePaperScene(const std::string& sceneFile, const PaperMesh& 
   const std::string name = doc.value("name", fs::path(sceneFile).stem().string());
   doc["name"] = name + "_paper";
   detail::remapIndexLists(doc, "", from, to, out.remaps);
+  detail::shiftHandlePaths(doc, original.document, from, to, out.handleShifts);
 
   nlohmann::json& loss = doc["task"]["loss"];
   fs::create_directories(targetDir);
