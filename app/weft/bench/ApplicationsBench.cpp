@@ -353,9 +353,7 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
     throw InputError(path, "line 1", "expected the header " + joinCsv(kRunColumns).substr(0, 44));
   for (int number = 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string item; std::getline(fields, item, ',');) f.push_back(item);
+    const std::vector<std::string> f = splitCsvLine(line);
     const std::string where = "line " + std::to_string(number);
     if (f.size() != kRunColumns.size())
       throw InputError(path, where, "expected " + std::to_string(kRunColumns.size()) + " fields");
@@ -900,7 +898,6 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                stepsText(toThreshold[0]), stepsText(toThreshold[1]), stepsText(toThreshold[2]),
                speedupText[0], speedupText[1]});
 
-    const bool hasHandles = r.handles;
     for (int seed = 1; seed <= r.seeds; ++seed) {
       const Run* bySeed[kMethodCount] = {nullptr, nullptr, nullptr};
       for (const Run& run : r.runs)
@@ -924,7 +921,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       for (const auto* group : {&finals, &percents, &conv, &walls})
         row.insert(row.end(), group->begin(), group->end());
       perSeed.add(row);
-      if (hasHandles) {
+      if (r.handles) {
         std::vector<std::string> depths = {r.task->name, std::to_string(seed)};
         for (int m = 0; m < kMethodCount; ++m)
           depths.push_back(bySeed[m] ? formatNumber(1e3 * bySeed[m]->handleDepth, 3) : "-");

@@ -8,16 +8,12 @@
 #include <vector>
 
 namespace weft::cli {
-namespace {
-
-std::vector<std::string> fields(const std::string& line) {
+std::vector<std::string> splitCsvLine(const std::string& line) {
   std::vector<std::string> out;
   std::stringstream items(line);
   for (std::string item; std::getline(items, item, ',');) out.push_back(item);
   return out;
 }
-
-}  // namespace
 
 Eigen::VectorXd storedParameterValues(const std::string& file, const ParameterSet& parameters,
                                       int evaluation) {
@@ -26,13 +22,13 @@ Eigen::VectorXd storedParameterValues(const std::string& file, const ParameterSe
   std::string line;
   std::vector<std::string> expected{"evaluation"};
   for (const SceneParameter& p : parameters.parameters()) expected.push_back(p.path);
-  if (!std::getline(in, line) || fields(line) != expected)
+  if (!std::getline(in, line) || splitCsvLine(line) != expected)
     throw InputError(file, "line 1",
                      "expected the header 'evaluation' and the task's " +
                          std::to_string(parameters.size()) + " parameter paths in order");
   const std::string wanted = std::to_string(evaluation);
   for (int number = 2; std::getline(in, line); ++number) {
-    const std::vector<std::string> f = fields(line);
+    const std::vector<std::string> f = splitCsvLine(line);
     if (f.empty() || f[0] != wanted) continue;
     const std::string where = "line " + std::to_string(number);
     if (f.size() != expected.size())

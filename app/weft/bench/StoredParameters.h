@@ -9,8 +9,12 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <vector>
 
 namespace weft::cli {
+
+// One line of a run store's CSV files (no quoting: names and numbers only), split at commas.
+std::vector<std::string> splitCsvLine(const std::string& line);
 
 // The values of `evaluation` in `file`, in the order of `parameters`. Throws InputError naming
 // the file when it is missing, its header is not "evaluation" and the parameters' paths, a value
