@@ -796,7 +796,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                     "(1+1)-ES speedup"});
   BenchTable passes({"task", "DoF", "time steps", "h [s]", "forward s", "backward s",
                      "CPU s (both)", "iter. conv. %", "unconverged forward steps", "adjoint growth",
-                     "L-BFGS-B s per evaluation (runs)"});
+                     "L-BFGS-B s per evaluation (runs)", "runs' wall s (all)"});
   BenchTable beside({"task", "source", "parameters", "seeds", "L-BFGS-B final %", "CMA-ES final %",
                      "CMA-ES equal-step %", "(1+1)-ES final %", "(1+1)-ES equal-step %",
                      "L-BFGS-B conv. steps", "CMA-ES conv. steps", "(1+1)-ES conv. steps",
@@ -863,11 +863,13 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         t.measured && t.backwardSolves > 0
             ? formatNumber(100.0 * (t.backwardSolves - t.notConverged) / t.backwardSolves, 4)
             : "-";
-    double lbfgsbSeconds = 0.0;
+    double lbfgsbSeconds = 0.0, runSeconds = 0.0;
     std::size_t lbfgsbEvaluations = 0;
-    for (const Run& run : r.runs)
+    for (const Run& run : r.runs) {
+      runSeconds += run.seconds;
       if (run.method == 0)
         lbfgsbSeconds += run.seconds, lbfgsbEvaluations += run.curve.steps.size();
+    }
     passes.add({r.task->name, std::to_string(3 * r.garmentVertices), std::to_string(t.steps),
                 formatNumber(t.timeStep, 4),
                 t.measured ? formatNumber(t.forwardSeconds, 3) : "failed: " + t.failure,
@@ -875,7 +877,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                 formatNumber(t.cpuSeconds, 3), iterConverged,
                 std::to_string(t.unconvergedForwardSteps),
                 t.measured ? formatNumber(t.adjointGrowth, 3) : "-",
-                lbfgsbEvaluations ? formatNumber(lbfgsbSeconds / lbfgsbEvaluations, 3) : "-"});
+                lbfgsbEvaluations ? formatNumber(lbfgsbSeconds / lbfgsbEvaluations, 3) : "-",
+                formatNumber(runSeconds, 4)});
     if (const paper::PublishedTaskFigures* p = paper::publishedFigures(r.task->name)) {
       const auto ratio = [](long long a, long long b) {
         return a > 0 && b > 0 ? formatNumber(double(a) / double(b), 3) : std::string("-");
@@ -1045,13 +1048,19 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     std::string taskList;
     for (const TaskResult& r : results)
       taskList += (taskList.empty() ? "" : ",") + std::string(r.task->name);
+    double runSeconds = 0.0;
+    for (const TaskResult& r : results)
+      for (const Run& run : r.runs) runSeconds += run.seconds;
     const std::string setup =
         "Machine: " + machineDescription() + ", " + std::to_string(threads) +
         " thread(s) per run, " +
         std::to_string(std::min<int>(jobCount, std::max<int>(1, newRuns))) + " run(s) at a time. " +
         describeSeeds(results) + ", " + formatNumber(benchSeconds, 4) + " s in this invocation (" +
         std::to_string(newRuns) + " run(s) made, " + std::to_string(resumedRuns) +
-        " read back from stored run files; a run's wall s is its own). Each seed draws one "
+        " read back from stored run files; a run's wall s is its own). The runs' wall seconds add "
+        "up to " +
+        formatNumber(runSeconds, 4) + " s (" + formatNumber(runSeconds / 3600.0, 3) +
+        " h), each measured while it ran. Each seed draws one "
         "starting point (uniform within a quarter of each "
         "parameter's box width "
         "around the scene's values; box widths capped at 2 optimiser units; a draw whose handle "
@@ -1157,7 +1166,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         "(adjoint and parameter gradient), CPU s the process CPU time of both; iter. conv. %: the "
         "share of its backward steps whose iterative solve converged without the direct fallback "
         "(Table 3). L-BFGS-B s per evaluation: the mean over the stored L-BFGS-B runs (forward and "
-        "backward together, wall, under whatever load the runs met). DoF: 3 x the cloth's nodes. "
+        "backward together, wall, under whatever load the runs met); runs' wall s: the sum over "
+        "all the task's runs. DoF: 3 x the cloth's nodes. "
         "Adjoint growth: max |z_n| over the first nonzero |z_n| of the backward pass; the "
         "iterative "
         "solve's gradient error is of the order of tolerance x sqrt(growth) / 100 "
