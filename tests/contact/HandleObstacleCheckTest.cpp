@@ -8,6 +8,7 @@
 
 #include <support/SceneBuilder.h>
 #include <weft/contact/HandleObstacleCheck.h>
+#include <weft/contact/HandleTargetSamples.h>
 
 #include <gtest/gtest.h>
 
@@ -58,6 +59,19 @@ TEST(HandleObstacleCheck, SeesAMovingObstacleComeOntoAHandle) {
   const std::vector<std::string> messages = handlesEnteringObstacles(test::parse(doc));
   ASSERT_EQ(messages.size(), 1u);
   EXPECT_NE(messages[0].find("t = 0.67 s"), std::string::npos) << messages[0];
+}
+
+TEST(HandleObstacleCheck, SamplesOnlyScenesWithAHandleAndAnObstacle) {
+  const nlohmann::json doc = scene(Vec3(0.45, 0, 0));
+  EXPECT_TRUE(hasHandlesAndObstacles(test::parse(doc)));
+  nlohmann::json noObstacle = doc;
+  noObstacle.erase("obstacles");
+  EXPECT_FALSE(hasHandlesAndObstacles(test::parse(noObstacle)));
+  nlohmann::json pinned = doc;  // the same vertex held fixed is not a handle
+  pinned["cloths"][0]["attachments"][0]["kind"] = "fixed";
+  pinned["cloths"][0]["attachments"][0].erase("trajectory");
+  EXPECT_FALSE(hasHandlesAndObstacles(test::parse(pinned)));
+  EXPECT_TRUE(handlesEnteringObstacles(test::parse(pinned)).empty());
 }
 
 }  // namespace

@@ -6,14 +6,6 @@
 
 namespace weft::cli {
 
-bool hasHandlesAndObstacles(const Scene& scene) {
-  if (scene.obstacles.empty()) return false;
-  for (const Cloth& cloth : scene.cloths)
-    for (const Attachment& a : cloth.attachments)
-      if (a.kind == Attachment::Kind::Handle) return true;
-  return false;
-}
-
 double deepestHandleTargetDepth(const Scene& scene) {
   double deepest = 0.0;
   forEachHandleTargetNearObstacle(scene, 0, 0.0, [&](const HandleTargetSample& s) {

@@ -3,12 +3,10 @@
 // answer puts them (ApplicationsBench): the engine's walk over handle targets near obstacles
 // (contact/HandleTargetSamples.h), reduced to one number.
 
+#include <weft/contact/HandleTargetSamples.h>
 #include <weft/scene/Scene.h>
 
 namespace weft::cli {
-
-// Whether the scene has anything to measure: a handle attachment and an obstacle.
-bool hasHandlesAndObstacles(const Scene& scene);
 
 // The deepest any handle vertex's target goes inside an obstacle (m, its skin not counted), at
 // every step's end time, the samples the scene check for handles entering obstacles

@@ -5,14 +5,19 @@
 
 namespace weft {
 
+bool hasHandlesAndObstacles(const Scene& scene) {
+  if (scene.obstacles.empty()) return false;
+  for (const Cloth& cloth : scene.cloths)
+    for (const Attachment& a : cloth.attachments)
+      if (a.kind == Attachment::Kind::Handle) return true;
+  return false;
+}
+
 void forEachHandleTargetNearObstacle(const Scene& scene, int firstStep, double reach,
                                      const std::function<void(const HandleTargetSample&)>& visit) {
-  bool handles = false;
-  for (const Cloth& cloth : scene.cloths)
-    for (const Attachment& a : cloth.attachments) handles |= a.kind == Attachment::Kind::Handle;
   // Built only when there is something to sample (a mesh obstacle's shape builds its BVH): the
   // editor checks handles on every edit.
-  if (!handles || scene.obstacles.empty()) return;
+  if (!hasHandlesAndObstacles(scene)) return;
   std::vector<std::unique_ptr<ObstacleShape>> shapes;
   for (const Obstacle& o : scene.obstacles) shapes.push_back(makeObstacleShape(o));
   HandleTargetSample sample;

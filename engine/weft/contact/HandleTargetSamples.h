@@ -18,10 +18,13 @@ struct HandleTargetSample {
   const char* shape = "";       // the obstacle shape's name (a string literal)
 };
 
+// Whether the scene has anything to sample: a handle attachment and an obstacle.
+bool hasHandlesAndObstacles(const Scene& scene);
+
 // Calls visit for every handle vertex's target at t_n = n * time.dt, n = firstStep..time.steps,
 // that lies closer than `reach` to an obstacle's surface (distance < reach; a moving obstacle at
 // its pose at t_n), in the order cloth, attachment, obstacle, step, vertex. The obstacles' shapes
-// are built only when the scene has a handle and an obstacle.
+// are built only when hasHandlesAndObstacles(scene).
 void forEachHandleTargetNearObstacle(const Scene& scene, int firstStep, double reach,
                                      const std::function<void(const HandleTargetSample&)>& visit);
 
