@@ -41,7 +41,7 @@ Scenes:
   1e4 N/m per vertex (the default, written out). No self-collision (cost; the paper has it):
   neither task folds the garment onto itself at the starting guess. The sock bends with
   material.bend_model "oriented" (BendingConstraint.h): with the magnitude model its tube's
-  hinges pressed flat against the foot stalled 221 of its 400 step solves (docs/applications.md,
+  hinges pressed flat against the foot stalled 221 of its 400 step solves (docs/applications-history.md,
   "Where the forward solve stalls"); the hat keeps the default.
 - Hat: the head is the analytic sphere obstacle, centre (0, 0, 0), radius 0.1 m, friction 0.3.
   The hat starts 0.3 m to the side (-X) and 0.15 m above its target pose, upright. Each
@@ -79,14 +79,14 @@ Scenes:
   (the contact's skin), a time integral of the squared depth of every held vertex's target
   inside the leg or the foot (diff/HandleClearanceLoss.h). The keypoint loss alone rewards paths
   that drive a handle through the foot: over the first two seeds every optimiser run that got far
-  below its start did so with a handle 32-39 mm inside (docs/applications.md, "The Sock"). At
+  below its start did so with a handle 32-39 mm inside (docs/applications-history.md, "The Sock"). At
   1e4 /s one handle (three vertices) 1 cm deep for 0.25 s costs 0.9, twice a whole starting loss;
   targets 1 mm or more off the skin cost nothing. The weight was 1000 /s until the knots were
   scaled by their boxes (optim/ParameterSpace.h): then the seed-1 best points of all three
   optimisers had a handle 8-20 mm inside, the penalty only 2-11 % of their loss. From the same
   start, L-BFGS-B's best point keeps its handles within 1.8 mm of the skin at 1e4 /s (80 % of
   the start) and outside at 1e5 /s (87 %), against 8 mm at 1000 /s (64 %)
-  (docs/applications.md, "The clearance weight").
+  (docs/applications.md, "Choices measured on the way").
 
 Solver: Newton-PCG, pd_tolerance 1e-4 m/s^2, pd_iterations 500 (README, "Contact": stiff
 contact scenes need many iterations), GMRES adjoint at 1e-6 with the direct fallback; the Sock
