@@ -7,7 +7,7 @@
 // The iteration is Weft's own (the loop of LBFGSpp's LBFGSBSolver, which it reproduces
 // evaluation for evaluation with the default settings; AnalyticOptimizerTest), for two settings
 // that solver does not have, both for gradients that jitter at small scales (the Sock's changes by
-// 7-14 % over 0.04 mm; docs/applications.md):
+// 7-14 % over 0.04 mm; docs/applications-history.md, "The Sock"):
 // - OptimizerSettings::lbfgsbFirstStep: the length of the first trial step, in optimiser
 //   coordinates, along the normalised direction to the first Cauchy point. LBFGSpp tries 1, a
 //   box-sized step on most tasks: the loss there is far off, the line search comes back to a
