@@ -17,7 +17,7 @@
 #include "VertexInspector.h"
 
 #include <weft/contact/ContactObstacle.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 #include <weft/render/Camera.h>
 #include <weft/render/RenderScene.h>
 

@@ -3,7 +3,7 @@
 #include "FinalTargets.h"
 
 #include <weft/diff/FinalFrameLoss.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 
 namespace weft::editor {
 

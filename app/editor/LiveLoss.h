@@ -8,7 +8,7 @@
 #include "SimulationCache.h"
 
 #include <weft/diff/TaskLoss.h>
-#include <weft/physics/Trajectory.h>
+#include <weft/record/Trajectory.h>
 
 #include <memory>
 #include <string>

@@ -2,8 +2,8 @@
 
 #include "WorkerThreads.h"
 
-#include <weft/contact/StepContacts.h>
 #include <weft/physics/Simulator.h>
+#include <weft/record/StepContacts.h>
 
 #include <algorithm>
 

@@ -5,10 +5,10 @@
 // can cancel, and knows the cache is stale once the document differs from the one simulated.
 // No GL and no window: unit tested on its own.
 
-#include <weft/contact/StepContacts.h>
 #include <weft/core/Types.h>
-#include <weft/physics/StepStats.h>
-#include <weft/physics/Trajectory.h>
+#include <weft/record/StepContacts.h>
+#include <weft/record/StepStats.h>
+#include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
 
 #include <atomic>

@@ -7,8 +7,8 @@
 
 #include "SimulationCache.h"
 
-#include <weft/contact/ContactPoint.h>
 #include <weft/core/Types.h>
+#include <weft/record/ContactPoint.h>
 
 #include <optional>
 #include <vector>

@@ -4,7 +4,7 @@
 // trajectories, target ghosts). The renderer never sees a Scene; the engine never sees GL.
 
 #include <weft/core/Types.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 #include <weft/render/RenderScene.h>
 #include <weft/scene/Scene.h>
 

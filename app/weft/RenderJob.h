@@ -4,7 +4,7 @@
 
 #include "RunFolder.h"
 
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 #include <weft/render/Camera.h>
 #include <weft/render/HeadlessContext.h>
 #include <weft/scene/Scene.h>

@@ -3,9 +3,9 @@
 // keeping its per-step contact record, and the check that a recorded contact obeys the branch of
 // the Signorini-Coulomb law (DiffCloth Eq. 8) it claims.
 
-#include <weft/contact/ContactPoint.h>
 #include <weft/physics/Simulator.h>
-#include <weft/physics/Trajectory.h>
+#include <weft/record/ContactPoint.h>
+#include <weft/record/Trajectory.h>
 
 #include <nlohmann/json.hpp>
 

@@ -4,7 +4,7 @@
 
 #include <weft/contact/SelfCollisionDetector.h>
 #include <weft/contact/SpatialHashGrid.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 
 #include <support/SceneBuilder.h>
 

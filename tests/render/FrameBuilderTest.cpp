@@ -7,7 +7,7 @@
 #include <support/TempDir.h>
 
 #include <weft/io/Npy.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 
 #include <gtest/gtest.h>
 

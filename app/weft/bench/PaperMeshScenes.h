@@ -20,7 +20,7 @@
 #include <weft/io/Npy.h>
 #include <weft/mesh/RigidTransform.h>
 #include <weft/physics/Simulator.h>
-#include <weft/physics/Trajectory.h>
+#include <weft/record/Trajectory.h>
 #include <weft/scene/JsonPath.h>
 #include <weft/scene/SceneLoader.h>
 

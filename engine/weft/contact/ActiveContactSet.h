@@ -30,8 +30,8 @@
 // contact ends the step on the wrong side of its constraint.
 
 #include <weft/contact/ContactConstraint.h>
-#include <weft/contact/StepContacts.h>
-#include <weft/physics/StepStats.h>
+#include <weft/record/StepContacts.h>
+#include <weft/record/StepStats.h>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>

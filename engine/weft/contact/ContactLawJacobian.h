@@ -16,7 +16,7 @@
 // form in the free velocity instead gives the same derivative of the step's solution, and every
 // block is finite (notes Sec. 3.1).
 
-#include <weft/contact/ContactPoint.h>
+#include <weft/record/ContactPoint.h>
 
 namespace weft {
 

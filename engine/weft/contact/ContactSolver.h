@@ -18,8 +18,8 @@
 // the next global solve.
 
 #include <weft/contact/ContactConstraint.h>
-#include <weft/contact/StepContacts.h>
-#include <weft/physics/StepStats.h>
+#include <weft/record/StepContacts.h>
+#include <weft/record/StepStats.h>
 
 #include <vector>
 

@@ -19,7 +19,7 @@
 #include <weft/contact/ContactSolver.h>
 #include <weft/contact/ObstacleContactDetector.h>
 #include <weft/contact/SelfCollisionDetector.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 
 #include <memory>
 #include <tuple>

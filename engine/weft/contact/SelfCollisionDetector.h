@@ -19,7 +19,7 @@
 #include <weft/contact/ContactConstraint.h>
 #include <weft/contact/ParallelContactCollector.h>
 #include <weft/contact/SpatialHashGrid.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 
 #include <vector>
 

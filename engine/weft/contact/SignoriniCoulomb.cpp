@@ -2,19 +2,6 @@
 
 namespace weft {
 
-const char* branchName(ContactBranch branch) {
-  switch (branch) {
-    case ContactBranch::TakeOff:
-      return "takeoff";
-    case ContactBranch::Stick:
-      return "stick";
-    case ContactBranch::Slip:
-      return "slip";
-    default:
-      return "none";
-  }
-}
-
 ContactBranch solveSignoriniCoulomb(const Vec3& normal, double friction, const Vec3& free,
                                     Vec3& velocityChange) {
   const double freeNormal = normal.dot(free);

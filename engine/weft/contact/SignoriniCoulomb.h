@@ -10,7 +10,7 @@
 // The stick test uses <=, so |free_T| = 0 (including mu = 0 with no tangential motion) is a
 // stick with zero friction, never a division by zero (notes Sec. 5, pitfall 4).
 
-#include <weft/contact/ContactPoint.h>
+#include <weft/record/ContactPoint.h>
 
 namespace weft {
 

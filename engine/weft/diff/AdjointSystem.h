@@ -18,7 +18,7 @@
 
 #include <weft/core/Types.h>
 #include <weft/diff/ContactAdjoint.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 #include <weft/physics/HessianAssembly.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SparseCholesky.h>

@@ -14,7 +14,7 @@
 #include <weft/diff/AdjointSolver.h>
 #include <weft/diff/ParameterSet.h>
 #include <weft/diff/TaskLoss.h>
-#include <weft/physics/Trajectory.h>
+#include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
 
 #include <Eigen/Core>

@@ -28,9 +28,9 @@
 // derivatives are analytic (ContactLawJacobian.h).
 
 #include <weft/contact/ContactObstacle.h>
-#include <weft/contact/StepContacts.h>
 #include <weft/diff/SceneParameter.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
+#include <weft/record/StepContacts.h>
 
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>

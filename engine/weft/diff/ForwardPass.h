@@ -2,7 +2,7 @@
 // The forward run a gradient is taken of: the scene simulated for its time.steps, every state
 // recorded (the backward pass rebuilds each step's Delta P from the recorded x_{n+1}).
 
-#include <weft/physics/Trajectory.h>
+#include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
 
 namespace weft {

@@ -4,7 +4,7 @@
 // Eqs. 16 and 19).
 
 #include <weft/core/Types.h>
-#include <weft/physics/Trajectory.h>
+#include <weft/record/Trajectory.h>
 
 #include <vector>
 

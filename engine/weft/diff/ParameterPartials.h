@@ -23,7 +23,7 @@
 //   initial velocity: enters v_0 only, so it is read from dL/dv_0 at the end (Backpropagation).
 
 #include <weft/diff/SceneParameter.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 #include <weft/physics/ProjectiveConstraint.h>
 
 #include <Eigen/Core>

@@ -4,8 +4,8 @@
 // resolves its relative paths), into a folder (normally a StagedDirectory, so nothing partial is
 // left).
 
-#include <weft/physics/ClothModel.h>
-#include <weft/physics/Trajectory.h>
+#include <weft/model/ClothModel.h>
+#include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
 
 #include <nlohmann/json.hpp>

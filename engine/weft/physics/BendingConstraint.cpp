@@ -1,7 +1,7 @@
 #include <weft/physics/BendingConstraint.h>
 
 #include <weft/mesh/TriangleMesh.h>
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 #include <weft/scene/Scene.h>
 
 #include <algorithm>

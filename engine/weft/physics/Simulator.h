@@ -26,15 +26,15 @@
 
 #include <weft/contact/FrictionalContact.h>
 #include <weft/core/Types.h>
+#include <weft/model/ClothModel.h>
 #include <weft/physics/AndersonAccelerator.h>
-#include <weft/physics/ClothModel.h>
 #include <weft/physics/ExternalForce.h>
 #include <weft/physics/Gmres.h>
 #include <weft/physics/HessianAssembly.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SparseCholesky.h>
-#include <weft/physics/StepStats.h>
-#include <weft/physics/Trajectory.h>
+#include <weft/record/StepStats.h>
+#include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
 
 #include <functional>

@@ -1,6 +1,6 @@
 #include <weft/physics/StretchConstraint.h>
 
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 #include <weft/scene/Scene.h>
 
 #include <Eigen/Dense>

@@ -1,4 +1,4 @@
-#include <weft/physics/Trajectory.h>
+#include <weft/record/Trajectory.h>
 
 namespace weft {
 

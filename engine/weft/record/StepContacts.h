@@ -2,8 +2,8 @@
 // All contacts of one time step and how their solve went: the per-step contact record the
 // Trajectory keeps (steps 1..N), for the backward pass, the editor and the renderer.
 
-#include <weft/contact/ContactPoint.h>
-#include <weft/physics/StepStats.h>
+#include <weft/record/ContactPoint.h>
+#include <weft/record/StepStats.h>
 
 #include <vector>
 

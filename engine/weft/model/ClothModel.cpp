@@ -1,4 +1,4 @@
-#include <weft/physics/ClothModel.h>
+#include <weft/model/ClothModel.h>
 
 #include <algorithm>
 

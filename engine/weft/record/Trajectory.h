@@ -2,9 +2,9 @@
 // The recorded forward run: the converged state of every step (what the backward pass needs to
 // rebuild each step's projections and contact branches) and the per-step statistics.
 
-#include <weft/contact/StepContacts.h>
 #include <weft/core/Types.h>
-#include <weft/physics/StepStats.h>
+#include <weft/record/StepContacts.h>
+#include <weft/record/StepStats.h>
 
 #include <string>
 #include <vector>
