@@ -59,8 +59,7 @@
 #include <weft/diff/ParameterSet.h>
 #include <weft/io/AtomicFile.h>
 #include <weft/io/StagedDirectory.h>
-#include <weft/optim/Optimizer.h>
-#include <weft/optim/SimulationObjective.h>
+#include <weft/optim/OptimizationRun.h>
 #include <weft/optim/StartingPoint.h>
 #include <weft/scene/SceneLoader.h>
 
@@ -683,17 +682,18 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         const Eigen::VectorXd& start = results[job.task].starts[job.seed - 1].coordinates;
         std::fprintf(stderr, "applications: %s, %s, seed %d...\n", task->name, kMethods[m].name,
                      job.seed);
-        SimulationObjective objective(*ts.scene, *ts.parameters);
+        OptimizationRun optimization(*ts.scene, kMethods[m].name);  // the task's parameters
         OptimizerSettings settings;
         settings.budget = results[job.task].budget;
         settings.seed = static_cast<unsigned>(job.seed);
         settings.lbfgsbFirstStep = lbfgsb.lbfgsbFirstStep;
         settings.lbfgsbMinCurvatureStep = lbfgsb.lbfgsbMinCurvatureStep;
-        std::unique_ptr<Optimizer> optimizer = makeOptimizer(kMethods[m].name, settings);
         // A run can take hours (the Sock's); one progress line per kProgressSeconds of it.
         double reported = 0.0;
         double best = std::numeric_limits<double>::infinity();
-        optimizer->log().setObserver([&, budget = settings.budget](const LogEntry& e) {
+        OptimizationCallbacks callbacks;
+        callbacks.evaluated = [&, budget = settings.budget](const LogEntry& e,
+                                                            const Eigen::VectorXd&) {
           best = std::min(best, e.loss);
           if (e.seconds - reported < kProgressSeconds) return;
           reported = e.seconds;
@@ -702,22 +702,19 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                        "loss %s, %.0f s\n",
                        task->name, kMethods[m].name, job.seed, e.evaluation, e.steps, budget,
                        formatNumber(best, 4).c_str(), e.seconds);
-        });
+        };
         Run& run = job.run;
         run.method = m;
         run.seed = job.seed;
         try {
-          run.stop = optimizer
-                         ->minimize(objective, start, objective.space().lowerCoordinates(),
-                                    objective.space().upperCoordinates())
-                         .stopReason;
+          run.stop = optimization.run(settings, start, callbacks).result.stopReason;
         } catch (const NumericalError& e) {
           // A sample the forward solver cannot simulate ends that run, not the benchmark.
           run.stop = std::string("numerical failure: ") + e.what();
           std::fprintf(stderr, "warning: %s, %s, seed %d: %s\n", task->name, kMethods[m].name,
                        job.seed, e.what());
         }
-        for (const LogEntry& e : optimizer->log().entries()) {
+        for (const LogEntry& e : optimization.log().entries()) {
           run.curve.steps.push_back(e.steps);
           run.curve.loss.push_back(e.loss);
           run.seconds = e.seconds;
@@ -728,7 +725,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                               formatNumber(e.loss, 17)});
         }
         const std::string name = runFileName(*task, m, job.seed);
-        writeParameterFile(store + "/parameters/" + name, objective.space(), optimizer->log());
+        writeParameterFile(store + "/parameters/" + name, optimization.space(), optimization.log());
         writeRunFile(store + "/" + name, run);  // from here on the run survives a kill
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failureMutex);
