@@ -2,8 +2,7 @@
 // Renders the states of a run to PNG frames headless: the work behind `weft render`, shared
 // with the render benchmark.
 
-#include "RunFolder.h"
-
+#include <weft/output/RunFolder.h>
 #include <weft/physics/ClothModel.h>
 #include <weft/render/Camera.h>
 #include <weft/render/HeadlessContext.h>
