@@ -23,8 +23,8 @@
 #include "Commands.h"
 #include "SceneOverrideOption.h"
 #include "SceneWarnings.h"
-#include "bench/BenchTable.h"
 
+#include <weft/bench/BenchTable.h>
 #include <weft/contact/HandleObstacleCheck.h>
 #include <weft/core/Error.h>
 #include <weft/diff/AdjointGrowth.h>
@@ -208,10 +208,10 @@ int optimizeCommand(const std::vector<std::string>& args) {
     if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
   }
   std::string plotNote;
-  PlotSeries series{"loss", {}, {}};
+  bench::PlotSeries series{"loss", {}, {}};
   for (const LogEntry& e : log.entries())
     series.x.push_back(static_cast<double>(e.steps)), series.y.push_back(e.loss);
-  const bool plotted = plotSeries(
+  const bool plotted = bench::plotSeries(
       out.file("loss.png"), scene.name + ": " + method,
       usesGradient ? "simulated steps (forward + backward)" : "simulated steps (forward only)",
       "loss", {series}, false, log.best().loss > 0.0, plotNote);

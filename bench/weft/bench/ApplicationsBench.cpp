@@ -43,10 +43,11 @@
 // 2-core machine: --jobs 2 --threads 1); the stored runs are the same whatever J, their wall
 // seconds are not.
 
-#include "../BuildInfo.h"
-#include "../CommandLine.h"
+#include "ApplicationsBench.h"
+
 #include "BenchAssets.h"
 #include "BenchTable.h"
+#include "BuildRecord.h"
 #include "HandleDepth.h"
 #include "LossEnvelope.h"
 #include "PaperMeshScenes.h"
@@ -82,44 +83,8 @@
 #include <sstream>
 #include <thread>
 
-namespace weft::cli {
+namespace weft::bench {
 namespace {
-
-// The tasks, one line each: the name --tasks takes, the scene below assets/, and the budget of
-// simulated steps per run (the same for every method), normally and under --quick.
-struct ApplicationTask {
-  const char* name;
-  const char* scene;
-  long long budget;
-  long long quickBudget;
-};
-const ApplicationTask kTasks[] = {
-    {"napkin_4x4", "scenes/napkin_4x4.json", 20000, 2500},
-    {"napkin_5x5", "scenes/napkin_5x5.json", 20000, 2500},
-    {"napkin_7x7", "scenes/napkin_7x7.json", 20000, 2500},
-    {"napkin_10x10", "scenes/napkin_10x10.json", 20000, 2500},
-    {"wind_sysid", "scenes/wind_sysid.json", 3000, 600},
-    // Sec. 6.4 and 6.3 (Table 3: L-BFGS-B converged in 6800 and 2750 steps, the ES in up to
-    // 24800 and 10000); quick: 6 and 6 gradient evaluations.
-    {"flag", "scenes/flag.json", 7200, 1200},
-    {"dress", "scenes/dress.json", 6000, 1500},
-    // Sec. 6.1, the T-shirt (Table 3: L-BFGS-B converged in 4500 steps, the ES in about 50000): 10
-    // gradient evaluations of its 250 steps, about 0.25 s of one core a step; quick: 2.
-    {"tshirt", "scenes/tshirt.json", 5000, 1000},
-    // Sec. 6.1-6.2 (Table 3: L-BFGS-B converged in 2450, 11200 and 17600 steps). The Sock's forward
-    // contact solve does not converge once the sock reaches the foot (README, "Tasks").
-    {"sphere_sysid", "scenes/sphere_sysid.json", 7000, 1400},
-    {"hat", "scenes/hat.json", 12000, 1600},
-    {"sock", "scenes/sock.json", 17600, 1600},
-};
-const char* const kQuickTask = "napkin_4x4";
-
-struct Method {
-  const char* name;   // makeOptimizer's
-  const char* title;  // the paper's
-};
-const Method kMethods[] = {{"lbfgsb", "L-BFGS-B"}, {"cmaes", "CMA-ES"}, {"es1p1", "(1+1)-ES"}};
-constexpr int kMethodCount = 3;
 
 // "Steps to reach": the envelope at or below this fraction of the minimum initial loss (the
 // paper's Fig. 4 uses an absolute 0.01 in its own loss units; a fraction carries over to tasks
@@ -206,59 +171,6 @@ PassTiming timePasses(const Scene& scene, const ParameterSet& parameters) {
   return timing;
 }
 
-std::vector<const ApplicationTask*> selectTasks(const CommandLine& cl, bool quick) {
-  std::string known;
-  for (const ApplicationTask& t : kTasks)
-    known += (known.empty() ? "" : ", ") + std::string(t.name);
-  const std::string list = cl.value("--tasks", quick ? kQuickTask : "");
-  std::vector<const ApplicationTask*> out;
-  if (list.empty()) {
-    for (const ApplicationTask& t : kTasks) out.push_back(&t);
-    return out;
-  }
-  std::stringstream items(list);
-  for (std::string name; std::getline(items, name, ',');) {
-    const ApplicationTask* found = nullptr;
-    for (const ApplicationTask& t : kTasks)
-      if (name == t.name) found = &t;
-    if (!found) cl.fail("--tasks", "unknown task '" + name + "' (known: " + known + ")");
-    if (std::find(out.begin(), out.end(), found) == out.end()) out.push_back(found);
-  }
-  if (out.empty())
-    cl.fail("--tasks", "expects a comma-separated list of tasks (known: " + known + ")");
-  return out;
-}
-
-// --seeds N[,task=M,...]: N seeds per task, M for the tasks named (the Sock's runs take hours
-// each, so one command can run it with fewer seeds than the rest). Returns the count per task of
-// `tasks`, in their order.
-std::vector<int> selectSeeds(const CommandLine& cl, bool quick,
-                             const std::vector<const ApplicationTask*>& tasks) {
-  const std::string text = cl.value("--seeds", quick ? "1" : "3");
-  const auto count = [&](const std::string& item) {
-    char* end = nullptr;
-    const long n = std::strtol(item.c_str(), &end, 10);
-    if (item.empty() || *end || n < 1 || n > 100)
-      cl.fail("--seeds", "expects N or N,task=M,... with whole numbers 1..100, got '" + item + "'");
-    return static_cast<int>(n);
-  };
-  std::stringstream items(text);
-  std::string item;
-  std::getline(items, item, ',');
-  std::vector<int> seeds(tasks.size(), count(item));
-  while (std::getline(items, item, ',')) {
-    const std::size_t eq = item.find('=');
-    if (eq == std::string::npos)
-      cl.fail("--seeds", "expects N or N,task=M,...: '" + item + "' is not task=M");
-    const std::string name = item.substr(0, eq);
-    bool found = false;
-    for (std::size_t t = 0; t < tasks.size(); ++t)
-      if (name == tasks[t]->name) seeds[t] = count(item.substr(eq + 1)), found = true;
-    if (!found) cl.fail("--seeds", "names '" + name + "', which is not one of the tasks run");
-  }
-  return seeds;
-}
-
 // "3 seed(s) per task (1..3)", then the tasks that have another count: ", sock 2 (1..2)".
 std::string describeSeeds(const std::vector<TaskResult>& results) {
   std::map<int, int> tasksWith;
@@ -272,26 +184,6 @@ std::string describeSeeds(const std::vector<TaskResult>& results) {
     if (r.seeds != common)
       text += ", " + std::string(r.task->name) + " " + std::to_string(r.seeds) + range(r.seeds);
   return text;
-}
-
-// --methods: which methods make runs (all by default).
-std::array<bool, kMethodCount> selectMethods(const CommandLine& cl) {
-  std::array<bool, kMethodCount> selected;
-  std::string known;
-  for (const Method& m : kMethods) known += (known.empty() ? "" : ", ") + std::string(m.name);
-  const std::string list = cl.value("--methods", "");
-  selected.fill(list.empty());
-  std::stringstream items(list);
-  for (std::string name; std::getline(items, name, ',');) {
-    int found = -1;
-    for (int m = 0; m < kMethodCount; ++m)
-      if (name == kMethods[m].name) found = m;
-    if (found < 0) cl.fail("--methods", "unknown method '" + name + "' (known: " + known + ")");
-    selected[found] = true;
-  }
-  if (std::find(selected.begin(), selected.end(), true) == selected.end())
-    cl.fail("--methods", "expects a comma-separated list of methods (known: " + known + ")");
-  return selected;
 }
 
 std::string percent(double loss, double reference) {
@@ -315,7 +207,8 @@ std::string joinCsv(const std::vector<std::string>& fields) {
 }
 
 std::string runFileName(const ApplicationTask& task, int method, int seed) {
-  return std::string(task.name) + "_" + kMethods[method].name + "_" + std::to_string(seed) + ".csv";
+  return std::string(task.name) + "_" + kApplicationMethods[method].name + "_" +
+         std::to_string(seed) + ".csv";
 }
 
 void writeRunFile(const std::string& path, const Run& run) {
@@ -359,7 +252,8 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
     const std::string where = "line " + std::to_string(number);
     if (f.size() != kRunColumns.size())
       throw InputError(path, where, "expected " + std::to_string(kRunColumns.size()) + " fields");
-    if (f[0] != task.name || f[1] != kMethods[method].name || f[2] != std::to_string(seed))
+    if (f[0] != task.name || f[1] != kApplicationMethods[method].name ||
+        f[2] != std::to_string(seed))
       throw InputError(path, where,
                        "a row of another run (" + f[0] + ", " + f[1] + ", seed " + f[2] + ")");
     char* end = nullptr;
@@ -382,22 +276,22 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
 }
 
 // What a stored run depends on besides its task, method and seed.
-nlohmann::json runSettings(const CommandLine& cl, long long budgetOption, bool quick,
-                           const std::string& paperMeshes, const OptimizerSettings& lbfgsb) {
+nlohmann::json runSettings(const ApplicationsBenchOptions& options) {
+  const OptimizerSettings& lbfgsb = options.lbfgsb;
   const OptimizerSettings defaults;
   auto unlessDefault = [](double value, double fallback) {
     return value == fallback ? nlohmann::json(nullptr) : nlohmann::json(value);
   };
-  return {
-      {"format", "weft bench applications runs 2"},
-      {"budget",
-       cl.has("--budget") ? nlohmann::json(budgetOption) : nlohmann::json("task default")},
-      {"quick", quick},
-      {"paper_meshes", paperMeshes.empty() ? nlohmann::json(nullptr) : nlohmann::json(paperMeshes)},
-      {"lbfgsb_first_step", unlessDefault(lbfgsb.lbfgsbFirstStep, defaults.lbfgsbFirstStep)},
-      {"lbfgsb_min_curvature_step",
-       unlessDefault(lbfgsb.lbfgsbMinCurvatureStep, defaults.lbfgsbMinCurvatureStep)},
-      {"build", buildInfoJson()}};
+  return {{"format", "weft bench applications runs 2"},
+          {"budget",
+           options.budget > 0 ? nlohmann::json(options.budget) : nlohmann::json("task default")},
+          {"quick", options.quick},
+          {"paper_meshes", options.paperMeshes.empty() ? nlohmann::json(nullptr)
+                                                       : nlohmann::json(options.paperMeshes)},
+          {"lbfgsb_first_step", unlessDefault(lbfgsb.lbfgsbFirstStep, defaults.lbfgsbFirstStep)},
+          {"lbfgsb_min_curvature_step",
+           unlessDefault(lbfgsb.lbfgsbMinCurvatureStep, defaults.lbfgsbMinCurvatureStep)},
+          {"build", options.build}};
 }
 
 std::string describeSetting(const std::string& key, const nlohmann::json& v) {
@@ -504,38 +398,17 @@ int openRunStore(const std::string& store, const std::string& finished, bool res
 
 }  // namespace
 
-int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
-  const bool quick = cl.has("--quick");
-  const bool resume = cl.has("--resume");
-  const std::vector<const ApplicationTask*> tasks = selectTasks(cl, quick);
-  const std::array<bool, kMethodCount> methods = selectMethods(cl);
-  const std::vector<int> taskSeeds = selectSeeds(cl, quick, tasks);
-  const int threads = cl.integer("--threads", 1, 1, 1024);
-  const int jobCount = cl.integer("--jobs", 1, 1, 64);
+int runApplicationsBench(const ApplicationsBenchOptions& options, const std::string& outDir) {
+  const bool quick = options.quick;
+  const bool resume = options.resume;
+  const std::vector<const ApplicationTask*>& tasks = options.tasks;
+  const std::array<bool, kApplicationMethodCount>& methods = options.methods;
+  const std::vector<int>& taskSeeds = options.seeds;
+  const int threads = options.threads;
+  const int jobCount = options.jobs;
   omp_set_num_threads(threads);
-  const double budgetOption = cl.number("--budget", 0.0);
-  if (cl.has("--budget") &&
-      !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
-    cl.fail("--budget", "must be a positive whole number of simulated steps");
-  OptimizerSettings lbfgsb;  // L-BFGS-B's own settings, for every task
-  lbfgsb.lbfgsbFirstStep = cl.number("--first-step", lbfgsb.lbfgsbFirstStep);
-  if (!(lbfgsb.lbfgsbFirstStep > 0.0 && std::isfinite(lbfgsb.lbfgsbFirstStep)))
-    cl.fail("--first-step", "must be a finite length > 0 (optimiser coordinates)");
-  lbfgsb.lbfgsbMinCurvatureStep = cl.number("--min-curvature-step", lbfgsb.lbfgsbMinCurvatureStep);
-  if (!(lbfgsb.lbfgsbMinCurvatureStep >= 0.0 && std::isfinite(lbfgsb.lbfgsbMinCurvatureStep)))
-    cl.fail("--min-curvature-step", "must be a finite length >= 0 (optimiser coordinates)");
-  // --paper-meshes [DIR]: BenchCommand hands a bare --paper-meshes over as an empty value.
-  std::string paperDir;
-  if (cl.has("--paper-meshes")) {
-    paperDir = cl.value("--paper-meshes", "");
-    if (paperDir.empty()) {
-      fs::path repository = fs::path(assetFile("scenes")).parent_path().parent_path();
-      paperDir = paper::defaultPaperMeshDirectory(repository.empty() ? "." : repository.string());
-    }
-    const std::string missing = paper::missingPaperMeshes(paperDir);
-    if (!missing.empty()) throw InputError(paperDir, "--paper-meshes", missing);
-    paperDir = fs::absolute(paperDir).lexically_normal().string();
-  }
+  const OptimizerSettings& lbfgsb = options.lbfgsb;  // L-BFGS-B's own settings, for every task
+  const std::string& paperDir = options.paperMeshes;
   StagedDirectory out(outDir);
   std::string finalDir = outDir;
   while (finalDir.size() > 1 && finalDir.back() == '/') finalDir.pop_back();
@@ -555,23 +428,19 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     result.seeds = taskSeeds[t];
     result.parameters = parameters.size();
     result.garmentVertices = scene.vertexCount();
-    result.budget = cl.has("--budget") ? static_cast<long long>(budgetOption)
-                    : quick            ? task->quickBudget
-                                       : task->budget;
+    result.budget = options.budget > 0 ? options.budget : quick ? task->quickBudget : task->budget;
     const long long perGradient = 2LL * scene.time.steps;
     if (result.budget < perGradient)
-      cl.fail("--budget", "must allow at least one gradient evaluation of " +
-                              std::string(task->name) + " (" + std::to_string(perGradient) +
-                              " simulated steps)");
+      throw InputError("weft", "--budget",  // the option's error, as the command line reports it
+                       "must allow at least one gradient evaluation of " + std::string(task->name) +
+                           " (" + std::to_string(perGradient) + " simulated steps)");
     results.push_back(std::move(result));
   }
   nlohmann::json storedBuild;
   std::string appDiffers;
   bool storeCopied = false;
-  const int storedRuns =
-      openRunStore(store, finalDir + "/runs", resume,
-                   runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir, lbfgsb),
-                   &storedBuild, &appDiffers, &storeCopied);
+  const int storedRuns = openRunStore(store, finalDir + "/runs", resume, runSettings(options),
+                                      &storedBuild, &appDiffers, &storeCopied);
 
   // The scenes of the tasks that still have runs to make (or a pass to time), loaded once.
   struct TaskScene {
@@ -628,7 +497,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       result.garmentVertices = result.paperScene->vertices;
     }
     for (int seed = 1; seed <= result.seeds; ++seed)
-      for (int m = 0; m < kMethodCount; ++m) {
+      for (int m = 0; m < kApplicationMethodCount; ++m) {
         const std::string runFile = store + "/" + runFileName(*task, m, seed);
         if (fs::exists(runFile)) {
           Run run = readRunFile(runFile, *task, m, seed);
@@ -680,9 +549,10 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         const TaskScene& ts = loaded[job.task];
         const int m = job.method;
         const Eigen::VectorXd& start = results[job.task].starts[job.seed - 1].coordinates;
-        std::fprintf(stderr, "applications: %s, %s, seed %d...\n", task->name, kMethods[m].name,
-                     job.seed);
-        OptimizationRun optimization(*ts.scene, kMethods[m].name);  // the task's parameters
+        std::fprintf(stderr, "applications: %s, %s, seed %d...\n", task->name,
+                     kApplicationMethods[m].name, job.seed);
+        OptimizationRun optimization(*ts.scene,
+                                     kApplicationMethods[m].name);  // the task's parameters
         OptimizerSettings settings;
         settings.budget = results[job.task].budget;
         settings.seed = static_cast<unsigned>(job.seed);
@@ -700,8 +570,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
           std::fprintf(stderr,
                        "applications: %s, %s, seed %d: evaluation %d, %lld of %lld steps, best "
                        "loss %s, %.0f s\n",
-                       task->name, kMethods[m].name, job.seed, e.evaluation, e.steps, budget,
-                       formatNumber(best, 4).c_str(), e.seconds);
+                       task->name, kApplicationMethods[m].name, job.seed, e.evaluation, e.steps,
+                       budget, formatNumber(best, 4).c_str(), e.seconds);
         };
         Run& run = job.run;
         run.method = m;
@@ -711,8 +581,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         } catch (const NumericalError& e) {
           // A sample the forward solver cannot simulate ends that run, not the benchmark.
           run.stop = std::string("numerical failure: ") + e.what();
-          std::fprintf(stderr, "warning: %s, %s, seed %d: %s\n", task->name, kMethods[m].name,
-                       job.seed, e.what());
+          std::fprintf(stderr, "warning: %s, %s, seed %d: %s\n", task->name,
+                       kApplicationMethods[m].name, job.seed, e.what());
         }
         for (const LogEntry& e : optimization.log().entries()) {
           run.curve.steps.push_back(e.steps);
@@ -720,7 +590,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
           run.seconds = e.seconds;
           char wall[32];
           std::snprintf(wall, sizeof wall, "%.6f", e.seconds);
-          run.rows.push_back({task->name, kMethods[m].name, std::to_string(job.seed),
+          run.rows.push_back({task->name, kApplicationMethods[m].name, std::to_string(job.seed),
                               std::to_string(e.evaluation), std::to_string(e.steps), wall,
                               formatNumber(e.loss, 17)});
         }
@@ -777,7 +647,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   BenchTable csv(kRunColumns);
   for (const TaskResult& r : results)
     for (int seed = 1; seed <= r.seeds; ++seed)
-      for (int m = 0; m < kMethodCount; ++m)
+      for (int m = 0; m < kApplicationMethodCount; ++m)
         for (const Run& run : r.runs)
           if (run.seed == seed && run.method == m)
             for (const auto& row : run.rows) csv.add(row);
@@ -812,8 +682,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   for (const TaskResult& r : results) {
     double minInitial = std::numeric_limits<double>::infinity();
     for (const Run& run : r.runs) minInitial = std::min(minInitial, run.curve.loss.front());
-    LossCurve envelope[kMethodCount];
-    for (int m = 0; m < kMethodCount; ++m) {
+    LossCurve envelope[kApplicationMethodCount];
+    for (int m = 0; m < kApplicationMethodCount; ++m) {
       std::vector<LossCurve> curves;
       for (const Run& run : r.runs)
         if (run.method == m) curves.push_back(run.curve);
@@ -830,14 +700,14 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     };
     const long long lbfgsbConverged = converged(0);
     const double threshold = kThresholdFraction * minInitial;
-    long long toThreshold[kMethodCount];
-    for (int m = 0; m < kMethodCount; ++m)
+    long long toThreshold[kApplicationMethodCount];
+    for (int m = 0; m < kApplicationMethodCount; ++m)
       toThreshold[m] = envelope[m].loss.empty() ? kNoRuns : stepsToReach(envelope[m], threshold);
     const auto stepsText = [&](long long s) {
       return s == kNoRuns ? "-" : s < 0 ? "> " + std::to_string(r.budget) : std::to_string(s);
     };
     std::string speedupText[2];
-    for (int m = 1; m < kMethodCount; ++m) {
+    for (int m = 1; m < kApplicationMethodCount; ++m) {
       if (toThreshold[0] < 0 || toThreshold[m] == kNoRuns) {
         speedupText[m - 1] = "-";
       } else if (toThreshold[m] < 0) {
@@ -904,8 +774,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       const bool napkin = std::string(r.task->name).rfind("napkin_", 0) == 0;
       if ((p || napkin) && !envelope[0].loss.empty() && !envelope[1].loss.empty()) {
         const double target = p ? p->finalPercent[0] / 100.0 * minInitial : kFig4SpeedupLoss;
-        long long reach[kMethodCount];
-        for (int m = 0; m < kMethodCount; ++m)
+        long long reach[kApplicationMethodCount];
+        for (int m = 0; m < kApplicationMethodCount; ++m)
           reach[m] = envelope[m].loss.empty() ? kNoRuns : stepsToReach(envelope[m], target);
         const SpeedupAim aim = judgeSpeedupAim(reach[0], reach[1], r.budget);
         aims.add({r.task->name,
@@ -924,7 +794,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                speedupText[0], speedupText[1]});
 
     for (int seed = 1; seed <= r.seeds; ++seed) {
-      const Run* bySeed[kMethodCount] = {nullptr, nullptr, nullptr};
+      const Run* bySeed[kApplicationMethodCount] = {nullptr, nullptr, nullptr};
       for (const Run& run : r.runs)
         if (run.seed == seed) bySeed[run.method] = &run;
       if (!bySeed[0] && !bySeed[1] && !bySeed[2]) continue;
@@ -932,7 +802,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       const double initial = any->curve.loss.front();
       std::vector<std::string> row = {r.task->name, std::to_string(seed), formatNumber(initial, 4)};
       std::vector<std::string> finals, percents, conv, walls;
-      for (int m = 0; m < kMethodCount; ++m) {
+      for (int m = 0; m < kApplicationMethodCount; ++m) {
         if (!bySeed[m]) {
           finals.push_back("-"), percents.push_back("-"), conv.push_back("-"), walls.push_back("-");
           continue;
@@ -948,15 +818,15 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
       perSeed.add(row);
       if (r.handles) {
         std::vector<std::string> depths = {r.task->name, std::to_string(seed)};
-        for (int m = 0; m < kMethodCount; ++m)
+        for (int m = 0; m < kApplicationMethodCount; ++m)
           depths.push_back(bySeed[m] ? formatNumber(1e3 * bySeed[m]->handleDepth, 3) : "-");
         handles.add(depths);
       }
     }
 
     std::vector<PlotSeries> plot;
-    for (int m = 0; m < kMethodCount; ++m) {
-      PlotSeries s{kMethods[m].title, {}, {}, "steps"};
+    for (int m = 0; m < kApplicationMethodCount; ++m) {
+      PlotSeries s{kApplicationMethods[m].title, {}, {}, "steps"};
       for (std::size_t i = 0; i < envelope[m].steps.size(); ++i)
         s.x.push_back(static_cast<double>(envelope[m].steps[i])),
             s.y.push_back(envelope[m].loss[i]);
@@ -1075,7 +945,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     {
       // Which sources made the runs: checked equal on --resume (checkStoredSettings) when both
       // builds are known, but for the commit itself.
-      const nlohmann::json current = buildInfoJson();
+      const nlohmann::json& current = options.build;
       const std::string now = describeBuild(current);
       md << "Build: ";
       if (storedBuild.is_null())
@@ -1220,4 +1090,4 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   return 0;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench
