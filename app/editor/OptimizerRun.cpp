@@ -3,8 +3,6 @@
 #include "WorkerThreads.h"
 
 #include <weft/core/Error.h>
-#include <weft/diff/ParameterSet.h>
-#include <weft/optim/SimulationObjective.h>
 
 #include <cmath>
 
@@ -35,21 +33,20 @@ void OptimizerRun::join() {
 
 std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool paused) {
   cancel();
-  std::unique_ptr<Optimizer> optimizer = makeOptimizer(setup.method, setup.settings);
-  if (!optimizer) return "unknown optimisation method '" + setup.method + "'";
+  if (!makeOptimizer(setup.method, setup.settings))
+    return "unknown optimisation method '" + setup.method + "'";
   if (setup.parameters.empty()) return "choose at least one parameter to optimise";
-  std::unique_ptr<SimulationObjective> objective;
+  std::unique_ptr<OptimizationRun> run;
   try {
     if (!scene.task)
       throw InputError(scene.file, "task",
                        "the scene has no task: set targets or load a target motion first");
-    objective = std::make_unique<SimulationObjective>(
-        scene, ParameterSet::fromPaths(scene, setup.parameters));
+    run = std::make_unique<OptimizationRun>(scene, setup.method, setup.parameters);
   } catch (const std::exception& e) {
     return e.what();
   }
 
-  const ParameterSpace& space = objective->space();
+  const ParameterSpace& space = run->space();
   method_ = setup.method;
   parameters_ = setup.parameters;
   const Eigen::VectorXd lower = space.lowerValues(), upper = space.upperValues(),
@@ -66,30 +63,27 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
   }
   gate_ = std::make_unique<EvaluationGate>();
   if (paused) gate_->pause();
-  objective_ = std::move(objective);
-  gated_ = std::make_unique<GatedObjective>(*objective_, *gate_);
-  optimizer_ = std::move(optimizer);
-  optimizer_->log().setObserver([this](const LogEntry& e) {
-    Sample s;
-    s.evaluation = e.evaluation;
-    s.steps = e.steps;
-    s.loss = e.loss;
-    const Eigen::VectorXd v = objective_->space().toValues(e.x);
-    s.values.assign(v.data(), v.data() + v.size());
-    std::lock_guard<std::mutex> lock(mutex_);
-    samples_.push_back(std::move(s));
-  });
+  run_ = std::move(run);
+  settings_ = setup.settings;
   status_ = Status::Running;
   worker_ = std::thread([this] {
     useWorkerThreads();
-    const ParameterSpace& space = objective_->space();
+    OptimizationCallbacks callbacks;
+    callbacks.beforeEvaluation = [this] { gate_->enter(); };
+    callbacks.evaluated = [this](const LogEntry& e, const Eigen::VectorXd& v) {
+      Sample s;
+      s.evaluation = e.evaluation;
+      s.steps = e.steps;
+      s.loss = e.loss;
+      s.values.assign(v.data(), v.data() + v.size());
+      std::lock_guard<std::mutex> lock(mutex_);
+      samples_.push_back(std::move(s));
+    };
     try {
-      const OptimizationResult result =
-          optimizer_->minimize(*gated_, space.toCoordinates(space.initialValues()),
-                               space.lowerCoordinates(), space.upperCoordinates());
+      const OptimizationOutcome outcome = run_->run(settings_, callbacks);
       {
         std::lock_guard<std::mutex> lock(mutex_);
-        stopReason_ = result.stopReason;
+        stopReason_ = outcome.result.stopReason;
       }
       status_ = Status::Finished;
     } catch (const EvaluationCancelled&) {

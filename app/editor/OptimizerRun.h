@@ -1,14 +1,15 @@
 #pragma once
 // One optimisation of the scene's task, run off the UI thread so the editor stays live: the
-// engine's SimulationObjective (forward pass + adjoint per evaluation) minimised by any method
-// makeOptimizer knows, over the chosen task parameters within their bounds. The UI can pause it,
+// engine's OptimizationRun (the SimulationObjective, forward pass + adjoint per evaluation,
+// minimised by any method makeOptimizer knows, over the chosen task parameters within their
+// bounds). The UI can pause it,
 // step it one evaluation at a time, resume or cancel it, and reads the loss and parameter
 // history as evaluations arrive. The run works on a copy of the scene taken at start: applying
 // its result to the document is the session's job (one undoable edit). No window: unit tested.
 
 #include "GatedObjective.h"
 
-#include <weft/optim/Optimizer.h>
+#include <weft/optim/OptimizationRun.h>
 #include <weft/scene/Scene.h>
 
 #include <atomic>
@@ -18,10 +19,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-
-namespace weft {
-class SimulationObjective;
-}
 
 namespace weft::editor {
 
@@ -90,9 +87,8 @@ class OptimizerRun {
   std::vector<double> lower_, upper_, initial_;
   nlohmann::json startDocument_;
 
-  std::unique_ptr<SimulationObjective> objective_;
-  std::unique_ptr<GatedObjective> gated_;
-  std::unique_ptr<Optimizer> optimizer_;
+  std::unique_ptr<OptimizationRun> run_;
+  OptimizerSettings settings_;
   std::unique_ptr<EvaluationGate> gate_;  // one per run: a cancelled gate stays cancelled
   std::thread worker_;
 

@@ -12,22 +12,16 @@ namespace weft::cli {
 struct BuildInfo {
   const char* commit;        // git commit the build started from
   const char* engineTree;    // git tree hash of engine/ at that commit
-  const char* appTree;       // ... of app/weft/ (the CLI and its benchmarks)
+  const char* appTree;       // ... of app/weft/ and bench/ (the CLI and its benchmarks; the SHA-1
+                             // of both tree hashes, cmake/BuildInfo.cmake)
   const char* assetsTree;    // ... of assets/ (task scenes, meshes, targets)
   const char* modification;  // SHA-1 of `git diff HEAD` over those folders; empty: unmodified
 };
 
 const BuildInfo& buildInfo();
 
-// {"commit", "engine", "app", "assets", "modified"}: nulls for unknown or unmodified.
+// {"commit", "engine", "app", "assets", "modified"}: nulls for unknown or unmodified (compared
+// and described by bench/weft/bench/BuildRecord.h).
 nlohmann::json buildInfoJson();
-
-// Whether `build` (buildInfoJson's form, as stored) names a commit: false for a missing record
-// or a build without git, which cannot be compared.
-bool isKnownBuild(const nlohmann::json& build);
-
-// One line: "commit <12 hex>[ with uncommitted changes (diff <12 hex>)]" or "an unknown build
-// (no git)".
-std::string describeBuild(const nlohmann::json& build);
 
 }  // namespace weft::cli

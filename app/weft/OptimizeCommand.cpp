@@ -23,15 +23,14 @@
 #include "Commands.h"
 #include "SceneOverrideOption.h"
 #include "SceneWarnings.h"
-#include "bench/BenchTable.h"
 
+#include <weft/bench/BenchTable.h>
 #include <weft/contact/HandleObstacleCheck.h>
 #include <weft/core/Error.h>
 #include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/Backpropagation.h>
 #include <weft/io/StagedDirectory.h>
-#include <weft/optim/Optimizer.h>
-#include <weft/optim/SimulationObjective.h>
+#include <weft/optim/OptimizationRun.h>
 #include <weft/scene/SceneLoader.h>
 
 #include <nlohmann/json.hpp>
@@ -96,12 +95,10 @@ int optimizeCommand(const std::vector<std::string>& args) {
   if (!scene.task)
     throw InputError(file, "task",
                      "the scene has no task; optimize needs task.loss and parameters");
-  const ParameterSet parameters = ParameterSet::fromTask(scene);
-  if (parameters.empty()) throw InputError(file, "task.parameters", "no parameters to optimise");
-  SimulationObjective objective(scene, parameters);
-  const bool usesGradient = makeOptimizer(method, OptimizerSettings{})->usesGradient();
-  const long long perEvaluation =
-      usesGradient ? objective.stepsPerEvaluation() : objective.stepsPerValue();
+  OptimizationRun run(scene, method);  // the task's parameters
+  const SimulationObjective& objective = run.objective();
+  const bool usesGradient = run.usesGradient();
+  const long long perEvaluation = run.stepsPerEvaluation();
   settings.budget = cl.has("--budget") ? static_cast<long long>(budgetOption)
                                        : kDefaultEvaluations * objective.stepsPerEvaluation();
   if (settings.budget < perEvaluation)
@@ -113,20 +110,19 @@ int optimizeCommand(const std::vector<std::string>& args) {
   const std::string outDir = cl.value("--out", "out/optimize-" + scene.name);
   StagedDirectory out(outDir);  // fails early on an unusable --out, before optimising
 
-  const ParameterSpace& space = objective.space();
+  const ParameterSpace& space = run.space();
   std::ofstream csv(out.file("loss.csv"));
   csv << "evaluation,steps,wall_s,loss";
   for (const SceneParameter& p : space.parameters()) csv << "," << p.path;
   csv << "\n";
   csv.precision(17);
   const bool quiet = cl.has("--quiet");
-  std::unique_ptr<Optimizer> optimizer = makeOptimizer(method, settings);
-  optimizer->log().setObserver([&](const LogEntry& e) {
+  OptimizationCallbacks callbacks;
+  callbacks.evaluated = [&](const LogEntry& e, const Eigen::VectorXd& v) {
     if (!std::isfinite(e.loss) || !e.gradient.allFinite())
       throw NumericalError(
           0, "optimize",
           "loss or gradient is not finite at evaluation " + std::to_string(e.evaluation));
-    const Eigen::VectorXd v = space.toValues(e.x);
     char wall[32];
     std::snprintf(wall, sizeof wall, "%.6f", e.seconds);
     csv << e.evaluation << "," << e.steps << "," << wall << "," << e.loss;
@@ -135,25 +131,24 @@ int optimizeCommand(const std::vector<std::string>& args) {
     if (!quiet)
       std::fprintf(stderr, "\revaluation %d, %lld steps, loss %.6e   ", e.evaluation, e.steps,
                    e.loss);
-  });
+  };
 
   const auto start = std::chrono::steady_clock::now();
-  const Eigen::VectorXd z0 = space.toCoordinates(space.initialValues());
-  const OptimizationResult result =
-      optimizer->minimize(objective, z0, space.lowerCoordinates(), space.upperCoordinates());
+  const OptimizationOutcome outcome = run.run(settings, callbacks);  // from the scene's values
+  const OptimizationResult& result = outcome.result;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) std::fprintf(stderr, "\n");
   csv.close();
   if (!csv) throw InputError(outDir, "loss.csv", "cannot write");
-  if (optimizer->log().empty()) throw NumericalError(0, "optimize", "no evaluation was made");
+  if (run.log().empty()) throw NumericalError(0, "optimize", "no evaluation was made");
 
-  const OptimizationLog& log = optimizer->log();
-  const Eigen::VectorXd finalValues = space.toValues(result.x);
+  const OptimizationLog& log = run.log();
+  const Eigen::VectorXd& finalValues = outcome.bestValues;
   // An answer whose handles pass through an obstacle is no motion a manipulator can make, however
   // low its loss (the Sock, docs/applications.md): checked as the scene itself was, at load.
   const std::vector<std::string> entering =
-      handlesEnteringObstacles(parameters.withValues(scene, finalValues));
+      handlesEnteringObstacles(objective.parameters().withValues(scene, finalValues));
   for (const std::string& w : entering)
     std::fprintf(stderr, "warning: the final parameters: %s\n", w.c_str());
   // The gradient-free methods never compute one: the report says null rather than spend a
@@ -213,10 +208,10 @@ int optimizeCommand(const std::vector<std::string>& args) {
     if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
   }
   std::string plotNote;
-  PlotSeries series{"loss", {}, {}};
+  bench::PlotSeries series{"loss", {}, {}};
   for (const LogEntry& e : log.entries())
     series.x.push_back(static_cast<double>(e.steps)), series.y.push_back(e.loss);
-  const bool plotted = plotSeries(
+  const bool plotted = bench::plotSeries(
       out.file("loss.png"), scene.name + ": " + method,
       usesGradient ? "simulated steps (forward + backward)" : "simulated steps (forward only)",
       "loss", {series}, false, log.best().loss > 0.0, plotNote);

@@ -4,12 +4,12 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "RenderJob.h"
-#include "RunFolder.h"
 #include "SceneOverrideOption.h"
 #include "SceneWarnings.h"
 
 #include <weft/core/Error.h>
 #include <weft/io/StagedDirectory.h>
+#include <weft/output/RunFolder.h>
 #include <weft/physics/Simulator.h>
 #include <weft/render/RenderError.h>
 #include <weft/scene/SceneLoader.h>

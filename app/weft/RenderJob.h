@@ -2,9 +2,8 @@
 // Renders the states of a run to PNG frames headless: the work behind `weft render`, shared
 // with the render benchmark.
 
-#include "RunFolder.h"
-
 #include <weft/model/ClothModel.h>
+#include <weft/output/RunFolder.h>
 #include <weft/render/Camera.h>
 #include <weft/render/HeadlessContext.h>
 #include <weft/scene/Scene.h>

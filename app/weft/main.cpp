@@ -5,6 +5,7 @@
 #include "BuildInfo.h"
 #include "Commands.h"
 
+#include <weft/bench/BuildRecord.h>
 #include <weft/core/Error.h>
 
 #include <cstdio>
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
   }
   if (args[0] == "--version") {
     std::printf("weft %s, %s\n", WEFT_VERSION,
-                weft::cli::describeBuild(weft::cli::buildInfoJson()).c_str());
+                weft::bench::describeBuild(weft::cli::buildInfoJson()).c_str());
     return 0;
   }
   const std::string verb = args[0];

@@ -5,8 +5,7 @@
 
 #include <app/CliSupport.h>
 
-#include "../../app/weft/bench/PaperMeshScenes.h"
-
+#include <weft/bench/PaperMeshScenes.h>
 #include <weft/io/Npy.h>
 #include <weft/physics/Simulator.h>
 #include <weft/scene/SceneLoader.h>
@@ -353,13 +352,13 @@ TEST(ApplicationsRunsCli, PaperMeshesNeedTheirFolder) {
 // ---- the paper's meshes, in-process ----
 
 std::string paperDir() {
-  return cli::paper::defaultPaperMeshDirectory(fs::path(WEFT_ASSET_DIR).parent_path().string());
+  return bench::paper::defaultPaperMeshDirectory(fs::path(WEFT_ASSET_DIR).parent_path().string());
 }
 
 #define REQUIRE_PAPER_MESHES()                                                     \
-  if (!cli::paper::missingPaperMeshes(paperDir()).empty())                         \
+  if (!bench::paper::missingPaperMeshes(paperDir()).empty())                       \
   GTEST_SKIP() << "the DiffCloth garment meshes are not in " << paperDir() << " (" \
-               << cli::paper::missingPaperMeshes(paperDir())                       \
+               << bench::paper::missingPaperMeshes(paperDir())                     \
                << "); see ../shared/meshes/README.md"
 
 // The task scene shortened to `steps` steps, its relative files made absolute, in `dir`.
@@ -384,15 +383,15 @@ std::string shortenedScene(const TempDir& dir, const std::string& task, int step
 }
 
 struct Built {
-  cli::paper::PaperScene paper;
+  bench::paper::PaperScene paper;
   Scene original, scene;
 };
 
 Built build(const TempDir& dir, const std::string& task, int steps) {
   const std::string file = shortenedScene(dir, task, steps);
-  const cli::paper::PaperMesh* mesh = cli::paper::paperMeshFor(task);
+  const bench::paper::PaperMesh* mesh = bench::paper::paperMeshFor(task);
   EXPECT_NE(mesh, nullptr);
-  Built b{cli::paper::makePaperScene(file, *mesh, paperDir(), dir.file("targets")),
+  Built b{bench::paper::makePaperScene(file, *mesh, paperDir(), dir.file("targets")),
           loadScene(file),
           {}};
   b.scene = parseScene(b.paper.document, file, dir.path());

@@ -1,14 +1,14 @@
-// Issue 7's aim on one task (app/weft/bench/SpeedupAim.h): L-BFGS-B reaches the paper's loss
+// Issue 7's aim on one task (bench/weft/bench/SpeedupAim.h): L-BFGS-B reaches the paper's loss
 // with at most a fifth of CMA-ES's steps. A CMA-ES that never reaches it bounds the ratio by the
 // budget, which shows the aim only when the budget is five times L-BFGS-B's steps.
 
-#include "../../app/weft/bench/SpeedupAim.h"
+#include <weft/bench/SpeedupAim.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace weft::cli {
+namespace weft::bench {
 namespace {
 
 TEST(SpeedupAim, MetAtAFifthOfCmaesStepsAndNotBelow) {
@@ -45,4 +45,4 @@ TEST(SpeedupAim, ACmaesShortOfTheLossBoundsTheRatioByTheBudget) {
 }
 
 }  // namespace
-}  // namespace weft::cli
+}  // namespace weft::bench

@@ -2,7 +2,7 @@
 // Writes a simulated run in the `weft simulate` contract: positions.npy, stats.csv, rest.obj
 // and summary.json (plus scene.json, the scene as simulated; summary.json's scene_directory
 // resolves its relative paths), into a folder (normally a StagedDirectory, so nothing partial is
-// left).
+// left). RunFolder.h reads it back.
 
 #include <weft/model/ClothModel.h>
 #include <weft/record/Trajectory.h>

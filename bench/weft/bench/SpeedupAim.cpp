@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-namespace weft::cli {
+namespace weft::bench {
 
 SpeedupAim judgeSpeedupAim(long long lbfgsbSteps, long long cmaesSteps, long long budget,
                            double factor) {
@@ -31,4 +31,4 @@ SpeedupAim judgeSpeedupAim(long long lbfgsbSteps, long long cmaesSteps, long lon
   return aim;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

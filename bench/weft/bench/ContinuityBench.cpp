@@ -17,8 +17,8 @@
 // a speed read after steps that ended above solver.pd_tolerance carries their unconverged part,
 // so the summary also gives the largest count of such steps over the mu samples.
 
-#include "../CommandLine.h"
-#include "../Commands.h"
+#include "ContinuityBench.h"
+
 #include "BenchAssets.h"
 #include "BenchTable.h"
 #include "Icosphere.h"
@@ -38,7 +38,7 @@
 #include <cstdio>
 #include <limits>
 
-namespace weft::cli {
+namespace weft::bench {
 namespace {
 
 enum class Surface { Analytic, FlatMesh, SmoothMesh };
@@ -149,14 +149,11 @@ Sample simulate(const Scene& scene, const std::vector<Probe>& probes,
 
 }  // namespace
 
-int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
-  const bool quick = cl.has("--quick");
-  const std::string file = cl.value("--scene", assetFile("scenes/sphere.json"));
-  const int threads = cl.integer("--threads", 1, 1, 1024);
-  const std::vector<std::string> contacts =
-      benchNames(cl, "--contact", "newton", {"scene", "pd", "newton", "active_set"});
-  if (contacts.size() != 1) cl.fail("--contact", "bench continuity takes one contact solve");
-  const std::string contact = contacts.front();
+int runContinuityBench(const ContinuityBenchOptions& options, const std::string& outDir) {
+  const bool quick = options.quick;
+  const std::string file = options.scene.empty() ? assetFile("scenes/sphere.json") : options.scene;
+  const int threads = options.threads;
+  const std::string contact = options.contact;
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
 
@@ -167,8 +164,8 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
   const std::vector<int> recordAt = quick ? std::vector<int>{10, 20} : std::vector<int>{50, 200};
   // 320 triangles: on the scaled sphere an edge is about 0.8 of the cloth's width and
   // neighbouring faces meet at about 15 degrees.
-  const int subdivisions = cl.integer("--subdivisions", 2, 0, 5);
-  const int resolution = cl.integer("--resolution", 0, 0, 400);  // 0: the scene's grid
+  const int subdivisions = options.subdivisions;
+  const int resolution = options.resolution;  // 0: the scene's grid
   const std::vector<Surface> surfaces = {Surface::Analytic, Surface::FlatMesh, Surface::SmoothMesh};
 
   const Scene probeScene =
@@ -303,4 +300,4 @@ int continuityBenchmark(const CommandLine& cl, const std::string& outDir) {
   return 0;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

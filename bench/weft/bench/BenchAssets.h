@@ -4,9 +4,9 @@
 
 #include <string>
 
-namespace weft::cli {
+namespace weft::bench {
 
 // `relative` below assets/, e.g. "scenes/sphere.json".
 std::string assetFile(const std::string& relative);
 
-}  // namespace weft::cli
+}  // namespace weft::bench

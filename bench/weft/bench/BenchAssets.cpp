@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-namespace weft::cli {
+namespace weft::bench {
 
 std::string assetFile(const std::string& relative) {
   const std::string local = "assets/" + relative;
@@ -10,4 +10,4 @@ std::string assetFile(const std::string& relative) {
   return std::string(WEFT_ASSET_DIR) + "/" + relative;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

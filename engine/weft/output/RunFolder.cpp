@@ -1,4 +1,4 @@
-#include "RunFolder.h"
+#include <weft/output/RunFolder.h>
 
 #include <weft/core/Error.h>
 #include <weft/io/Npy.h>

@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-namespace weft::cli::paper {
+namespace weft::bench::paper {
 
 struct PaperMesh {
   const char* task;     // the applications task it replaces the garment of
@@ -343,4 +343,4 @@ inline PaperScene makePaperScene(const std::string& sceneFile, const PaperMesh& 
   return out;
 }
 
-}  // namespace weft::cli::paper
+}  // namespace weft::bench::paper

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-namespace weft::cli {
+namespace weft::bench {
 
 // One run's evaluations in order: cumulative simulated steps and the loss of that evaluation;
 // or an envelope: a non-increasing loss at increasing step counts.
@@ -25,4 +25,4 @@ double lossAt(const LossCurve& envelope, long long steps);
 // The first step count at which the envelope is at or below `loss`; -1 if it never is.
 long long stepsToReach(const LossCurve& envelope, double loss);
 
-}  // namespace weft::cli
+}  // namespace weft::bench

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace weft::cli {
+namespace weft::bench {
 
 LossCurve minimumEnvelope(const std::vector<LossCurve>& runs) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -42,4 +42,4 @@ long long stepsToReach(const LossCurve& envelope, double loss) {
   return -1;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace weft::cli {
+namespace weft::bench {
 
 // One line of a run store's CSV files (no quoting: names and numbers only), split at commas.
 std::vector<std::string> splitCsvLine(const std::string& line);
@@ -22,4 +22,4 @@ std::vector<std::string> splitCsvLine(const std::string& line);
 Eigen::VectorXd storedParameterValues(const std::string& file, const ParameterSet& parameters,
                                       int evaluation);
 
-}  // namespace weft::cli
+}  // namespace weft::bench

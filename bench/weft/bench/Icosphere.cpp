@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-namespace weft::cli {
+namespace weft::bench {
 
 TriangleMesh icosphere(const Vec3& center, double radius, int subdivisions) {
   const double g = (1.0 + std::sqrt(5.0)) / 2.0;
@@ -54,4 +54,4 @@ TriangleMesh icosphere(const Vec3& center, double radius, int subdivisions) {
   return mesh;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-namespace weft::cli {
+namespace weft::bench {
 std::vector<std::string> splitCsvLine(const std::string& line) {
   std::vector<std::string> out;
   std::stringstream items(line);
@@ -45,4 +45,4 @@ Eigen::VectorXd storedParameterValues(const std::string& file, const ParameterSe
   throw InputError(file, "evaluation " + wanted, "not stored");
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

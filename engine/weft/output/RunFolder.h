@@ -1,6 +1,7 @@
 #pragma once
-// A folder written by `weft simulate`, read back for rendering: the scene as simulated, every
-// state, and per-node contact data when the run recorded it.
+// A folder written by `weft simulate` (RunWriter.h, beside it: the writer and the reader of one
+// format), read back for rendering: the scene as simulated, every state, and per-node contact
+// data when the run recorded it.
 
 #include <weft/core/Types.h>
 #include <weft/scene/Scene.h>

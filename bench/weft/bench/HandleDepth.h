@@ -6,11 +6,11 @@
 #include <weft/contact/HandleTargetSamples.h>
 #include <weft/scene/Scene.h>
 
-namespace weft::cli {
+namespace weft::bench {
 
 // The deepest any handle vertex's target goes inside an obstacle (m, its skin not counted), at
 // every step's end time, the samples the scene check for handles entering obstacles
 // (contact/HandleObstacleCheck.h) warns from; 0 when none enters.
 double deepestHandleTargetDepth(const Scene& scene);
 
-}  // namespace weft::cli
+}  // namespace weft::bench

@@ -30,8 +30,8 @@
 // comparison) instead of running them again, and refuses runs stored with other settings.
 // --seeds N,task=M,... runs M seeds of the tasks named and N of the others (seeds are not
 // settings of the store: more seeds of a task resume from the runs of fewer).
-// A store made by a build with other app/weft/ sources (same engine and assets) can be tabulated
-// again when all its runs are made, not added to.
+// A store made by a build with other app/weft/ or bench/ sources (same engine and assets) can be
+// tabulated again when all its runs are made, not added to.
 // --methods m,n (of lbfgsb, cmaes, es1p1) makes the runs of those methods only; stored runs of the
 // others are still read back and tabulated, so a comparison too long for one sitting (the Sock's
 // runs take hours each) can be made a method at a time, and one method rerun after a fix (its run
@@ -43,10 +43,11 @@
 // 2-core machine: --jobs 2 --threads 1); the stored runs are the same whatever J, their wall
 // seconds are not.
 
-#include "../BuildInfo.h"
-#include "../CommandLine.h"
+#include "ApplicationsBench.h"
+
 #include "BenchAssets.h"
 #include "BenchTable.h"
+#include "BuildRecord.h"
 #include "HandleDepth.h"
 #include "LossEnvelope.h"
 #include "PaperMeshScenes.h"
@@ -59,8 +60,7 @@
 #include <weft/diff/ParameterSet.h>
 #include <weft/io/AtomicFile.h>
 #include <weft/io/StagedDirectory.h>
-#include <weft/optim/Optimizer.h>
-#include <weft/optim/SimulationObjective.h>
+#include <weft/optim/OptimizationRun.h>
 #include <weft/optim/StartingPoint.h>
 #include <weft/scene/SceneLoader.h>
 
@@ -83,44 +83,8 @@
 #include <sstream>
 #include <thread>
 
-namespace weft::cli {
+namespace weft::bench {
 namespace {
-
-// The tasks, one line each: the name --tasks takes, the scene below assets/, and the budget of
-// simulated steps per run (the same for every method), normally and under --quick.
-struct ApplicationTask {
-  const char* name;
-  const char* scene;
-  long long budget;
-  long long quickBudget;
-};
-const ApplicationTask kTasks[] = {
-    {"napkin_4x4", "scenes/napkin_4x4.json", 20000, 2500},
-    {"napkin_5x5", "scenes/napkin_5x5.json", 20000, 2500},
-    {"napkin_7x7", "scenes/napkin_7x7.json", 20000, 2500},
-    {"napkin_10x10", "scenes/napkin_10x10.json", 20000, 2500},
-    {"wind_sysid", "scenes/wind_sysid.json", 3000, 600},
-    // Sec. 6.4 and 6.3 (Table 3: L-BFGS-B converged in 6800 and 2750 steps, the ES in up to
-    // 24800 and 10000); quick: 6 and 6 gradient evaluations.
-    {"flag", "scenes/flag.json", 7200, 1200},
-    {"dress", "scenes/dress.json", 6000, 1500},
-    // Sec. 6.1, the T-shirt (Table 3: L-BFGS-B converged in 4500 steps, the ES in about 50000): 10
-    // gradient evaluations of its 250 steps, about 0.25 s of one core a step; quick: 2.
-    {"tshirt", "scenes/tshirt.json", 5000, 1000},
-    // Sec. 6.1-6.2 (Table 3: L-BFGS-B converged in 2450, 11200 and 17600 steps). The Sock's forward
-    // contact solve does not converge once the sock reaches the foot (README, "Tasks").
-    {"sphere_sysid", "scenes/sphere_sysid.json", 7000, 1400},
-    {"hat", "scenes/hat.json", 12000, 1600},
-    {"sock", "scenes/sock.json", 17600, 1600},
-};
-const char* const kQuickTask = "napkin_4x4";
-
-struct Method {
-  const char* name;   // makeOptimizer's
-  const char* title;  // the paper's
-};
-const Method kMethods[] = {{"lbfgsb", "L-BFGS-B"}, {"cmaes", "CMA-ES"}, {"es1p1", "(1+1)-ES"}};
-constexpr int kMethodCount = 3;
 
 // "Steps to reach": the envelope at or below this fraction of the minimum initial loss (the
 // paper's Fig. 4 uses an absolute 0.01 in its own loss units; a fraction carries over to tasks
@@ -207,59 +171,6 @@ PassTiming timePasses(const Scene& scene, const ParameterSet& parameters) {
   return timing;
 }
 
-std::vector<const ApplicationTask*> selectTasks(const CommandLine& cl, bool quick) {
-  std::string known;
-  for (const ApplicationTask& t : kTasks)
-    known += (known.empty() ? "" : ", ") + std::string(t.name);
-  const std::string list = cl.value("--tasks", quick ? kQuickTask : "");
-  std::vector<const ApplicationTask*> out;
-  if (list.empty()) {
-    for (const ApplicationTask& t : kTasks) out.push_back(&t);
-    return out;
-  }
-  std::stringstream items(list);
-  for (std::string name; std::getline(items, name, ',');) {
-    const ApplicationTask* found = nullptr;
-    for (const ApplicationTask& t : kTasks)
-      if (name == t.name) found = &t;
-    if (!found) cl.fail("--tasks", "unknown task '" + name + "' (known: " + known + ")");
-    if (std::find(out.begin(), out.end(), found) == out.end()) out.push_back(found);
-  }
-  if (out.empty())
-    cl.fail("--tasks", "expects a comma-separated list of tasks (known: " + known + ")");
-  return out;
-}
-
-// --seeds N[,task=M,...]: N seeds per task, M for the tasks named (the Sock's runs take hours
-// each, so one command can run it with fewer seeds than the rest). Returns the count per task of
-// `tasks`, in their order.
-std::vector<int> selectSeeds(const CommandLine& cl, bool quick,
-                             const std::vector<const ApplicationTask*>& tasks) {
-  const std::string text = cl.value("--seeds", quick ? "1" : "3");
-  const auto count = [&](const std::string& item) {
-    char* end = nullptr;
-    const long n = std::strtol(item.c_str(), &end, 10);
-    if (item.empty() || *end || n < 1 || n > 100)
-      cl.fail("--seeds", "expects N or N,task=M,... with whole numbers 1..100, got '" + item + "'");
-    return static_cast<int>(n);
-  };
-  std::stringstream items(text);
-  std::string item;
-  std::getline(items, item, ',');
-  std::vector<int> seeds(tasks.size(), count(item));
-  while (std::getline(items, item, ',')) {
-    const std::size_t eq = item.find('=');
-    if (eq == std::string::npos)
-      cl.fail("--seeds", "expects N or N,task=M,...: '" + item + "' is not task=M");
-    const std::string name = item.substr(0, eq);
-    bool found = false;
-    for (std::size_t t = 0; t < tasks.size(); ++t)
-      if (name == tasks[t]->name) seeds[t] = count(item.substr(eq + 1)), found = true;
-    if (!found) cl.fail("--seeds", "names '" + name + "', which is not one of the tasks run");
-  }
-  return seeds;
-}
-
 // "3 seed(s) per task (1..3)", then the tasks that have another count: ", sock 2 (1..2)".
 std::string describeSeeds(const std::vector<TaskResult>& results) {
   std::map<int, int> tasksWith;
@@ -273,26 +184,6 @@ std::string describeSeeds(const std::vector<TaskResult>& results) {
     if (r.seeds != common)
       text += ", " + std::string(r.task->name) + " " + std::to_string(r.seeds) + range(r.seeds);
   return text;
-}
-
-// --methods: which methods make runs (all by default).
-std::array<bool, kMethodCount> selectMethods(const CommandLine& cl) {
-  std::array<bool, kMethodCount> selected;
-  std::string known;
-  for (const Method& m : kMethods) known += (known.empty() ? "" : ", ") + std::string(m.name);
-  const std::string list = cl.value("--methods", "");
-  selected.fill(list.empty());
-  std::stringstream items(list);
-  for (std::string name; std::getline(items, name, ',');) {
-    int found = -1;
-    for (int m = 0; m < kMethodCount; ++m)
-      if (name == kMethods[m].name) found = m;
-    if (found < 0) cl.fail("--methods", "unknown method '" + name + "' (known: " + known + ")");
-    selected[found] = true;
-  }
-  if (std::find(selected.begin(), selected.end(), true) == selected.end())
-    cl.fail("--methods", "expects a comma-separated list of methods (known: " + known + ")");
-  return selected;
 }
 
 std::string percent(double loss, double reference) {
@@ -316,7 +207,8 @@ std::string joinCsv(const std::vector<std::string>& fields) {
 }
 
 std::string runFileName(const ApplicationTask& task, int method, int seed) {
-  return std::string(task.name) + "_" + kMethods[method].name + "_" + std::to_string(seed) + ".csv";
+  return std::string(task.name) + "_" + kApplicationMethods[method].name + "_" +
+         std::to_string(seed) + ".csv";
 }
 
 void writeRunFile(const std::string& path, const Run& run) {
@@ -360,7 +252,8 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
     const std::string where = "line " + std::to_string(number);
     if (f.size() != kRunColumns.size())
       throw InputError(path, where, "expected " + std::to_string(kRunColumns.size()) + " fields");
-    if (f[0] != task.name || f[1] != kMethods[method].name || f[2] != std::to_string(seed))
+    if (f[0] != task.name || f[1] != kApplicationMethods[method].name ||
+        f[2] != std::to_string(seed))
       throw InputError(path, where,
                        "a row of another run (" + f[0] + ", " + f[1] + ", seed " + f[2] + ")");
     char* end = nullptr;
@@ -383,22 +276,22 @@ Run readRunFile(const std::string& path, const ApplicationTask& task, int method
 }
 
 // What a stored run depends on besides its task, method and seed.
-nlohmann::json runSettings(const CommandLine& cl, long long budgetOption, bool quick,
-                           const std::string& paperMeshes, const OptimizerSettings& lbfgsb) {
+nlohmann::json runSettings(const ApplicationsBenchOptions& options) {
+  const OptimizerSettings& lbfgsb = options.lbfgsb;
   const OptimizerSettings defaults;
   auto unlessDefault = [](double value, double fallback) {
     return value == fallback ? nlohmann::json(nullptr) : nlohmann::json(value);
   };
-  return {
-      {"format", "weft bench applications runs 2"},
-      {"budget",
-       cl.has("--budget") ? nlohmann::json(budgetOption) : nlohmann::json("task default")},
-      {"quick", quick},
-      {"paper_meshes", paperMeshes.empty() ? nlohmann::json(nullptr) : nlohmann::json(paperMeshes)},
-      {"lbfgsb_first_step", unlessDefault(lbfgsb.lbfgsbFirstStep, defaults.lbfgsbFirstStep)},
-      {"lbfgsb_min_curvature_step",
-       unlessDefault(lbfgsb.lbfgsbMinCurvatureStep, defaults.lbfgsbMinCurvatureStep)},
-      {"build", buildInfoJson()}};
+  return {{"format", "weft bench applications runs 2"},
+          {"budget",
+           options.budget > 0 ? nlohmann::json(options.budget) : nlohmann::json("task default")},
+          {"quick", options.quick},
+          {"paper_meshes", options.paperMeshes.empty() ? nlohmann::json(nullptr)
+                                                       : nlohmann::json(options.paperMeshes)},
+          {"lbfgsb_first_step", unlessDefault(lbfgsb.lbfgsbFirstStep, defaults.lbfgsbFirstStep)},
+          {"lbfgsb_min_curvature_step",
+           unlessDefault(lbfgsb.lbfgsbMinCurvatureStep, defaults.lbfgsbMinCurvatureStep)},
+          {"build", options.build}};
 }
 
 std::string describeSetting(const std::string& key, const nlohmann::json& v) {
@@ -418,8 +311,8 @@ std::string describeSetting(const std::string& key, const nlohmann::json& v) {
 }
 
 // Throws unless the settings stored in `file` are `settings`; returns the stored settings.
-// *appDiffers (when given) receives the refusal for runs made by other app/weft/ sources instead
-// of the throw: such a build may still tabulate a store whose runs are all made.
+// *appDiffers (when given) receives the refusal for runs made by other app/weft/ or bench/ sources
+// instead of the throw: such a build may still tabulate a store whose runs are all made.
 nlohmann::json checkStoredSettings(const std::string& file, const nlohmann::json& settings,
                                    std::string* appDiffers = nullptr) {
   nlohmann::json stored;
@@ -503,233 +396,208 @@ int openRunStore(const std::string& store, const std::string& finished, bool res
   return stored;
 }
 
-}  // namespace
+// The scene of a task that has runs to make (or a pass to time), loaded once.
+struct TaskScene {
+  std::optional<Scene> scene;
+  std::optional<ParameterSet> parameters;
+  std::optional<SimulationObjective> probe;  // the box and the starting values
+};
 
-int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
-  const bool quick = cl.has("--quick");
-  const bool resume = cl.has("--resume");
-  const std::vector<const ApplicationTask*> tasks = selectTasks(cl, quick);
-  const std::array<bool, kMethodCount> methods = selectMethods(cl);
-  const std::vector<int> taskSeeds = selectSeeds(cl, quick, tasks);
-  const int threads = cl.integer("--threads", 1, 1, 1024);
-  const int jobCount = cl.integer("--jobs", 1, 1, 64);
-  omp_set_num_threads(threads);
-  const double budgetOption = cl.number("--budget", 0.0);
-  if (cl.has("--budget") &&
-      !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
-    cl.fail("--budget", "must be a positive whole number of simulated steps");
-  OptimizerSettings lbfgsb;  // L-BFGS-B's own settings, for every task
-  lbfgsb.lbfgsbFirstStep = cl.number("--first-step", lbfgsb.lbfgsbFirstStep);
-  if (!(lbfgsb.lbfgsbFirstStep > 0.0 && std::isfinite(lbfgsb.lbfgsbFirstStep)))
-    cl.fail("--first-step", "must be a finite length > 0 (optimiser coordinates)");
-  lbfgsb.lbfgsbMinCurvatureStep = cl.number("--min-curvature-step", lbfgsb.lbfgsbMinCurvatureStep);
-  if (!(lbfgsb.lbfgsbMinCurvatureStep >= 0.0 && std::isfinite(lbfgsb.lbfgsbMinCurvatureStep)))
-    cl.fail("--min-curvature-step", "must be a finite length >= 0 (optimiser coordinates)");
-  // --paper-meshes [DIR]: BenchCommand hands a bare --paper-meshes over as an empty value.
-  std::string paperDir;
-  if (cl.has("--paper-meshes")) {
-    paperDir = cl.value("--paper-meshes", "");
-    if (paperDir.empty()) {
-      fs::path repository = fs::path(assetFile("scenes")).parent_path().parent_path();
-      paperDir = paper::defaultPaperMeshDirectory(repository.empty() ? "." : repository.string());
-    }
-    const std::string missing = paper::missingPaperMeshes(paperDir);
-    if (!missing.empty()) throw InputError(paperDir, "--paper-meshes", missing);
-    paperDir = fs::absolute(paperDir).lexically_normal().string();
-  }
-  StagedDirectory out(outDir);
-  std::string finalDir = outDir;
-  while (finalDir.size() > 1 && finalDir.back() == '/') finalDir.pop_back();
-  const std::string store = finalDir + ".partial";
-  const auto benchStart = std::chrono::steady_clock::now();
+// A run still to make.
+struct Job {
+  std::size_t task;
+  int seed, method;
+  Run run;
+};
 
-  // Every task's budget is checked before anything runs.
+// One invocation's state, shared by the steps below.
+struct Comparison {
+  const ApplicationsBenchOptions& options;
+  std::string store;                // DIR.partial/: the runs, stored as they finish
+  std::vector<TaskResult> results;  // one per task, in options.tasks' order
+  std::vector<TaskScene> loaded;    // beside results
+  nlohmann::json storedBuild;       // openRunStore's
+  std::string appDiffers;           // openRunStore's
+  bool storeCopied = false;         // openRunStore's
+  int storedRuns = 0, newRuns = 0, resumedRuns = 0;
+};
+
+// Every task's budget, checked before anything runs.
+std::vector<TaskResult> checkedTasks(const ApplicationsBenchOptions& options) {
   std::vector<TaskResult> results;
-  for (std::size_t t = 0; t < tasks.size(); ++t) {
-    const ApplicationTask* task = tasks[t];
+  for (std::size_t t = 0; t < options.tasks.size(); ++t) {
+    const ApplicationTask* task = options.tasks[t];
     const std::string file = assetFile(task->scene);
     const Scene scene = loadScene(file, {});
     const ParameterSet parameters = ParameterSet::fromTask(scene);
     if (parameters.empty()) throw InputError(file, "task.parameters", "no parameters to optimise");
     TaskResult result;
     result.task = task;
-    result.seeds = taskSeeds[t];
+    result.seeds = options.seeds[t];
     result.parameters = parameters.size();
     result.garmentVertices = scene.vertexCount();
-    result.budget = cl.has("--budget") ? static_cast<long long>(budgetOption)
-                    : quick            ? task->quickBudget
+    result.budget = options.budget > 0 ? options.budget
+                    : options.quick    ? task->quickBudget
                                        : task->budget;
     const long long perGradient = 2LL * scene.time.steps;
     if (result.budget < perGradient)
-      cl.fail("--budget", "must allow at least one gradient evaluation of " +
-                              std::string(task->name) + " (" + std::to_string(perGradient) +
-                              " simulated steps)");
+      throw InputError("weft", "--budget",  // the option's error, as the command line reports it
+                       "must allow at least one gradient evaluation of " + std::string(task->name) +
+                           " (" + std::to_string(perGradient) + " simulated steps)");
     results.push_back(std::move(result));
   }
-  nlohmann::json storedBuild;
-  std::string appDiffers;
-  bool storeCopied = false;
-  const int storedRuns =
-      openRunStore(store, finalDir + "/runs", resume,
-                   runSettings(cl, static_cast<long long>(budgetOption), quick, paperDir, lbfgsb),
-                   &storedBuild, &appDiffers, &storeCopied);
+  return results;
+}
 
-  // The scenes of the tasks that still have runs to make (or a pass to time), loaded once.
-  struct TaskScene {
-    std::optional<Scene> scene;
-    std::optional<ParameterSet> parameters;
-    std::optional<SimulationObjective> probe;  // the box and the starting values
-  };
-  std::vector<TaskScene> loaded(results.size());
-  const auto prepare = [&](std::size_t t) {
-    TaskScene& ts = loaded[t];
-    if (ts.scene) return;
-    const TaskResult& result = results[t];
-    const std::string file = assetFile(result.task->scene);
-    if (!result.paperScene)
-      ts.scene = loadScene(file, {});
-    else
-      ts.scene =
-          parseScene(result.paperScene->document, file, fs::path(file).parent_path().string());
-    for (const std::string& w : ts.scene->warnings)
-      std::fprintf(stderr, "warning: %s: %s\n", result.task->name, w.c_str());
-    ts.parameters = ParameterSet::fromTask(*ts.scene);
-    ts.probe.emplace(*ts.scene, *ts.parameters);
-  };
+const TaskScene& loadTaskScene(Comparison& c, std::size_t t) {
+  TaskScene& ts = c.loaded[t];
+  if (ts.scene) return ts;
+  const TaskResult& result = c.results[t];
+  const std::string file = assetFile(result.task->scene);
+  if (!result.paperScene)
+    ts.scene = loadScene(file, {});
+  else
+    ts.scene = parseScene(result.paperScene->document, file, fs::path(file).parent_path().string());
+  for (const std::string& w : ts.scene->warnings)
+    std::fprintf(stderr, "warning: %s: %s\n", result.task->name, w.c_str());
+  ts.parameters = ParameterSet::fromTask(*ts.scene);
+  ts.probe.emplace(*ts.scene, *ts.parameters);
+  return ts;
+}
 
-  // Each seed's start, drawn once per task (the draws re-check the handles against the obstacles)
-  // and shared by the task's jobs and the report.
-  const auto drawStarts = [&](std::size_t t) {
-    TaskResult& result = results[t];
-    if (!result.starts.empty()) return;
-    prepare(t);
-    const TaskScene& ts = loaded[t];
-    for (int seed = 1; seed <= result.seeds; ++seed)
-      result.starts.push_back(drawStartingPoint(*ts.scene, *ts.parameters, ts.probe->space(),
-                                                static_cast<unsigned>(seed)));
-  };
+// Each seed's start, drawn once per task (the draws re-check the handles against the obstacles)
+// and shared by the task's jobs and the report.
+void drawStarts(Comparison& c, std::size_t t) {
+  TaskResult& result = c.results[t];
+  if (!result.starts.empty()) return;
+  const TaskScene& ts = loadTaskScene(c, t);
+  for (int seed = 1; seed <= result.seeds; ++seed)
+    result.starts.push_back(drawStartingPoint(*ts.scene, *ts.parameters, ts.probe->space(),
+                                              static_cast<unsigned>(seed)));
+}
 
-  // Stored runs are read back; the others become jobs.
-  struct Job {
-    std::size_t task;
-    int seed, method;
-    Run run;
-  };
+// Stored runs are read back; the others become jobs.
+std::vector<Job> readStoredRuns(Comparison& c) {
   std::vector<Job> jobs;
-  int resumedRuns = 0;
-  for (std::size_t t = 0; t < results.size(); ++t) {
-    TaskResult& result = results[t];
+  for (std::size_t t = 0; t < c.results.size(); ++t) {
+    TaskResult& result = c.results[t];
     const ApplicationTask* task = result.task;
     const paper::PaperMesh* paperMesh =
-        paperDir.empty() ? nullptr : paper::paperMeshFor(task->name);
+        c.options.paperMeshes.empty() ? nullptr : paper::paperMeshFor(task->name);
     if (paperMesh) {
       std::fprintf(stderr, "applications: %s on %s...\n", task->name, paperMesh->file);
-      result.paperScene = paper::makePaperScene(assetFile(task->scene), *paperMesh, paperDir,
-                                                store + "/targets", /*reuseTarget=*/true);
+      result.paperScene =
+          paper::makePaperScene(assetFile(task->scene), *paperMesh, c.options.paperMeshes,
+                                c.store + "/targets", /*reuseTarget=*/true);
       result.garmentVertices = result.paperScene->vertices;
     }
     for (int seed = 1; seed <= result.seeds; ++seed)
-      for (int m = 0; m < kMethodCount; ++m) {
-        const std::string runFile = store + "/" + runFileName(*task, m, seed);
+      for (int m = 0; m < kApplicationMethodCount; ++m) {
+        const std::string runFile = c.store + "/" + runFileName(*task, m, seed);
         if (fs::exists(runFile)) {
           Run run = readRunFile(runFile, *task, m, seed);
-          ++resumedRuns;
+          ++c.resumedRuns;
           if (!run.curve.steps.empty()) result.runs.push_back(std::move(run));
           continue;
         }
-        if (!methods[m]) continue;
-        drawStarts(t);
+        if (!c.options.methods[m]) continue;
+        drawStarts(c, t);
         jobs.push_back({t, seed, m, {}});
       }
   }
-  // Runs made by other app/weft/ sources (the CLI, this bench, the task budgets) are read back
-  // only to be tabulated again (a new table, a corrected report); a run this build made would
-  // not be one comparison with them, and a stored run must fit this build's budget.
-  if (!appDiffers.empty()) {
-    if (!jobs.empty()) {
-      std::error_code ec;
-      if (storeCopied) fs::remove_all(store, ec);  // the finished comparison is left as it was
-      throw InputError(store + "/settings.json", "build.app",
-                       appDiffers + ": it may tabulate them, but not add runs to them (" +
-                           std::to_string(jobs.size()) +
-                           " run(s) are still to be made); build the commit that made them to "
-                           "continue, or use another --out");
-    }
-    for (const TaskResult& r : results)
-      for (const Run& run : r.runs)
-        if (run.curve.steps.back() > r.budget)
-          throw InputError(store + "/" + runFileName(*r.task, run.method, run.seed), "steps",
-                           "the stored run used " + std::to_string(run.curve.steps.back()) +
-                               " steps, over this build's budget of " + std::to_string(r.budget) +
-                               " for " + r.task->name);
-  }
-  if (storedRuns > 0)
-    std::fprintf(stderr, "applications: %d stored run(s) in %s\n", storedRuns, store.c_str());
+  return jobs;
+}
 
-  // The runs to make, `jobs` at a time (--jobs), each on its own thread with --threads OpenMP
-  // threads: the runs are independent and each is deterministic, so the stored runs do not depend
-  // on how many ran at once (only their wall seconds do, through the load).
+void refuseRunsOfAnotherApp(const Comparison& c, const std::vector<Job>& jobs) {
+  // Runs made by other app/weft/ or bench/ sources (the CLI, this bench, the task budgets) are read
+  // back only to be tabulated again (a new table, a corrected report); a run this build made would
+  // not be one comparison with them, and a stored run must fit this build's budget.
+  if (c.appDiffers.empty()) return;
+  if (!jobs.empty()) {
+    std::error_code ec;
+    if (c.storeCopied) fs::remove_all(c.store, ec);  // the finished comparison is left as it was
+    throw InputError(c.store + "/settings.json", "build.app",
+                     c.appDiffers + ": it may tabulate them, but not add runs to them (" +
+                         std::to_string(jobs.size()) +
+                         " run(s) are still to be made); build the commit that made them to "
+                         "continue, or use another --out");
+  }
+  for (const TaskResult& r : c.results)
+    for (const Run& run : r.runs)
+      if (run.curve.steps.back() > r.budget)
+        throw InputError(c.store + "/" + runFileName(*r.task, run.method, run.seed), "steps",
+                         "the stored run used " + std::to_string(run.curve.steps.back()) +
+                             " steps, over this build's budget of " + std::to_string(r.budget) +
+                             " for " + r.task->name);
+}
+
+// One run: the task's OptimizationRun from the seed's start, its rows and its parameter values
+// stored as soon as it ends.
+void makeRun(Comparison& c, Job& job) {
+  const ApplicationTask* task = c.results[job.task].task;
+  const TaskScene& ts = c.loaded[job.task];
+  const int m = job.method;
+  const Eigen::VectorXd& start = c.results[job.task].starts[job.seed - 1].coordinates;
+  std::fprintf(stderr, "applications: %s, %s, seed %d...\n", task->name,
+               kApplicationMethods[m].name, job.seed);
+  OptimizationRun optimization(*ts.scene, kApplicationMethods[m].name);  // the task's parameters
+  OptimizerSettings settings;
+  settings.budget = c.results[job.task].budget;
+  settings.seed = static_cast<unsigned>(job.seed);
+  settings.lbfgsbFirstStep = c.options.lbfgsb.lbfgsbFirstStep;
+  settings.lbfgsbMinCurvatureStep = c.options.lbfgsb.lbfgsbMinCurvatureStep;
+  // A run can take hours (the Sock's); one progress line per kProgressSeconds of it.
+  double reported = 0.0;
+  double best = std::numeric_limits<double>::infinity();
+  OptimizationCallbacks callbacks;
+  callbacks.evaluated = [&, budget = settings.budget](const LogEntry& e, const Eigen::VectorXd&) {
+    best = std::min(best, e.loss);
+    if (e.seconds - reported < kProgressSeconds) return;
+    reported = e.seconds;
+    std::fprintf(stderr,
+                 "applications: %s, %s, seed %d: evaluation %d, %lld of %lld steps, best "
+                 "loss %s, %.0f s\n",
+                 task->name, kApplicationMethods[m].name, job.seed, e.evaluation, e.steps, budget,
+                 formatNumber(best, 4).c_str(), e.seconds);
+  };
+  Run& run = job.run;
+  run.method = m;
+  run.seed = job.seed;
+  try {
+    run.stop = optimization.run(settings, start, callbacks).result.stopReason;
+  } catch (const NumericalError& e) {
+    // A sample the forward solver cannot simulate ends that run, not the benchmark.
+    run.stop = std::string("numerical failure: ") + e.what();
+    std::fprintf(stderr, "warning: %s, %s, seed %d: %s\n", task->name, kApplicationMethods[m].name,
+                 job.seed, e.what());
+  }
+  for (const LogEntry& e : optimization.log().entries()) {
+    run.curve.steps.push_back(e.steps);
+    run.curve.loss.push_back(e.loss);
+    run.seconds = e.seconds;
+    char wall[32];
+    std::snprintf(wall, sizeof wall, "%.6f", e.seconds);
+    run.rows.push_back({task->name, kApplicationMethods[m].name, std::to_string(job.seed),
+                        std::to_string(e.evaluation), std::to_string(e.steps), wall,
+                        formatNumber(e.loss, 17)});
+  }
+  const std::string name = runFileName(*task, m, job.seed);
+  writeParameterFile(c.store + "/parameters/" + name, optimization.space(), optimization.log());
+  writeRunFile(c.store + "/" + name, run);  // from here on the run survives a kill
+}
+
+// The runs to make, `jobs` at a time (--jobs), each on its own thread with --threads OpenMP
+// threads: the runs are independent and each is deterministic, so the stored runs do not depend
+// on how many ran at once (only their wall seconds do, through the load).
+void makeRuns(Comparison& c, std::vector<Job>& jobs) {
   std::atomic<std::size_t> next{0};
   std::mutex failureMutex;
   std::exception_ptr failure;
   const auto work = [&]() {
-    omp_set_num_threads(threads);  // (a new thread starts from OpenMP's default)
+    omp_set_num_threads(c.options.threads);  // (a new thread starts from OpenMP's default)
     for (std::size_t j = next++; j < jobs.size(); j = next++) {
       try {
-        Job& job = jobs[j];
-        const ApplicationTask* task = results[job.task].task;
-        const TaskScene& ts = loaded[job.task];
-        const int m = job.method;
-        const Eigen::VectorXd& start = results[job.task].starts[job.seed - 1].coordinates;
-        std::fprintf(stderr, "applications: %s, %s, seed %d...\n", task->name, kMethods[m].name,
-                     job.seed);
-        SimulationObjective objective(*ts.scene, *ts.parameters);
-        OptimizerSettings settings;
-        settings.budget = results[job.task].budget;
-        settings.seed = static_cast<unsigned>(job.seed);
-        settings.lbfgsbFirstStep = lbfgsb.lbfgsbFirstStep;
-        settings.lbfgsbMinCurvatureStep = lbfgsb.lbfgsbMinCurvatureStep;
-        std::unique_ptr<Optimizer> optimizer = makeOptimizer(kMethods[m].name, settings);
-        // A run can take hours (the Sock's); one progress line per kProgressSeconds of it.
-        double reported = 0.0;
-        double best = std::numeric_limits<double>::infinity();
-        optimizer->log().setObserver([&, budget = settings.budget](const LogEntry& e) {
-          best = std::min(best, e.loss);
-          if (e.seconds - reported < kProgressSeconds) return;
-          reported = e.seconds;
-          std::fprintf(stderr,
-                       "applications: %s, %s, seed %d: evaluation %d, %lld of %lld steps, best "
-                       "loss %s, %.0f s\n",
-                       task->name, kMethods[m].name, job.seed, e.evaluation, e.steps, budget,
-                       formatNumber(best, 4).c_str(), e.seconds);
-        });
-        Run& run = job.run;
-        run.method = m;
-        run.seed = job.seed;
-        try {
-          run.stop = optimizer
-                         ->minimize(objective, start, objective.space().lowerCoordinates(),
-                                    objective.space().upperCoordinates())
-                         .stopReason;
-        } catch (const NumericalError& e) {
-          // A sample the forward solver cannot simulate ends that run, not the benchmark.
-          run.stop = std::string("numerical failure: ") + e.what();
-          std::fprintf(stderr, "warning: %s, %s, seed %d: %s\n", task->name, kMethods[m].name,
-                       job.seed, e.what());
-        }
-        for (const LogEntry& e : optimizer->log().entries()) {
-          run.curve.steps.push_back(e.steps);
-          run.curve.loss.push_back(e.loss);
-          run.seconds = e.seconds;
-          char wall[32];
-          std::snprintf(wall, sizeof wall, "%.6f", e.seconds);
-          run.rows.push_back({task->name, kMethods[m].name, std::to_string(job.seed),
-                              std::to_string(e.evaluation), std::to_string(e.steps), wall,
-                              formatNumber(e.loss, 17)});
-        }
-        const std::string name = runFileName(*task, m, job.seed);
-        writeParameterFile(store + "/parameters/" + name, objective.space(), optimizer->log());
-        writeRunFile(store + "/" + name, run);  // from here on the run survives a kill
+        makeRun(c, jobs[j]);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failureMutex);
         if (!failure) failure = std::current_exception();
@@ -740,239 +608,322 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
   {
     std::vector<std::thread> workers;
     const std::size_t count =
-        std::min<std::size_t>(static_cast<std::size_t>(jobCount), jobs.size());
+        std::min<std::size_t>(static_cast<std::size_t>(c.options.jobs), jobs.size());
     for (std::size_t w = 1; w < count; ++w) workers.emplace_back(work);
     work();
     for (std::thread& w : workers) w.join();
   }
-  omp_set_num_threads(threads);
+  omp_set_num_threads(c.options.threads);
   if (failure) std::rethrow_exception(failure);
-  const int newRuns = static_cast<int>(jobs.size());
+  c.newRuns = static_cast<int>(jobs.size());
   for (Job& job : jobs)
-    if (!job.run.curve.steps.empty()) results[job.task].runs.push_back(std::move(job.run));
+    if (!job.run.curve.steps.empty()) c.results[job.task].runs.push_back(std::move(job.run));
+}
 
-  for (std::size_t t = 0; t < results.size(); ++t) {
-    TaskResult& result = results[t];
+// What the tables need besides the runs: the passes timed, the starts, the handles' depths.
+void measureTasks(Comparison& c) {
+  for (std::size_t t = 0; t < c.results.size(); ++t) {
+    TaskResult& result = c.results[t];
     std::stable_sort(result.runs.begin(), result.runs.end(), [](const Run& a, const Run& b) {
       return a.seed != b.seed ? a.seed < b.seed : a.method < b.method;
     });
     // Table 4: not stored with the runs, so measured again by every invocation (one gradient
     // evaluation, small next to the runs themselves), one task at a time after all runs.
-    prepare(t);
+    const TaskScene& ts = loadTaskScene(c, t);
     std::fprintf(stderr, "applications: %s, one forward and backward pass, timed...\n",
                  result.task->name);
-    result.timing = timePasses(*loaded[t].scene, *loaded[t].parameters);
-    drawStarts(t);
+    result.timing = timePasses(*ts.scene, *ts.parameters);
+    drawStarts(c, t);
     // Where each run's answer puts the handles, from the values stored with the run: an answer
     // that drives a handle through the body is not a motion a manipulator can make, however low
     // its loss (the Sock, docs/applications.md).
-    result.handles = hasHandlesAndObstacles(*loaded[t].scene);
+    result.handles = hasHandlesAndObstacles(*ts.scene);
     if (result.handles)
       for (Run& run : result.runs) {
         const std::string file =
-            store + "/parameters/" + runFileName(*result.task, run.method, run.seed);
+            c.store + "/parameters/" + runFileName(*result.task, run.method, run.seed);
         const Eigen::VectorXd values =
-            storedParameterValues(file, *loaded[t].parameters, bestEvaluation(run));
-        run.handleDepth =
-            deepestHandleTargetDepth(loaded[t].parameters->withValues(*loaded[t].scene, values));
+            storedParameterValues(file, *ts.parameters, bestEvaluation(run));
+        run.handleDepth = deepestHandleTargetDepth(ts.parameters->withValues(*ts.scene, values));
       }
   }
-  BenchTable csv(kRunColumns);
-  for (const TaskResult& r : results)
-    for (int seed = 1; seed <= r.seeds; ++seed)
-      for (int m = 0; m < kMethodCount; ++m)
-        for (const Run& run : r.runs)
-          if (run.seed == seed && run.method == m)
-            for (const auto& row : run.rows) csv.add(row);
-  const double benchSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - benchStart).count();
+}
 
-  BenchTable losses({"task", "parameters", "seeds", "budget (steps)", "min initial loss",
+// The tables of applications.md (and applications.csv, passes.csv), filled a task at a time.
+struct Tables {
+  BenchTable csv{kRunColumns};
+  BenchTable losses{{"task", "parameters", "seeds", "budget (steps)", "min initial loss",
                      "L-BFGS-B final %", "CMA-ES final %", "CMA-ES equal-step %",
-                     "(1+1)-ES final %", "(1+1)-ES equal-step %"});
-  BenchTable steps({"task", "parameters", "threshold", "L-BFGS-B conv. steps", "CMA-ES conv. steps",
+                     "(1+1)-ES final %", "(1+1)-ES equal-step %"}};
+  BenchTable steps{{"task", "parameters", "threshold", "L-BFGS-B conv. steps", "CMA-ES conv. steps",
                     "(1+1)-ES conv. steps", "L-BFGS-B steps to threshold",
                     "CMA-ES steps to threshold", "(1+1)-ES steps to threshold", "CMA-ES speedup",
-                    "(1+1)-ES speedup"});
-  BenchTable passes({"task", "DoF", "time steps", "h [s]", "forward s", "backward s",
+                    "(1+1)-ES speedup"}};
+  BenchTable passes{{"task", "DoF", "time steps", "h [s]", "forward s", "backward s",
                      "CPU s (both)", "iter. conv. %", "unconverged forward steps", "adjoint growth",
-                     "L-BFGS-B s per evaluation (runs)", "runs' wall s (all)"});
-  BenchTable beside({"task", "source", "parameters", "seeds", "L-BFGS-B final %", "CMA-ES final %",
+                     "L-BFGS-B s per evaluation (runs)", "runs' wall s (all)"}};
+  BenchTable beside{{"task", "source", "parameters", "seeds", "L-BFGS-B final %", "CMA-ES final %",
                      "CMA-ES equal-step %", "(1+1)-ES final %", "(1+1)-ES equal-step %",
                      "L-BFGS-B conv. steps", "CMA-ES conv. steps", "(1+1)-ES conv. steps",
-                     "CMA-ES / L-BFGS-B steps", "iter. conv. %", "forward s", "backward s"});
-  BenchTable handles({"task", "seed", "L-BFGS-B (mm)", "CMA-ES (mm)", "(1+1)-ES (mm)"});
-  BenchTable aims({"task", "target", "target loss", "L-BFGS-B steps", "CMA-ES steps",
-                   "(1+1)-ES steps", "CMA-ES / L-BFGS-B", "L-BFGS-B in a fifth of CMA-ES's steps"});
-  BenchTable perSeed({"task", "seed", "initial loss", "L-BFGS-B final", "CMA-ES final",
+                     "CMA-ES / L-BFGS-B steps", "iter. conv. %", "forward s", "backward s"}};
+  BenchTable handles{{"task", "seed", "L-BFGS-B (mm)", "CMA-ES (mm)", "(1+1)-ES (mm)"}};
+  BenchTable aims{{"task", "target", "target loss", "L-BFGS-B steps", "CMA-ES steps",
+                   "(1+1)-ES steps", "CMA-ES / L-BFGS-B", "L-BFGS-B in a fifth of CMA-ES's steps"}};
+  BenchTable perSeed{{"task", "seed", "initial loss", "L-BFGS-B final", "CMA-ES final",
                       "(1+1)-ES final", "L-BFGS-B %", "CMA-ES %", "(1+1)-ES %",
                       "L-BFGS-B conv. steps", "CMA-ES conv. steps", "(1+1)-ES conv. steps",
-                      "L-BFGS-B wall s", "CMA-ES wall s", "(1+1)-ES wall s"});
+                      "L-BFGS-B wall s", "CMA-ES wall s", "(1+1)-ES wall s"}};
   // Points, not lines: the tasks are not one family (the napkins and wind_sysid share an axis).
-  std::vector<PlotSeries> speedup = {{"CMA-ES / L-BFGS-B", {}, {}, "points pointsize 2"},
-                                     {"(1+1)-ES / L-BFGS-B", {}, {}, "points pointsize 2"}};
+  std::vector<PlotSeries> speedup{{"CMA-ES / L-BFGS-B", {}, {}, "points pointsize 2"},
+                                  {"(1+1)-ES / L-BFGS-B", {}, {}, "points pointsize 2"}};
   std::vector<std::string> plotNotes;
-  for (const TaskResult& r : results) {
-    double minInitial = std::numeric_limits<double>::infinity();
+};
+
+// A method without runs (--methods) shows "-", never "> budget".
+constexpr long long kNoRuns = -2;
+
+// One task's runs as curves: each method's minimum envelope over seeds and what the tables read
+// off it.
+struct TaskCurves {
+  const TaskResult& r;
+  double minInitial = std::numeric_limits<double>::infinity();
+  LossCurve envelope[kApplicationMethodCount];
+  long long toThreshold[kApplicationMethodCount];
+  double threshold = 0.0;
+  long long lbfgsbConverged = 0;
+
+  explicit TaskCurves(const TaskResult& result) : r(result) {
     for (const Run& run : r.runs) minInitial = std::min(minInitial, run.curve.loss.front());
-    LossCurve envelope[kMethodCount];
-    for (int m = 0; m < kMethodCount; ++m) {
+    for (int m = 0; m < kApplicationMethodCount; ++m) {
       std::vector<LossCurve> curves;
       for (const Run& run : r.runs)
         if (run.method == m) curves.push_back(run.curve);
       envelope[m] = minimumEnvelope(curves);
     }
-    const auto finalLoss = [&](int m) {
-      return envelope[m].loss.empty() ? std::numeric_limits<double>::quiet_NaN()
-                                      : envelope[m].loss.back();
-    };
-    // A method without runs (--methods) shows "-", never "> budget".
-    constexpr long long kNoRuns = -2;
-    const auto converged = [&](int m) {
-      return envelope[m].loss.empty() ? kNoRuns : convergenceSteps(envelope[m], minInitial);
-    };
-    const long long lbfgsbConverged = converged(0);
-    const double threshold = kThresholdFraction * minInitial;
-    long long toThreshold[kMethodCount];
-    for (int m = 0; m < kMethodCount; ++m)
+    lbfgsbConverged = converged(0);
+    threshold = kThresholdFraction * minInitial;
+    for (int m = 0; m < kApplicationMethodCount; ++m)
       toThreshold[m] = envelope[m].loss.empty() ? kNoRuns : stepsToReach(envelope[m], threshold);
-    const auto stepsText = [&](long long s) {
-      return s == kNoRuns ? "-" : s < 0 ? "> " + std::to_string(r.budget) : std::to_string(s);
-    };
-    std::string speedupText[2];
-    for (int m = 1; m < kMethodCount; ++m) {
-      if (toThreshold[0] < 0 || toThreshold[m] == kNoRuns) {
-        speedupText[m - 1] = "-";
-      } else if (toThreshold[m] < 0) {
-        speedupText[m - 1] = "> " + formatNumber(double(r.budget) / toThreshold[0], 3);
-      } else {
-        const double ratio = double(toThreshold[m]) / toThreshold[0];
-        speedupText[m - 1] = formatNumber(ratio, 3);
-        speedup[m - 1].x.push_back(r.parameters);
-        speedup[m - 1].y.push_back(ratio);
-      }
+  }
+  double finalLoss(int m) const {
+    return envelope[m].loss.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                    : envelope[m].loss.back();
+  }
+  long long converged(int m) const {
+    return envelope[m].loss.empty() ? kNoRuns : convergenceSteps(envelope[m], minInitial);
+  }
+  std::string stepsText(long long s) const {
+    return s == kNoRuns ? "-" : s < 0 ? "> " + std::to_string(r.budget) : std::to_string(s);
+  }
+  // The share of the pass's backward steps whose iterative solve converged (Table 3).
+  std::string iterConverged() const {
+    const PassTiming& t = r.timing;
+    return t.measured && t.backwardSolves > 0
+               ? formatNumber(100.0 * (t.backwardSolves - t.notConverged) / t.backwardSolves, 4)
+               : "-";
+  }
+};
+
+// DiffCloth Table 2: final losses and losses at L-BFGS-B's convergence step count.
+void addLossRow(const TaskCurves& k, BenchTable& losses) {
+  const TaskResult& r = k.r;
+  const double minInitial = k.minInitial;
+  const LossCurve* envelope = k.envelope;
+  const long long lbfgsbConverged = k.lbfgsbConverged;
+  const auto finalLoss = [&](int m) { return k.finalLoss(m); };
+  losses.add({r.task->name, std::to_string(r.parameters), std::to_string(r.seeds),
+              std::to_string(r.budget), formatNumber(minInitial, 4),
+              percent(finalLoss(0), minInitial), percent(finalLoss(1), minInitial),
+              percent(lossAt(envelope[1], lbfgsbConverged), minInitial),
+              percent(finalLoss(2), minInitial),
+              percent(lossAt(envelope[2], lbfgsbConverged), minInitial)});
+}
+
+// DiffCloth Table 3 and Fig. 4: steps to converge and to the threshold, speedups (also plotted
+// against the parameter count).
+void addStepRow(const TaskCurves& k, BenchTable& steps, std::vector<PlotSeries>& speedup) {
+  const TaskResult& r = k.r;
+  const long long* toThreshold = k.toThreshold;
+  const double threshold = k.threshold;
+  const auto converged = [&](int m) { return k.converged(m); };
+  const auto stepsText = [&](long long s) { return k.stepsText(s); };
+  std::string speedupText[2];
+  for (int m = 1; m < kApplicationMethodCount; ++m) {
+    if (toThreshold[0] < 0 || toThreshold[m] == kNoRuns) {
+      speedupText[m - 1] = "-";
+    } else if (toThreshold[m] < 0) {
+      speedupText[m - 1] = "> " + formatNumber(double(r.budget) / toThreshold[0], 3);
+    } else {
+      const double ratio = double(toThreshold[m]) / toThreshold[0];
+      speedupText[m - 1] = formatNumber(ratio, 3);
+      speedup[m - 1].x.push_back(r.parameters);
+      speedup[m - 1].y.push_back(ratio);
     }
-    losses.add({r.task->name, std::to_string(r.parameters), std::to_string(r.seeds),
-                std::to_string(r.budget), formatNumber(minInitial, 4),
+  }
+  steps.add({r.task->name, std::to_string(r.parameters), formatNumber(threshold, 3),
+             stepsText(converged(0)), stepsText(converged(1)), stepsText(converged(2)),
+             stepsText(toThreshold[0]), stepsText(toThreshold[1]), stepsText(toThreshold[2]),
+             speedupText[0], speedupText[1]});
+}
+
+// DiffCloth Table 4: seconds per pass, and the runs' own seconds.
+void addPassRow(const TaskCurves& k, BenchTable& passes) {
+  const TaskResult& r = k.r;
+  const std::string iterConverged = k.iterConverged();
+  const PassTiming& t = r.timing;
+  double lbfgsbSeconds = 0.0, runSeconds = 0.0;
+  std::size_t lbfgsbEvaluations = 0;
+  for (const Run& run : r.runs) {
+    runSeconds += run.seconds;
+    if (run.method == 0) lbfgsbSeconds += run.seconds, lbfgsbEvaluations += run.curve.steps.size();
+  }
+  passes.add({r.task->name, std::to_string(3 * r.garmentVertices), std::to_string(t.steps),
+              formatNumber(t.timeStep, 4),
+              t.measured ? formatNumber(t.forwardSeconds, 3) : "failed: " + t.failure,
+              t.measured ? formatNumber(t.backwardSeconds, 3) : "-", formatNumber(t.cpuSeconds, 3),
+              iterConverged, std::to_string(t.unconvergedForwardSteps),
+              t.measured ? formatNumber(t.adjointGrowth, 3) : "-",
+              lbfgsbEvaluations ? formatNumber(lbfgsbSeconds / lbfgsbEvaluations, 3) : "-",
+              formatNumber(runSeconds, 4)});
+}
+
+// This comparison's figures above DiffCloth's published ones, for the tasks the paper has.
+void addPaperRows(const TaskCurves& k, BenchTable& beside) {
+  const TaskResult& r = k.r;
+  const PassTiming& t = r.timing;
+  const double minInitial = k.minInitial;
+  const LossCurve* envelope = k.envelope;
+  const long long lbfgsbConverged = k.lbfgsbConverged;
+  const std::string iterConverged = k.iterConverged();
+  const auto finalLoss = [&](int m) { return k.finalLoss(m); };
+  const auto converged = [&](int m) { return k.converged(m); };
+  const auto stepsText = [&](long long s) { return k.stepsText(s); };
+  if (const paper::PublishedTaskFigures* p = paper::publishedFigures(r.task->name)) {
+    const auto ratio = [](long long a, long long b) {
+      return a > 0 && b > 0 ? formatNumber(double(a) / double(b), 3) : std::string("-");
+    };
+    beside.add({r.task->name, "Weft", std::to_string(r.parameters), std::to_string(r.seeds),
                 percent(finalLoss(0), minInitial), percent(finalLoss(1), minInitial),
                 percent(lossAt(envelope[1], lbfgsbConverged), minInitial),
                 percent(finalLoss(2), minInitial),
-                percent(lossAt(envelope[2], lbfgsbConverged), minInitial)});
-    const PassTiming& t = r.timing;
-    const std::string iterConverged =
-        t.measured && t.backwardSolves > 0
-            ? formatNumber(100.0 * (t.backwardSolves - t.notConverged) / t.backwardSolves, 4)
-            : "-";
-    double lbfgsbSeconds = 0.0, runSeconds = 0.0;
-    std::size_t lbfgsbEvaluations = 0;
-    for (const Run& run : r.runs) {
-      runSeconds += run.seconds;
-      if (run.method == 0)
-        lbfgsbSeconds += run.seconds, lbfgsbEvaluations += run.curve.steps.size();
-    }
-    passes.add({r.task->name, std::to_string(3 * r.garmentVertices), std::to_string(t.steps),
-                formatNumber(t.timeStep, 4),
-                t.measured ? formatNumber(t.forwardSeconds, 3) : "failed: " + t.failure,
-                t.measured ? formatNumber(t.backwardSeconds, 3) : "-",
-                formatNumber(t.cpuSeconds, 3), iterConverged,
-                std::to_string(t.unconvergedForwardSteps),
-                t.measured ? formatNumber(t.adjointGrowth, 3) : "-",
-                lbfgsbEvaluations ? formatNumber(lbfgsbSeconds / lbfgsbEvaluations, 3) : "-",
-                formatNumber(runSeconds, 4)});
-    if (const paper::PublishedTaskFigures* p = paper::publishedFigures(r.task->name)) {
-      const auto ratio = [](long long a, long long b) {
-        return a > 0 && b > 0 ? formatNumber(double(a) / double(b), 3) : std::string("-");
-      };
-      beside.add({r.task->name, "Weft", std::to_string(r.parameters), std::to_string(r.seeds),
-                  percent(finalLoss(0), minInitial), percent(finalLoss(1), minInitial),
-                  percent(lossAt(envelope[1], lbfgsbConverged), minInitial),
-                  percent(finalLoss(2), minInitial),
-                  percent(lossAt(envelope[2], lbfgsbConverged), minInitial),
-                  stepsText(converged(0)), stepsText(converged(1)), stepsText(converged(2)),
-                  ratio(converged(1), converged(0)), iterConverged,
-                  t.measured ? formatNumber(t.forwardSeconds, 3) : "-",
-                  t.measured ? formatNumber(t.backwardSeconds, 3) : "-"});
-      beside.add({p->title, "DiffCloth", std::to_string(p->parameters), std::to_string(p->seeds),
-                  formatNumber(p->finalPercent[0], 4), formatNumber(p->finalPercent[1], 4),
-                  formatNumber(p->equalStepPercent[0], 4), formatNumber(p->finalPercent[2], 4),
-                  formatNumber(p->equalStepPercent[1], 4), std::to_string(p->convergenceSteps[0]),
-                  std::to_string(p->convergenceSteps[1]), std::to_string(p->convergenceSteps[2]),
-                  ratio(p->convergenceSteps[1], p->convergenceSteps[0]),
-                  formatNumber(p->iterativeConvergedPercent, 4), formatNumber(p->forwardSeconds, 4),
-                  formatNumber(p->backwardSeconds, 4)});
-    }
-    {
-      // The aim (SpeedupAim.h): each envelope's steps to the paper's L-BFGS-B loss.
-      const paper::PublishedTaskFigures* p = paper::publishedFigures(r.task->name);
-      const bool napkin = std::string(r.task->name).rfind("napkin_", 0) == 0;
-      if ((p || napkin) && !envelope[0].loss.empty() && !envelope[1].loss.empty()) {
-        const double target = p ? p->finalPercent[0] / 100.0 * minInitial : kFig4SpeedupLoss;
-        long long reach[kMethodCount];
-        for (int m = 0; m < kMethodCount; ++m)
-          reach[m] = envelope[m].loss.empty() ? kNoRuns : stepsToReach(envelope[m], target);
-        const SpeedupAim aim = judgeSpeedupAim(reach[0], reach[1], r.budget);
-        aims.add({r.task->name,
-                  p ? "paper's L-BFGS-B " + formatNumber(p->finalPercent[0], 4) + " %"
-                    : "Fig. 4 loss " + formatNumber(kFig4SpeedupLoss, 3),
-                  formatNumber(target, 4), stepsText(reach[0]), stepsText(reach[1]),
-                  stepsText(reach[2]),
-                  std::isnan(aim.ratio) ? std::string("-")
-                                        : (aim.lowerBound ? "> " : "") + formatNumber(aim.ratio, 3),
-                  aim.text});
-      }
-    }
-    steps.add({r.task->name, std::to_string(r.parameters), formatNumber(threshold, 3),
-               stepsText(converged(0)), stepsText(converged(1)), stepsText(converged(2)),
-               stepsText(toThreshold[0]), stepsText(toThreshold[1]), stepsText(toThreshold[2]),
-               speedupText[0], speedupText[1]});
-
-    for (int seed = 1; seed <= r.seeds; ++seed) {
-      const Run* bySeed[kMethodCount] = {nullptr, nullptr, nullptr};
-      for (const Run& run : r.runs)
-        if (run.seed == seed) bySeed[run.method] = &run;
-      if (!bySeed[0] && !bySeed[1] && !bySeed[2]) continue;
-      const Run* any = bySeed[0] ? bySeed[0] : bySeed[1] ? bySeed[1] : bySeed[2];
-      const double initial = any->curve.loss.front();
-      std::vector<std::string> row = {r.task->name, std::to_string(seed), formatNumber(initial, 4)};
-      std::vector<std::string> finals, percents, conv, walls;
-      for (int m = 0; m < kMethodCount; ++m) {
-        if (!bySeed[m]) {
-          finals.push_back("-"), percents.push_back("-"), conv.push_back("-"), walls.push_back("-");
-          continue;
-        }
-        const LossCurve best = minimumEnvelope({bySeed[m]->curve});
-        finals.push_back(formatNumber(best.loss.back(), 4));
-        percents.push_back(percent(best.loss.back(), initial));
-        conv.push_back(std::to_string(convergenceSteps(best, initial)));
-        walls.push_back(formatNumber(bySeed[m]->seconds, 3));
-      }
-      for (const auto* group : {&finals, &percents, &conv, &walls})
-        row.insert(row.end(), group->begin(), group->end());
-      perSeed.add(row);
-      if (r.handles) {
-        std::vector<std::string> depths = {r.task->name, std::to_string(seed)};
-        for (int m = 0; m < kMethodCount; ++m)
-          depths.push_back(bySeed[m] ? formatNumber(1e3 * bySeed[m]->handleDepth, 3) : "-");
-        handles.add(depths);
-      }
-    }
-
-    std::vector<PlotSeries> plot;
-    for (int m = 0; m < kMethodCount; ++m) {
-      PlotSeries s{kMethods[m].title, {}, {}, "steps"};
-      for (std::size_t i = 0; i < envelope[m].steps.size(); ++i)
-        s.x.push_back(static_cast<double>(envelope[m].steps[i])),
-            s.y.push_back(envelope[m].loss[i]);
-      plot.push_back(std::move(s));
-    }
-    std::string reason;
-    if (!plotSeries(out.file(std::string("loss_") + r.task->name + ".png"),
-                    std::string(r.task->name) + ": minimum loss over " + std::to_string(r.seeds) +
-                        " seed(s)",
-                    "simulated steps (L-BFGS-B: forward + backward; ES: forward)", "loss", plot,
-                    false, minInitial > 0.0, reason))
-      plotNotes.push_back(reason);
+                percent(lossAt(envelope[2], lbfgsbConverged), minInitial), stepsText(converged(0)),
+                stepsText(converged(1)), stepsText(converged(2)), ratio(converged(1), converged(0)),
+                iterConverged, t.measured ? formatNumber(t.forwardSeconds, 3) : "-",
+                t.measured ? formatNumber(t.backwardSeconds, 3) : "-"});
+    beside.add({p->title, "DiffCloth", std::to_string(p->parameters), std::to_string(p->seeds),
+                formatNumber(p->finalPercent[0], 4), formatNumber(p->finalPercent[1], 4),
+                formatNumber(p->equalStepPercent[0], 4), formatNumber(p->finalPercent[2], 4),
+                formatNumber(p->equalStepPercent[1], 4), std::to_string(p->convergenceSteps[0]),
+                std::to_string(p->convergenceSteps[1]), std::to_string(p->convergenceSteps[2]),
+                ratio(p->convergenceSteps[1], p->convergenceSteps[0]),
+                formatNumber(p->iterativeConvergedPercent, 4), formatNumber(p->forwardSeconds, 4),
+                formatNumber(p->backwardSeconds, 4)});
   }
+}
+
+// The aim (SpeedupAim.h): each envelope's steps to the paper's L-BFGS-B loss.
+void addAimRow(const TaskCurves& k, BenchTable& aims) {
+  const TaskResult& r = k.r;
+  const double minInitial = k.minInitial;
+  const LossCurve* envelope = k.envelope;
+  const auto stepsText = [&](long long s) { return k.stepsText(s); };
+  {
+    const paper::PublishedTaskFigures* p = paper::publishedFigures(r.task->name);
+    const bool napkin = std::string(r.task->name).rfind("napkin_", 0) == 0;
+    if ((p || napkin) && !envelope[0].loss.empty() && !envelope[1].loss.empty()) {
+      const double target = p ? p->finalPercent[0] / 100.0 * minInitial : kFig4SpeedupLoss;
+      long long reach[kApplicationMethodCount];
+      for (int m = 0; m < kApplicationMethodCount; ++m)
+        reach[m] = envelope[m].loss.empty() ? kNoRuns : stepsToReach(envelope[m], target);
+      const SpeedupAim aim = judgeSpeedupAim(reach[0], reach[1], r.budget);
+      aims.add({r.task->name,
+                p ? "paper's L-BFGS-B " + formatNumber(p->finalPercent[0], 4) + " %"
+                  : "Fig. 4 loss " + formatNumber(kFig4SpeedupLoss, 3),
+                formatNumber(target, 4), stepsText(reach[0]), stepsText(reach[1]),
+                stepsText(reach[2]),
+                std::isnan(aim.ratio) ? std::string("-")
+                                      : (aim.lowerBound ? "> " : "") + formatNumber(aim.ratio, 3),
+                aim.text});
+    }
+  }
+}
+
+// DiffCloth Tables 5-6 (every seed), and for tasks with handles and obstacles how deep each run's
+// best point puts a handle target inside one.
+void addSeedRows(const TaskResult& r, BenchTable& perSeed, BenchTable& handles) {
+  for (int seed = 1; seed <= r.seeds; ++seed) {
+    const Run* bySeed[kApplicationMethodCount] = {nullptr, nullptr, nullptr};
+    for (const Run& run : r.runs)
+      if (run.seed == seed) bySeed[run.method] = &run;
+    if (!bySeed[0] && !bySeed[1] && !bySeed[2]) continue;
+    const Run* any = bySeed[0] ? bySeed[0] : bySeed[1] ? bySeed[1] : bySeed[2];
+    const double initial = any->curve.loss.front();
+    std::vector<std::string> row = {r.task->name, std::to_string(seed), formatNumber(initial, 4)};
+    std::vector<std::string> finals, percents, conv, walls;
+    for (int m = 0; m < kApplicationMethodCount; ++m) {
+      if (!bySeed[m]) {
+        finals.push_back("-"), percents.push_back("-"), conv.push_back("-"), walls.push_back("-");
+        continue;
+      }
+      const LossCurve best = minimumEnvelope({bySeed[m]->curve});
+      finals.push_back(formatNumber(best.loss.back(), 4));
+      percents.push_back(percent(best.loss.back(), initial));
+      conv.push_back(std::to_string(convergenceSteps(best, initial)));
+      walls.push_back(formatNumber(bySeed[m]->seconds, 3));
+    }
+    for (const auto* group : {&finals, &percents, &conv, &walls})
+      row.insert(row.end(), group->begin(), group->end());
+    perSeed.add(row);
+    if (r.handles) {
+      std::vector<std::string> depths = {r.task->name, std::to_string(seed)};
+      for (int m = 0; m < kApplicationMethodCount; ++m)
+        depths.push_back(bySeed[m] ? formatNumber(1e3 * bySeed[m]->handleDepth, 3) : "-");
+      handles.add(depths);
+    }
+  }
+}
+
+// Fig. 4 bottom left: the minimum envelope over seeds against steps.
+void plotTaskLosses(const TaskCurves& k, StagedDirectory& out, std::vector<std::string>& notes) {
+  const TaskResult& r = k.r;
+  const LossCurve* envelope = k.envelope;
+  const double minInitial = k.minInitial;
+  std::vector<PlotSeries> plot;
+  for (int m = 0; m < kApplicationMethodCount; ++m) {
+    PlotSeries s{kApplicationMethods[m].title, {}, {}, "steps"};
+    for (std::size_t i = 0; i < envelope[m].steps.size(); ++i)
+      s.x.push_back(static_cast<double>(envelope[m].steps[i])), s.y.push_back(envelope[m].loss[i]);
+    plot.push_back(std::move(s));
+  }
+  std::string reason;
+  if (!plotSeries(
+          out.file(std::string("loss_") + r.task->name + ".png"),
+          std::string(r.task->name) + ": minimum loss over " + std::to_string(r.seeds) + " seed(s)",
+          "simulated steps (L-BFGS-B: forward + backward; ES: forward)", "loss", plot, false,
+          minInitial > 0.0, reason))
+    notes.push_back(reason);
+}
+
+Tables tabulate(const Comparison& c, StagedDirectory& out) {
+  Tables tables;
+  for (const TaskResult& r : c.results)
+    for (int seed = 1; seed <= r.seeds; ++seed)
+      for (int m = 0; m < kApplicationMethodCount; ++m)
+        for (const Run& run : r.runs)
+          if (run.seed == seed && run.method == m)
+            for (const auto& row : run.rows) tables.csv.add(row);
+  for (const TaskResult& r : c.results) {
+    const TaskCurves k(r);
+    addLossRow(k, tables.losses);
+    addPassRow(k, tables.passes);
+    addPaperRows(k, tables.beside);
+    addAimRow(k, tables.aims);
+    addStepRow(k, tables.steps, tables.speedup);
+    addSeedRows(r, tables.perSeed, tables.handles);
+    plotTaskLosses(k, out, tables.plotNotes);
+  }
+  std::vector<PlotSeries>& speedup = tables.speedup;
+  std::vector<std::string>& plotNotes = tables.plotNotes;
   if (!speedup[0].x.empty() || !speedup[1].x.empty()) {
     std::string reason;
     if (!plotSeries(out.file("speedup.png"),
@@ -980,27 +931,32 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                     "parameters", "speedup of L-BFGS-B", speedup, true, false, reason))
       plotNotes.push_back(reason);
   }
-  for (const std::string& note : plotNotes) std::fprintf(stderr, "warning: %s\n", note.c_str());
+  return tables;
+}
 
-  csv.writeCsv(out.file("applications.csv"));
-  passes.writeCsv(out.file("passes.csv"));
-  // The runs (and their settings) go with the tables, so that a later --resume can extend them.
+// The runs (and their settings) go with the tables, so that a later --resume can extend them.
+void copyRuns(const Comparison& c, StagedDirectory& out) {
   {
     std::error_code ec;
     fs::create_directories(out.file("runs"), ec);
-    for (const auto& entry : fs::directory_iterator(store, ec))
+    for (const auto& entry : fs::directory_iterator(c.store, ec))
       if (entry.is_regular_file() &&
           (entry.path().extension() == ".csv" || entry.path().filename() == "settings.json"))
         fs::copy_file(entry.path(), fs::path(out.file("runs")) / entry.path().filename(), ec);
-    if (!ec && fs::is_directory(store + "/parameters"))
-      fs::copy(store + "/parameters", out.file("runs/parameters"), fs::copy_options::recursive, ec);
+    if (!ec && fs::is_directory(c.store + "/parameters"))
+      fs::copy(c.store + "/parameters", out.file("runs/parameters"), fs::copy_options::recursive,
+               ec);
     if (ec) throw InputError(out.file("runs"), "output", "cannot copy the runs: " + ec.message());
   }
-  // The paper-mesh scenes as run, each with its target beside it (the mesh stays where it is).
+}
+
+// The paper-mesh scenes as run, each with its target beside it (the mesh stays where it is);
+// returns the report's notes on them.
+std::string writePaperScenes(const Comparison& c, StagedDirectory& out) {
   std::string meshNotes;
-  for (const TaskResult& r : results) {
+  for (const TaskResult& r : c.results) {
     if (!r.paperScene) {
-      if (!paperDir.empty())
+      if (!c.options.paperMeshes.empty())
         meshNotes += "- " + std::string(r.task->name) + ": the task's own mesh (" +
                      std::to_string(r.garmentVertices) +
                      " vertices; no paper mesh for this task)\n";
@@ -1044,19 +1000,26 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
                       : " Target: this rest shape translated as the task's own target is.") +
                  " Scene: paper_scenes/" + r.task->name + ".json\n";
   }
+  return meshNotes;
+}
+
+// applications.md: the setup, the build, the meshes and starts, then the tables.
+void writeReport(const Comparison& c, const Tables& tables, const std::string& meshNotes,
+                 double benchSeconds, StagedDirectory& out) {
   {
     std::string taskList;
-    for (const TaskResult& r : results)
+    for (const TaskResult& r : c.results)
       taskList += (taskList.empty() ? "" : ",") + std::string(r.task->name);
     double runSeconds = 0.0;
-    for (const TaskResult& r : results)
+    for (const TaskResult& r : c.results)
       for (const Run& run : r.runs) runSeconds += run.seconds;
     const std::string setup =
-        "Machine: " + machineDescription() + ", " + std::to_string(threads) +
+        "Machine: " + machineDescription() + ", " + std::to_string(c.options.threads) +
         " thread(s) per run, " +
-        std::to_string(std::min<int>(jobCount, std::max<int>(1, newRuns))) + " run(s) at a time. " +
-        describeSeeds(results) + ", " + formatNumber(benchSeconds, 4) + " s in this invocation (" +
-        std::to_string(newRuns) + " run(s) made, " + std::to_string(resumedRuns) +
+        std::to_string(std::min<int>(c.options.jobs, std::max<int>(1, c.newRuns))) +
+        " run(s) at a time. " + describeSeeds(c.results) + ", " + formatNumber(benchSeconds, 4) +
+        " s in this invocation (" + std::to_string(c.newRuns) + " run(s) made, " +
+        std::to_string(c.resumedRuns) +
         " read back from stored run files; a run's wall s is its own). The runs' wall seconds add "
         "up to " +
         formatNumber(runSeconds, 4) + " s (" + formatNumber(runSeconds / 3600.0, 3) +
@@ -1078,32 +1041,32 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     {
       // Which sources made the runs: checked equal on --resume (checkStoredSettings) when both
       // builds are known, but for the commit itself.
-      const nlohmann::json current = buildInfoJson();
+      const nlohmann::json& current = c.options.build;
       const std::string now = describeBuild(current);
       md << "Build: ";
-      if (storedBuild.is_null())
+      if (c.storedBuild.is_null())
         md << "the stored runs carry no build record (made before builds were recorded); tables "
               "written by "
            << now;
-      else if (!isKnownBuild(storedBuild) || !isKnownBuild(current))
-        md << "runs made by " << describeBuild(storedBuild) << "; tables written by " << now
+      else if (!isKnownBuild(c.storedBuild) || !isKnownBuild(current))
+        md << "runs made by " << describeBuild(c.storedBuild) << "; tables written by " << now
            << " (not compared: no git record)";
-      else if (storedBuild == current)
+      else if (c.storedBuild == current)
         md << "runs made by " << now;
-      else if (!appDiffers.empty())
-        md << "runs made by " << describeBuild(storedBuild) << "; tables written by " << now
+      else if (!c.appDiffers.empty())
+        md << "runs made by " << describeBuild(c.storedBuild) << "; tables written by " << now
            << " (same engine and assets; its app/weft/ differs, so it made no runs)";
       else
-        md << "runs made by " << describeBuild(storedBuild) << "; tables written by " << now
+        md << "runs made by " << describeBuild(c.storedBuild) << "; tables written by " << now
            << " (same engine, CLI and assets)";
       md << ".\n\n";
     }
-    if (paperDir.empty()) {
+    if (c.options.paperMeshes.empty()) {
       md << "Meshes: every task on its own mesh (assets/meshes, or a grid).\n\n";
     } else {
       md << "## Meshes\n\nGarment tasks on the DiffCloth release's own garment meshes "
             "(`--paper-meshes "
-         << paperDir
+         << c.options.paperMeshes
          << "`): each is rotated into the task's frame, scaled uniformly so that its largest "
             "bounding-box extent equals that of the task's own garment, and translated so that the "
             "two bounding-box centres coincide; every vertex list of the scene is remapped to the "
@@ -1112,7 +1075,7 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     }
     {
       std::string redrawn, unavoidable;
-      for (const TaskResult& r : results)
+      for (const TaskResult& r : c.results)
         for (std::size_t i = 0; i < r.starts.size(); ++i) {
           const std::string name = std::string(r.task->name) + " seed " + std::to_string(i + 1);
           if (!r.starts[i].handlesOutsideObstacles)
@@ -1132,33 +1095,34 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     }
     {
       const OptimizerSettings defaults;
-      if (lbfgsb.lbfgsbFirstStep != defaults.lbfgsbFirstStep ||
-          lbfgsb.lbfgsbMinCurvatureStep != defaults.lbfgsbMinCurvatureStep)
-        md << "L-BFGS-B: first trial step " << formatNumber(lbfgsb.lbfgsbFirstStep, 4)
+      if (c.options.lbfgsb.lbfgsbFirstStep != defaults.lbfgsbFirstStep ||
+          c.options.lbfgsb.lbfgsbMinCurvatureStep != defaults.lbfgsbMinCurvatureStep)
+        md << "L-BFGS-B: first trial step " << formatNumber(c.options.lbfgsb.lbfgsbFirstStep, 4)
            << " (optimiser coordinates; LBFGSpp's is 1), curvature pairs of steps shorter than "
-           << formatNumber(lbfgsb.lbfgsbMinCurvatureStep, 4)
+           << formatNumber(c.options.lbfgsb.lbfgsbMinCurvatureStep, 4)
            << " left out (optim/LbfgsbOptimizer.h).\n\n";
     }
-    losses.writeMarkdown(md, "Loss reached (DiffCloth Table 2)",
-                         "Final %: the method's final loss as a percentage of the minimum initial "
-                         "loss over seeds. Equal-step %: "
-                         "the evolution strategy's loss after as many simulated steps as L-BFGS-B "
-                         "needed to converge (see below), "
-                         "as the same percentage.");
+    tables.losses.writeMarkdown(
+        md, "Loss reached (DiffCloth Table 2)",
+        "Final %: the method's final loss as a percentage of the minimum initial "
+        "loss over seeds. Equal-step %: "
+        "the evolution strategy's loss after as many simulated steps as L-BFGS-B "
+        "needed to converge (see below), "
+        "as the same percentage.");
     md << "\n";
-    steps.writeMarkdown(md,
-                        "Steps to converge and to reach a threshold (DiffCloth Table 3, Fig. 4)",
-                        "Conv. steps: the first step count at which the envelope is within 1% of "
-                        "its total decrease (from the "
-                        "minimum initial loss) of its final value. Threshold: 1% of the minimum "
-                        "initial loss; steps to threshold "
-                        "is the first step count at which the envelope reaches it ('> budget': not "
-                        "within the budget). Speedup: "
-                        "the evolution strategy's steps to the threshold over L-BFGS-B's (Fig. 4 "
-                        "bottom right); '> x' when the "
-                        "strategy did not reach it within the budget.");
+    tables.steps.writeMarkdown(
+        md, "Steps to converge and to reach a threshold (DiffCloth Table 3, Fig. 4)",
+        "Conv. steps: the first step count at which the envelope is within 1% of "
+        "its total decrease (from the "
+        "minimum initial loss) of its final value. Threshold: 1% of the minimum "
+        "initial loss; steps to threshold "
+        "is the first step count at which the envelope reaches it ('> budget': not "
+        "within the budget). Speedup: "
+        "the evolution strategy's steps to the threshold over L-BFGS-B's (Fig. 4 "
+        "bottom right); '> x' when the "
+        "strategy did not reach it within the budget.");
     md << "\n";
-    passes.writeMarkdown(
+    tables.passes.writeMarkdown(
         md, "Seconds per pass (DiffCloth Table 4)",
         "One gradient evaluation at the scene's own parameter values, run by this invocation: "
         "forward s and backward s are the wall seconds of its forward pass and of its backward "
@@ -1173,8 +1137,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
         "solve's gradient error is of the order of tolerance x sqrt(growth) / 100 "
         "(diff/AdjointGrowth.h).");
     md << "\n";
-    if (!beside.rows().empty()) {
-      beside.writeMarkdown(
+    if (!tables.beside.rows().empty()) {
+      tables.beside.writeMarkdown(
           md, "Beside the paper (DiffCloth Tables 2-4)",
           "Each task with a row in the paper: this comparison's figures (Weft) above the paper's "
           "(DiffCloth), same definitions as the tables above. The paper's losses are in its own "
@@ -1183,8 +1147,8 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
           "are what carries over.");
       md << "\n";
     }
-    if (!aims.rows().empty()) {
-      aims.writeMarkdown(
+    if (!tables.aims.rows().empty()) {
+      tables.aims.writeMarkdown(
           md, "Steps to the paper's loss (the issue's aim)",
           "The steps each method's envelope needs to reach the paper's L-BFGS-B final loss "
           "(Table 2: that percentage of this comparison's minimum initial loss; the Flying Napkin: "
@@ -1193,13 +1157,13 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
           "it, x being the budget over L-BFGS-B's steps).");
       md << "\n";
     }
-    perSeed.writeMarkdown(
+    tables.perSeed.writeMarkdown(
         md, "Every seed (DiffCloth Tables 5-6)",
         "Final: the run's best loss; %: of that seed's initial loss; conv. steps: as above, for "
         "the single run; wall s: the run's wall-clock seconds.");
-    if (!handles.rows().empty()) {
+    if (!tables.handles.rows().empty()) {
       md << "\n";
-      handles.writeMarkdown(
+      tables.handles.writeMarkdown(
           md, "Handles at each run's best point",
           "Tasks whose handles move among obstacles: how deep the handle targets of each run's "
           "best evaluation go inside an obstacle (mm, its skin not counted; 0: they stay "
@@ -1209,18 +1173,50 @@ int applicationsBenchmark(const CommandLine& cl, const std::string& outDir) {
     }
     if (!md) throw InputError(out.file("applications.md"), "output", "write failed");
   }
+}
+
+}  // namespace
+
+int runApplicationsBench(const ApplicationsBenchOptions& options, const std::string& outDir) {
+  omp_set_num_threads(options.threads);
+  StagedDirectory out(outDir);
+  std::string finalDir = outDir;
+  while (finalDir.size() > 1 && finalDir.back() == '/') finalDir.pop_back();
+  const auto benchStart = std::chrono::steady_clock::now();
+  Comparison c{options, finalDir + ".partial", checkedTasks(options), {}, {}, {}, false, 0, 0, 0};
+  c.loaded.resize(c.results.size());
+  c.storedRuns = openRunStore(c.store, finalDir + "/runs", options.resume, runSettings(options),
+                              &c.storedBuild, &c.appDiffers, &c.storeCopied);
+  std::vector<Job> jobs = readStoredRuns(c);
+  refuseRunsOfAnotherApp(c, jobs);
+  if (c.storedRuns > 0)
+    std::fprintf(stderr, "applications: %d stored run(s) in %s\n", c.storedRuns, c.store.c_str());
+  makeRuns(c, jobs);
+  measureTasks(c);
+
+  const double benchSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - benchStart).count();
+  Tables tables = tabulate(c, out);
+  for (const std::string& note : tables.plotNotes)
+    std::fprintf(stderr, "warning: %s\n", note.c_str());
+  tables.csv.writeCsv(out.file("applications.csv"));
+  tables.passes.writeCsv(out.file("passes.csv"));
+  copyRuns(c, out);
+  const std::string meshNotes = writePaperScenes(c, out);
+  writeReport(c, tables, meshNotes, benchSeconds, out);
   out.commit();
   {
     std::error_code ec;
-    fs::remove_all(store, ec);  // everything it held is in DIR/runs now
+    fs::remove_all(c.store, ec);  // everything it held is in DIR/runs now
   }
   std::printf(
       "bench applications: %zu task(s) x %d method(s), %s, %d run(s) made, %d resumed, "
       "%s meshes, %.1f s -> %s/applications.{csv,md}, loss_<task>.png, runs/\n",
-      results.size(), static_cast<int>(std::count(methods.begin(), methods.end(), true)),
-      describeSeeds(results).c_str(), newRuns, resumedRuns, paperDir.empty() ? "own" : "paper",
-      benchSeconds, outDir.c_str());
+      c.results.size(),
+      static_cast<int>(std::count(options.methods.begin(), options.methods.end(), true)),
+      describeSeeds(c.results).c_str(), c.newRuns, c.resumedRuns,
+      options.paperMeshes.empty() ? "own" : "paper", benchSeconds, outDir.c_str());
   return 0;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

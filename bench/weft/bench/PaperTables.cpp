@@ -1,6 +1,6 @@
 #include "PaperTables.h"
 
-namespace weft::cli::paper {
+namespace weft::bench::paper {
 namespace {
 
 // Transcribed from DiffCloth (ACM TOG 2022) Tables 2, 3 and 4;
@@ -100,4 +100,4 @@ const PublishedTaskFigures* publishedFigures(const std::string& task) {
   return nullptr;
 }
 
-}  // namespace weft::cli::paper
+}  // namespace weft::bench::paper

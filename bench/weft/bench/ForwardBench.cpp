@@ -3,8 +3,8 @@
 // reference, sweeping the PD iteration cap and the PD tolerance; plus PD iterations per step
 // with and without Anderson acceleration.
 
-#include "../CommandLine.h"
-#include "../Commands.h"
+#include "ForwardBench.h"
+
 #include "BenchTable.h"
 
 #include <weft/io/StagedDirectory.h>
@@ -20,7 +20,7 @@
 #include <filesystem>
 #include <fstream>
 
-namespace weft::cli {
+namespace weft::bench {
 namespace {
 
 struct RunResult {
@@ -69,16 +69,17 @@ std::string defaultScene() {
 
 }  // namespace
 
-int forwardBenchmark(const CommandLine& cl, const std::string& outDir) {
-  const bool quick = cl.has("--quick");
-  const std::string file = cl.value("--scene", defaultScene());
-  const int threads = cl.integer("--threads", 1, 1, 1024);
+int runForwardBench(const ForwardBenchOptions& options, const std::string& outDir) {
+  const bool quick = options.quick;
+  const std::string file = options.scene.empty() ? defaultScene() : options.scene;
+  const int threads = options.threads;
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
 
   // --resolutions: a subset, e.g. 24,48, to remeasure some sizes without the hour-long 96^2.
-  const std::vector<int> resolutions =
-      benchResolutions(cl, quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48, 96});
+  const std::vector<int> resolutions = !options.resolutions.empty() ? options.resolutions
+                                       : quick                      ? std::vector<int>{12, 24}
+                                               : std::vector<int>{12, 24, 48, 96};
   const std::vector<int> caps = {5, 10, 20, 50, 100, 200};
   const std::vector<double> tolerances = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   BenchTable table({"quads", "vertices", "steps", "setting", "pd_iterations", "pd_tolerance",
@@ -194,4 +195,4 @@ int forwardBenchmark(const CommandLine& cl, const std::string& outDir) {
   return 0;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace weft::cli {
+namespace weft::bench {
 
 double deepestHandleTargetDepth(const Scene& scene) {
   double deepest = 0.0;
@@ -14,4 +14,4 @@ double deepestHandleTargetDepth(const Scene& scene) {
   return deepest;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

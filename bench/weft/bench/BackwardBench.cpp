@@ -6,8 +6,8 @@
 // LU counted. Reports seconds (total, per step, linear solve vs rest), the fallback rate, the
 // speedup over direct and the gradient's relative error against the direct solve's gradient.
 
-#include "../CommandLine.h"
-#include "../Commands.h"
+#include "BackwardBench.h"
+
 #include "BenchAssets.h"
 #include "BenchTable.h"
 
@@ -37,7 +37,7 @@
 #include <random>
 #include <vector>
 
-namespace weft::cli {
+namespace weft::bench {
 namespace {
 
 // One of Table 1's scenes: its file, its steps (the paper's: Wind 200 at h = 1/90, Slope 300 at
@@ -208,16 +208,17 @@ struct Method {
 
 }  // namespace
 
-int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
-  const bool quick = cl.has("--quick");
-  const std::vector<BackwardCase> cases =
-      backwardCases(benchNames(cl, "--scenes", "wind,slope", {"wind", "wind_reference", "slope"}));
-  const int threads = cl.integer("--threads", 1, 1, 1024);
+int runBackwardBench(const BackwardBenchOptions& options, const std::string& outDir) {
+  const bool quick = options.quick;
+  const std::vector<BackwardCase> cases = backwardCases(
+      options.scenes.empty() ? std::vector<std::string>{"wind", "slope"} : options.scenes);
+  const int threads = options.threads;
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
-  const std::vector<int> resolutions =
-      benchResolutions(cl, quick ? std::vector<int>{12, 24} : std::vector<int>{12, 24, 48});
-  if (cl.has("--calibrate")) return calibrateFactorCost(cases, resolutions, threads, out, outDir);
+  const std::vector<int> resolutions = !options.resolutions.empty() ? options.resolutions
+                                       : quick                      ? std::vector<int>{12, 24}
+                                                                    : std::vector<int>{12, 24, 48};
+  if (options.calibrate) return calibrateFactorCost(cases, resolutions, threads, out, outDir);
   const std::vector<Method> methods = {{"direct", "direct", 1e-4},
                                        {"fixed_point 1e-4", "fixed_point", 1e-4},
                                        {"fixed_point 1e-6", "fixed_point", 1e-6},
@@ -438,4 +439,4 @@ int backwardBenchmark(const CommandLine& cl, const std::string& outDir) {
   return 0;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

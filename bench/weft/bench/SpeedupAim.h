@@ -8,7 +8,7 @@
 #include <limits>
 #include <string>
 
-namespace weft::cli {
+namespace weft::bench {
 
 struct SpeedupAim {
   enum class Verdict { Met, NotMet, NotShown };
@@ -27,4 +27,4 @@ struct SpeedupAim {
 SpeedupAim judgeSpeedupAim(long long lbfgsbSteps, long long cmaesSteps, long long budget,
                            double factor = 5.0);
 
-}  // namespace weft::cli
+}  // namespace weft::bench

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace weft::cli::paper {
+namespace weft::bench::paper {
 
 struct PublishedTaskFigures {
   const char* task;       // weft's task name
@@ -28,4 +28,4 @@ struct PublishedTaskFigures {
 // nullptr for a task the paper does not tabulate.
 const PublishedTaskFigures* publishedFigures(const std::string& task);
 
-}  // namespace weft::cli::paper
+}  // namespace weft::bench::paper

@@ -10,8 +10,8 @@
 // steps x vertices x 48 bytes for positions and velocities, plus the contacts, and is the
 // caller's choice); the table gives that figure separately.
 
-#include "../CommandLine.h"
-#include "../Commands.h"
+#include "ContactBench.h"
+
 #include "BenchAssets.h"
 #include "BenchTable.h"
 
@@ -29,7 +29,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace weft::cli {
+namespace weft::bench {
 namespace {
 
 // Resets the kernel's peak-RSS mark of this process; false where that is not supported.
@@ -149,9 +149,9 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
 
 }  // namespace
 
-int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
-  const bool quick = cl.has("--quick");
-  const int threads = cl.integer("--threads", 1, 1, 1024);
+int runContactBench(const ContactBenchOptions& options, const std::string& outDir) {
+  const bool quick = options.quick;
+  const int threads = options.threads;
   omp_set_num_threads(threads);
   StagedDirectory out(outDir);
 
@@ -165,16 +165,16 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
                                       {"slope", assetFile("scenes/slope.json"), 300},
                                       {"crumple", assetFile("scenes/crumple.json"), 150}};
   std::vector<Case> cases;
-  for (const std::string& name :
-       benchNames(cl, "--scenes", "sphere,slope,crumple", {"sphere", "slope", "crumple"}))
+  for (const std::string& name : options.scenes.empty() ? kContactBenchScenes : options.scenes)
     for (const Case& c : allCases)
       if (name == c.name) cases.push_back(c);
-  const std::vector<int> resolutions =
-      benchResolutions(cl, quick ? std::vector<int>{8, 16} : std::vector<int>{24, 48, 96});
+  const std::vector<int> resolutions = !options.resolutions.empty() ? options.resolutions
+                                       : quick                      ? std::vector<int>{8, 16}
+                                                                    : std::vector<int>{24, 48, 96};
   // --contact pd,newton runs every case with each contact solve (solver.contact), so that their
   // costs are compared in one command; "scene" (the default) keeps each scene's own setting.
   const std::vector<std::string> contactMethods =
-      benchNames(cl, "--contact", "scene", {"scene", "pd", "newton", "active_set"});
+      options.contacts.empty() ? std::vector<std::string>{"scene"} : options.contacts;
   const int quickSteps = 40;  // the sphere and crumple cloths reach their obstacle by then
   const bool peakResets = resetPeakMemory();
 
@@ -295,4 +295,4 @@ int contactBenchmark(const CommandLine& cl, const std::string& outDir) {
   return 0;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

@@ -6,9 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace weft::cli {
-
-class CommandLine;
+namespace weft::bench {
 
 class BenchTable {
  public:
@@ -49,13 +47,4 @@ std::string formatNumber(double v, int precision = 4);
 // "Linux x86_64, 2 cores, <cpu model>" for the record of where a benchmark ran.
 std::string machineDescription();
 
-// --resolutions: a comma-separated list of quads per side (e.g. 12,24), or `fallback` when the
-// option is absent; bad lists fail through cl (exit 2).
-std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallback);
-// A comma-separated list of names given to `option` (or `fallback`), each one of `known`; an
-// unknown name is an InputError naming the option.
-std::vector<std::string> benchNames(const CommandLine& cl, const std::string& option,
-                                    const std::string& fallback,
-                                    const std::vector<std::string>& known);
-
-}  // namespace weft::cli
+}  // namespace weft::bench

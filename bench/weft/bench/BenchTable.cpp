@@ -1,7 +1,5 @@
 #include "BenchTable.h"
 
-#include "CommandLine.h"
-
 #include <weft/core/Error.h>
 
 #include <sys/utsname.h>
@@ -14,7 +12,7 @@
 #include <sstream>
 #include <thread>
 
-namespace weft::cli {
+namespace weft::bench {
 
 void BenchTable::writeCsv(const std::string& path) const {
   std::ofstream out(path);
@@ -107,45 +105,6 @@ std::string machineDescription() {
   return s.str();
 }
 
-std::vector<std::string> benchNames(const CommandLine& cl, const std::string& option,
-                                    const std::string& fallback,
-                                    const std::vector<std::string>& known) {
-  const std::string text = cl.value(option, fallback);
-  std::vector<std::string> out;
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', begin), text.size());
-    out.push_back(text.substr(begin, comma - begin));
-    if (std::find(known.begin(), known.end(), out.back()) == known.end()) {
-      std::string list;
-      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-      cl.fail(option, "unknown name '" + out.back() + "' (known: " + list + ")");
-    }
-    begin = comma + 1;
-  }
-  return out;
-}
-
-std::vector<int> benchResolutions(const CommandLine& cl, std::vector<int> fallback) {
-  if (!cl.has("--resolutions")) return fallback;
-  std::vector<int> out;
-  const std::string text = cl.value("--resolutions", "");
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', begin), text.size());
-    const std::string item = text.substr(begin, comma - begin);
-    char* end = nullptr;
-    const long n = std::strtol(item.c_str(), &end, 10);
-    if (item.empty() || *end != '\0' || n < 1 || n > 1024)
-      cl.fail(
-          "--resolutions",
-          "expects quads per side as a comma-separated list, e.g. 12,24,48; got '" + text + "'");
-    out.push_back(static_cast<int>(n));
-    begin = comma + 1;
-  }
-  return out;
-}
-
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
@@ -153,4 +112,4 @@ double median(std::vector<double> values) {
   return *middle;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench

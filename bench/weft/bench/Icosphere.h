@@ -5,10 +5,10 @@
 
 #include <weft/mesh/TriangleMesh.h>
 
-namespace weft::cli {
+namespace weft::bench {
 
 // Outward-oriented, closed. `subdivisions` splits every triangle into four that many times:
 // 20 * 4^subdivisions triangles.
 TriangleMesh icosphere(const Vec3& center, double radius, int subdivisions);
 
-}  // namespace weft::cli
+}  // namespace weft::bench
