@@ -144,7 +144,7 @@ void EditorApp::handleShortcuts() {
   if (keyChord(true, true, ImGui::GetKeyIndex(ImGuiKey_Z)) ||
       keyChord(true, false, ImGui::GetKeyIndex(ImGuiKey_Y)))
     doRedo();
-  const int available = session_.timelineFrames();
+  const int available = session_.timeline().frames();
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Space))) togglePlayback();
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_RightArrow)))
     session_.playback().step(1, available);
@@ -152,12 +152,13 @@ void EditorApp::handleShortcuts() {
     session_.playback().step(-1, available);
   if (keyChord(false, false, kKeyF))
     session_.frameCamera(float(viewportWidth_) / float(std::max(viewportHeight_, 1)));
-  if (keyChord(false, false, kKeyK) && session_.activeObject().kind == EditorObject::Kind::Handle) {
-    const std::string error = session_.setKey();
+  if (keyChord(false, false, kKeyK) &&
+      session_.placement().activeObject().kind == EditorObject::Kind::Handle) {
+    const std::string error = session_.placement().setKey();
     report(error.empty() ? "key set" : error, !error.empty());
   }
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Escape)) && !draggingGizmo_)
-    session_.setActiveObject("");
+    session_.placement().setActiveObject("");
 }
 
 void EditorApp::togglePlayback() {
@@ -307,8 +308,8 @@ void EditorApp::drawMenuBar() {
     // Not an action of its own (the click happens in the viewport): listed for its shortcut.
     ImGui::MenuItem("Gizmo: pick an obstacle or cloth", "Ctrl+Click", false, false);
     if (ImGui::MenuItem("Gizmo: off", "Esc", false,
-                        session_.activeObject().kind != EditorObject::Kind::None))
-      session_.setActiveObject("");
+                        session_.placement().activeObject().kind != EditorObject::Kind::None))
+      session_.placement().setActiveObject("");
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Add")) {
@@ -318,7 +319,7 @@ void EditorApp::drawMenuBar() {
     for (const std::string& shape : analyticObstacleShapes()) {
       const std::string label = "Obstacle: " + shape;
       if (ImGui::MenuItem(label.c_str())) {
-        const std::string error = session_.addObstacle(shape);
+        const std::string error = session_.additions().addObstacle(shape);
         report(error.empty() ? "added a " + shape + " (edit it under Obstacles)" : error,
                !error.empty());
         showTab(PanelTab::Scene);
@@ -336,8 +337,8 @@ void EditorApp::drawMenuBar() {
     if (ImGui::MenuItem("Top")) session_.frameCamera(aspect, render::NamedView::Top);
     ImGui::Separator();
     ImGui::MenuItem("Wireframe", nullptr, &style_.wireframe);
-    ImGui::MenuItem("Contact branch colours", nullptr, &session_.contactColours);
-    ImGui::MenuItem("Contact force arrows", nullptr, &session_.forceArrows);
+    ImGui::MenuItem("Contact branch colours", nullptr, &session_.viewport().contactColours);
+    ImGui::MenuItem("Contact force arrows", nullptr, &session_.viewport().forceArrows);
     ImGui::MenuItem("Legend", nullptr, &style_.legend);
     ImGui::EndMenu();
   }
@@ -681,7 +682,7 @@ void EditorApp::obstaclePanel() {
   ImGui::TextUnformatted("Add:");
   for (const std::string& shape : analyticObstacleShapes()) {
     ImGui::SameLine();
-    if (ImGui::SmallButton(shape.c_str())) applyEdit(session_.addObstacle(shape));
+    if (ImGui::SmallButton(shape.c_str())) applyEdit(session_.additions().addObstacle(shape));
   }
   ImGui::SameLine();
   if (ImGui::SmallButton("mesh...")) importDialog_->open(MeshImportDialog::Kind::Obstacle);
@@ -690,11 +691,11 @@ void EditorApp::obstaclePanel() {
 void EditorApp::placeButton(const std::string& path) {
   // Toggles which object the viewport's gizmo places; the active one's button is orange (one
   // label for both states keeps the attachment rows inside the panel).
-  const bool active = session_.activeObject().path() == path;
+  const bool active = session_.placement().activeObject().path() == path;
   ImGui::PushID(("place " + path).c_str());
   if (active) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.85f, 0.60f, 0.10f, 1.0f));
   if (ImGui::SmallButton("gizmo")) {
-    const std::string error = session_.setActiveObject(active ? "" : path);
+    const std::string error = session_.placement().setActiveObject(active ? "" : path);
     if (!error.empty()) report(error, true);
   }
   if (active) ImGui::PopStyleColor();
@@ -713,13 +714,13 @@ void EditorApp::selectionPanel() {
   }
   ImGui::BeginDisabled(nodes.empty() || !session_.document().valid());
   if (ImGui::Button("Pin selection")) {
-    const std::string error = session_.pinSelection();
+    const std::string error = session_.selecting().pinSelection();
     report(error.empty() ? "pinned " + std::to_string(nodes.size()) + " vertices" : error,
            !error.empty());
   }
   ImGui::SameLine();
   if (ImGui::Button("Make handle")) {
-    const std::string error = session_.makeHandle();
+    const std::string error = session_.selecting().makeHandle();
     report(error.empty() ? "made a handle of " + std::to_string(nodes.size()) +
                                " vertices: drag it with the gizmo, then Set key on the timeline"
                          : error,
@@ -731,7 +732,7 @@ void EditorApp::selectionPanel() {
   // By region: the border loop through the inspected vertex, or a band along an axis.
   ImGui::BeginDisabled(session_.selection().focus() < 0);
   if (ImGui::Button("Select its border loop")) {
-    const std::string error = session_.selectBoundaryLoop(ImGui::GetIO().KeyShift);
+    const std::string error = session_.selecting().selectBoundaryLoop(ImGui::GetIO().KeyShift);
     report(error.empty() ? "selected the border loop: " + std::to_string(nodes.size()) + " vertices"
                          : error,
            !error.empty());
@@ -749,7 +750,7 @@ void EditorApp::selectionPanel() {
   ImGui::BeginDisabled(!session_.document().valid());
   if (ImGui::Button("Select band")) {
     const std::string error =
-        session_.selectBand(bandAxis_, band_[0], band_[1], ImGui::GetIO().KeyShift);
+        session_.selecting().selectBand(bandAxis_, band_[0], band_[1], ImGui::GetIO().KeyShift);
     report(error.empty() ? "selected " + std::to_string(nodes.size()) + " vertices in the band"
                          : error,
            !error.empty());
@@ -805,7 +806,7 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   // The gizmo comes first: a press on one of its handles drags it rather than selecting.
   const GizmoHandle hoveredHandle =
       hovered && !draggingGizmo_
-          ? session_.pickGizmo(mouse.x, mouse.y, viewportWidth_, viewportHeight_)
+          ? session_.placement().pickGizmo(mouse.x, mouse.y, viewportWidth_, viewportHeight_)
           : GizmoHandle::None;
   if (hovered && io.MouseWheel != 0.0f) camera.zoom(std::pow(0.9f, io.MouseWheel));
   // Orbit and pan follow every pixel of the drag: IsMouseDragging would hold them back until
@@ -821,13 +822,13 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
   }
   if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     if (hoveredHandle != GizmoHandle::None) {
-      const std::string error =
-          session_.beginGizmoDrag(hoveredHandle, mouse.x, mouse.y, viewportWidth_, viewportHeight_);
+      const std::string error = session_.placement().beginGizmoDrag(
+          hoveredHandle, mouse.x, mouse.y, viewportWidth_, viewportHeight_);
       if (error.empty())
         draggingGizmo_ = true;
       else
         report(error, true);
-    } else if (io.KeyAlt && !session_.targets().empty()) {
+    } else if (io.KeyAlt && !session_.targets().all().empty()) {
       // Alt + drag moves the selected vertices' targets in the view plane (one undo step).
       draggingTargets_ = true;
       ++dragCount_;
@@ -846,21 +847,21 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
     if (dx != 0.0f || dy != 0.0f) {
       targetDragLast_[0] = mouse.x;
       targetDragLast_[1] = mouse.y;
-      const std::string error =
-          session_.dragTargets(session_.selection().nodes(), dx, dy, viewportWidth_,
-                               viewportHeight_, "target drag " + std::to_string(dragCount_));
+      const std::string error = session_.targets().dragTargets(
+          session_.selection().nodes(), dx, dy, viewportWidth_, viewportHeight_,
+          "target drag " + std::to_string(dragCount_));
       if (!error.empty()) report(error, true), draggingTargets_ = false;
     }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) draggingTargets_ = false;
   }
   if (draggingGizmo_) {
     if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) {
-      const std::string error = session_.dragGizmo(mouse.x, mouse.y);
+      const std::string error = session_.placement().dragGizmo(mouse.x, mouse.y);
       if (!error.empty()) report(error, true);
     }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) ||
-        session_.draggedHandle() == GizmoHandle::None) {
-      session_.endGizmoDrag();
+        session_.placement().draggedHandle() == GizmoHandle::None) {
+      session_.placement().endGizmoDrag();
       draggingGizmo_ = false;
     }
   }
@@ -874,18 +875,19 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
       boxSelecting_ = false;
       const ImVec2 drag = ImGui::GetMouseDragDelta(ImGuiMouseButton_Left);
       if (drag.x != 0.0f || drag.y != 0.0f)
-        session_.boxSelectPixels(boxStart_[0], boxStart_[1], mouse.x, mouse.y, viewportWidth_,
-                                 viewportHeight_, io.KeyShift);
+        session_.selecting().boxSelectPixels(boxStart_[0], boxStart_[1], mouse.x, mouse.y,
+                                             viewportWidth_, viewportHeight_, io.KeyShift);
       else if (io.KeyCtrl)
         pickObjectAt(mouse.x, mouse.y);
       else
-        session_.clickSelect(mouse.x, mouse.y, viewportWidth_, viewportHeight_, io.KeyShift);
+        session_.selecting().clickSelect(mouse.x, mouse.y, viewportWidth_, viewportHeight_,
+                                         io.KeyShift);
     }
   }
   // Selected vertices and lines to their targets, drawn over the image (not part of viewport
   // screenshots).
-  if (const render::RenderScene* scene = session_.viewportScene()) {
-    for (const FinalTarget& t : session_.targets()) {
+  if (const render::RenderScene* scene = session_.viewport().scene()) {
+    for (const FinalTarget& t : session_.targets().all()) {
       if (t.node >= scene->cloth.positions.rows()) continue;
       const auto from = projectToPixel(camera, scene->cloth.positions.row(t.node).transpose(),
                                        viewportWidth_, viewportHeight_);
@@ -919,8 +921,8 @@ void EditorApp::drawViewport(float left, float top, float width, float height) {
 }
 
 void EditorApp::pickObjectAt(float x, float y) {
-  const std::string error = session_.clickObject(x, y, viewportWidth_, viewportHeight_);
-  const std::string picked = session_.activeObject().path();
+  const std::string error = session_.placement().clickObject(x, y, viewportWidth_, viewportHeight_);
+  const std::string picked = session_.placement().activeObject().path();
   if (!error.empty())
     report(error, true);
   else
@@ -928,10 +930,11 @@ void EditorApp::pickObjectAt(float x, float y) {
 }
 
 void EditorApp::drawGizmo(ImDrawList* draw, float originX, float originY, GizmoHandle hovered) {
-  const auto gizmo = session_.gizmo(viewportWidth_, viewportHeight_);
+  const auto gizmo = session_.placement().gizmo(viewportWidth_, viewportHeight_);
   if (!gizmo) return;
-  const GizmoHandle active =
-      session_.draggedHandle() != GizmoHandle::None ? session_.draggedHandle() : hovered;
+  const GizmoHandle active = session_.placement().draggedHandle() != GizmoHandle::None
+                                 ? session_.placement().draggedHandle()
+                                 : hovered;
   const ImU32 axisColours[3] = {IM_COL32(225, 60, 50, 255), IM_COL32(60, 175, 60, 255),
                                 IM_COL32(50, 100, 230, 255)};
   const ImU32 highlight = IM_COL32(255, 200, 40, 255), outline = IM_COL32(20, 20, 24, 200);
@@ -976,10 +979,10 @@ bool EditorApp::ViewportState::operator==(const ViewportState& o) const {
 
 void EditorApp::renderViewport() {
   viewport_->resize(viewportWidth_, viewportHeight_);
-  const render::RenderScene* scene = session_.viewportScene();
+  const render::RenderScene* scene = session_.viewport().scene();
   const render::Camera& c = session_.camera();
   ViewportState now;
-  now.frameVersion = session_.frameVersion();
+  now.frameVersion = session_.viewport().version();
   now.width = viewportWidth_;
   now.height = viewportHeight_;
   const float camera[11] = {
@@ -1006,7 +1009,7 @@ void EditorApp::renderViewport() {
 render::Image EditorApp::viewportImage(int width, int height) {
   const int w = viewportWidth_, h = viewportHeight_;
   viewport_->resize(width, height);
-  const render::RenderScene* scene = session_.viewportScene();
+  const render::RenderScene* scene = session_.viewport().scene();
   const render::RenderScene empty;
   render::Image image = renderer_->renderImage(scene ? *scene : empty, session_.camera(), style_);
   viewport_->resize(w, h);
@@ -1043,7 +1046,7 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
 
   ImGui::BeginDisabled(!doc.valid() || cache.running());
   if (ImGui::Button("Simulate")) {
-    const std::string error = session_.simulate();
+    const std::string error = session_.timeline().simulate();
     report(error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : error,
            !error.empty());
   }
@@ -1065,7 +1068,7 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
     ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
     ImGui::TextWrapped("simulation failed: %s", cache.error().c_str());
     ImGui::PopStyleColor();
-  } else if (session_.cacheStale()) {
+  } else if (session_.timeline().cacheStale()) {
     ImGui::TextColored(
         kWarningColour,
         "The scene changed since this simulation: the frames are stale. Simulate again.");
@@ -1074,7 +1077,7 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
   Playback& playback = session_.playback();
   // The timeline spans the scene's steps even before they are simulated (keys can be set
   // anywhere); beyond the cache the viewport keeps the last cached state.
-  const int frames = session_.timelineFrames();
+  const int frames = session_.timeline().frames();
   ImGui::BeginDisabled(frames <= 1);
   if (ImGui::Button("|<")) playback.step(-1, frames);
   ImGui::SameLine();
@@ -1100,12 +1103,12 @@ void EditorApp::drawTimeline(float left, float top, float width, float height) {
                 f->stats.takeoff, f->stats.stick, f->stats.slip, f->stats.pdIterations,
                 f->stats.residual);
   } else {
-    ImGui::Text("t = %.4f s", session_.timelineTime());
+    ImGui::Text("t = %.4f s", session_.timeline().time());
     ImGui::TextDisabled(available == 0
                             ? "no frames: press Simulate"
                             : "not simulated this far: the view shows the last cached state");
   }
-  if (session_.activeObject().kind == EditorObject::Kind::Handle)
+  if (session_.placement().activeObject().kind == EditorObject::Kind::Handle)
     keyControls();
   else
     ImGui::TextDisabled("Space: play/pause   Left/Right: step one state");
@@ -1116,7 +1119,7 @@ void EditorApp::drawKeyTicks(int frames) {
   // The active handle's keys as ticks on the slider just drawn, where its grab would stand at
   // the key's frame (Dear ImGui 1.86 SliderBehaviorT: 2 px padding, a grab of
   // max(width / (range + 1), GrabMinSize) whose centre travels the rest).
-  const std::vector<HandleKey> keys = session_.keys();
+  const std::vector<HandleKey> keys = session_.placement().keys();
   const EditorDocument& doc = session_.document();
   if (keys.empty() || frames <= 1 || !doc.valid()) return;
   const double dt = doc.scene()->time.dt;
@@ -1139,19 +1142,20 @@ void EditorApp::drawKeyTicks(int frames) {
 void EditorApp::keyControls() {
   // The active handle at the playback frame: its offset (dragged with the gizmo or typed here),
   // and its keys.
-  const auto offset = session_.handleOffset();
+  const auto offset = session_.placement().handleOffset();
   ImGui::AlignTextToFramePadding();
-  ImGui::Text("%s", session_.activeObject().path().c_str());
+  ImGui::Text("%s", session_.placement().activeObject().path().c_str());
   ImGui::SameLine();
   double v[3] = {0, 0, 0};
   if (offset) v[0] = offset->x(), v[1] = offset->y(), v[2] = offset->z();
   ImGui::SetNextItemWidth(230.0f);
   // "###": one widget identity whatever the label says, so typing is not cut off when the first
   // keystroke makes the offset pending.
-  if (ImGui::InputScalarN(
-          session_.handleOffsetPending() ? "offset (m, not keyed)###offset" : "offset (m)###offset",
-          ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g")) {
-    const std::string error = session_.setHandleOffset(Vec3(v[0], v[1], v[2]));
+  if (ImGui::InputScalarN(session_.placement().handleOffsetPending()
+                              ? "offset (m, not keyed)###offset"
+                              : "offset (m)###offset",
+                          ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g")) {
+    const std::string error = session_.placement().setHandleOffset(Vec3(v[0], v[1], v[2]));
     if (!error.empty()) report(error, true);
   }
   auto action = [&](const char* label, const std::function<std::string()>& run, const char* done) {
@@ -1162,13 +1166,13 @@ void EditorApp::keyControls() {
     }
   };
   action(
-      "Set key (K)", [&] { return session_.setKey(); }, "key set");
+      "Set key (K)", [&] { return session_.placement().setKey(); }, "key set");
   action(
-      "Delete key", [&] { return session_.deleteKey(); }, "key deleted");
+      "Delete key", [&] { return session_.placement().deleteKey(); }, "key deleted");
   action(
-      "< key", [&] { return session_.jumpToKey(-1); }, "previous key");
+      "< key", [&] { return session_.placement().jumpToKey(-1); }, "previous key");
   action(
-      "key >", [&] { return session_.jumpToKey(1); }, "next key");
+      "key >", [&] { return session_.placement().jumpToKey(1); }, "next key");
 }
 
 void EditorApp::drawFileDialog() {
