@@ -33,6 +33,15 @@ double Timeline::time() const {
   return scene ? std::round(playback_.frame() * scene->time.dt * 1e12) / 1e12 : 0.0;
 }
 
+void Timeline::togglePlayback() {
+  // Playing on from the end would stop at once. A growing cache is left alone (its end is not
+  // the end).
+  const int available = cache_.frameCount();
+  if (!playback_.playing() && playback_.frame() >= available - 1 && !cache_.running())
+    playback_.scrub(0, available);
+  playback_.toggle();
+}
+
 void Timeline::advance(double seconds) {
   const int available = cache_.frameCount();
   const Scene* scene = cache_.scene().get();

@@ -31,6 +31,8 @@ class Timeline {
   double time() const;
   // The scene whose time steps the timeline counts: the document's, or the last valid one.
   const Scene* scene() const;
+  // Play or pause (the Play button, Space). Play at the last state starts again from the first.
+  void togglePlayback();
   // Playback advance over `seconds`, clamping the frame to the timeline.
   void advance(double seconds);
   // A new document: back to the first frame, paused.
