@@ -127,10 +127,11 @@ int runEditorBenchmark(const EditorBenchmarkOptions& o, std::ostream& out) {
 
     // Live: the viewport follows the newest state while the worker simulates.
     std::vector<FrameTime> live;
-    const std::string error = session.simulate(steps);
+    const std::string error = session.timeline().simulate(steps);
     if (!error.empty()) throw InputError("bench", "-", error);
     while (session.cache().running() && static_cast<int>(live.size()) < o.frames) {
-      session.playback().scrub(session.availableFrames() - 1, session.availableFrames());
+      session.playback().scrub(session.timeline().availableFrames() - 1,
+                               session.timeline().availableFrames());
       live.push_back(timedFrame());
     }
     session.cache().wait();
@@ -139,7 +140,7 @@ int runEditorBenchmark(const EditorBenchmarkOptions& o, std::ostream& out) {
     modes.emplace_back("live", std::move(live));
 
     // Scrub: a different cached state every frame, back and forth over the whole run.
-    const int available = session.availableFrames();
+    const int available = session.timeline().availableFrames();
     std::vector<FrameTime> scrub;
     for (int i = 0; i < o.frames; ++i) {
       const int period = std::max(2 * (available - 1), 1);

@@ -45,9 +45,9 @@ void plot(const char* label, const std::vector<float>& values, int state, const 
 }  // namespace
 
 void InspectorPanel::draw(EditorSession& session) {
-  ImGui::Checkbox("Branch colours", &session.contactColours);
+  ImGui::Checkbox("Branch colours", &session.viewport().contactColours);
   ImGui::SameLine();
-  ImGui::Checkbox("Force arrows", &session.forceArrows);
+  ImGui::Checkbox("Force arrows", &session.viewport().forceArrows);
   ImGui::TextDisabled("Overlays on cached states of contact scenes.");
   ImGui::Separator();
 
@@ -66,16 +66,16 @@ void InspectorPanel::draw(EditorSession& session) {
                        r->branch == ContactBranch::None ? "no contact" : branchName(r->branch));
     // The task loss's gradient at this vertex and state: dL/dx_n with the state's velocities held
     // (the loss's units per metre), from a backward pass over the cached run.
-    if (const auto g = session.stateGradient(r->node, r->state)) {
+    if (const auto g = session.gradients().at(r->node, r->state)) {
       vectorText("dL/dx", *g, "/m");
       gradientError_.clear();
-    } else if (session.computingStateGradients()) {
+    } else if (session.gradients().computing()) {
       ImGui::TextDisabled("computing the loss gradient (backward pass)...");
     } else if (ImGui::SmallButton("Compute loss gradient")) {
-      gradientError_ = session.computeStateGradients();
+      gradientError_ = session.gradients().compute();
     }
     const std::string& error =
-        gradientError_.empty() ? session.stateGradientError() : gradientError_;
+        gradientError_.empty() ? session.gradients().error() : gradientError_;
     if (!error.empty()) {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
       ImGui::TextWrapped("%s", error.c_str());

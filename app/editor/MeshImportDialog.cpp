@@ -65,7 +65,7 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
 
   options_.file = path_;
   if (ImGui::Button("Check")) {
-    preview_ = kind_ == Kind::Garment ? session.previewGarment(options_)
+    preview_ = kind_ == Kind::Garment ? session.additions().previewGarment(options_)
                                       : prepareMeshObstacle(options_, session.document().file(),
                                                             session.document().directory());
     previewed_ = true;
@@ -95,8 +95,9 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
     }
   }
   if (import) {
-    const std::string error = kind_ == Kind::Garment ? session.importGarment(options_)
-                                                     : session.importMeshObstacle(options_);
+    const std::string error = kind_ == Kind::Garment
+                                  ? session.additions().importGarment(options_)
+                                  : session.additions().importMeshObstacle(options_);
     if (error.empty()) {
       app.report(std::string(kind_ == Kind::Garment ? "imported " : "added mesh obstacle ") +
                      options_.file,

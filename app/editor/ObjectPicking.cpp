@@ -1,5 +1,7 @@
 #include "ObjectPicking.h"
 
+#include "ClothNodes.h"
+
 #include <weft/render/ShapeTessellation.h>
 
 #include <algorithm>
@@ -76,15 +78,12 @@ std::optional<ObjectHit> pickObject(const Scene& scene, double time,
       offer(EditorObject::Kind::Obstacle, int(k), *t);
     }
   }
-  std::vector<int> offsets{0};
-  for (const Cloth& c : scene.cloths) offsets.push_back(offsets.back() + c.mesh.vertexCount());
+  const std::vector<int> offsets = clothVertexOffsets(scene);
   if (cloth.positions.rows() == offsets.back()) {
     const auto hit = nearestTriangleHit(cloth, ray);
     if (hit && hit->distance <= maxDistance) {
       const int vertex = cloth.triangles(hit->triangle, 0);
-      const int index =
-          int(std::upper_bound(offsets.begin(), offsets.end(), vertex) - offsets.begin()) - 1;
-      offer(EditorObject::Kind::Cloth, index, hit->distance);
+      offer(EditorObject::Kind::Cloth, clothOfNode(offsets, vertex), hit->distance);
     }
   }
   return best;

@@ -50,7 +50,7 @@ void plotHistory(const char* id, const std::vector<float>& values, const char* o
 
 void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
   EditorDocument& doc = session.document();
-  OptimizerRun& run = session.optimizer();
+  OptimizerRun& run = session.optimisation().optimizer();
   const Scene* scene = doc.scene();
   const bool active = run.active();
 
@@ -116,8 +116,8 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
     ImGui::EndDisabled();
     // Edited after drawing: an edit validates the document again and replaces `scene`.
     if (!added.empty() || !removed.empty()) {
-      const std::string error =
-          added.empty() ? session.removeTaskParameter(removed) : session.addTaskParameter(added);
+      const std::string error = added.empty() ? session.optimisation().removeParameter(removed)
+                                              : session.optimisation().addParameter(added);
       app.report(error.empty() ? (added.empty() ? "removed " + removed : "added " + added) : error,
                  !error.empty());
       scene = doc.scene();
@@ -147,7 +147,7 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
     setup.settings.maxEvaluations = maxEvaluations_;
     setup.settings.learningRate = learningRate_;
     setup.settings.seed = static_cast<unsigned>(std::max(seed_, 0));
-    const std::string error = session.startOptimizer(setup, paused);
+    const std::string error = session.optimisation().start(setup, paused);
     if (!error.empty())
       app.report(error, true);
     else if (paused)
@@ -205,13 +205,13 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
   // Applying mid-run is fine: the run works on its own copy of the scene.
   ImGui::BeginDisabled(!best);
   if (ImGui::Button("Apply best")) {
-    const std::string error = session.applyOptimizerResult();
+    const std::string error = session.optimisation().applyResult();
     app.report(error.empty() ? "applied the optimised parameters (Ctrl+Z undoes)" : error,
                !error.empty());
   }
   ImGui::SameLine();
   if (ImGui::Button("Revert to start values")) {
-    const std::string error = session.revertToOptimizerStart();
+    const std::string error = session.optimisation().revertToStart();
     app.report(error.empty() ? "reverted to the values the run started from" : error,
                !error.empty());
   }

@@ -8,16 +8,13 @@
 //                  {"save": "out.json"}, {"screenshot": "view.png", "size": [320, 240]} ] }
 //
 // A failing action stops the script with an error naming the script, the action's index and
-// kind, and what went wrong.
+// kind, and what went wrong. Each action is run by its command (ScriptCommands.h).
 
+#include "ScriptCall.h"
 #include "ScriptedInput.h"
 
-#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include <deque>
-#include <functional>
-#include <optional>
 #include <string>
 
 namespace weft::editor {
@@ -44,34 +41,11 @@ class ScriptRunner {
   ScriptedInput& input() { return input_; }
 
  private:
-  bool run(const nlohmann::json& action, EditorSession& session, EditorApp& app);  // false: wait
-  void fail(const std::string& what, int code = 2);
-  // Presses the mouse on the gizmo handle a gizmo_drag action names; error text or "".
-  std::string startGizmoDrag(const nlohmann::json& action, EditorSession& session, EditorApp& app);
-  // What an action's `error` means given its optional expect_error: a value to return from the
-  // step (pass or fail), or nullopt to go on.
-  // A raw-input action: queued as one change of the input per frame, then played a step per
-  // update (each step read by the following frame). True when all steps have been read.
-  bool playInput(const nlohmann::json& action, const std::string& kind, EditorApp& app);
-  void queueInput(const nlohmann::json& action, const std::string& kind, EditorApp& app);
-  std::optional<bool> checkOutcome(const nlohmann::json& action, const std::string& error,
-                                   const std::string& succeeded);
-
   std::string file_;
   nlohmann::json actions_;
   std::size_t next_ = 0;
-  int waitFrames_ = 0;
-  bool waitingForSimulation_ = false;
-  bool waitingForOptimizer_ = false;
-  bool waitingForGradient_ = false;
-  int optimizerTarget_ = 0;  // evaluations an optimize_step waits for
-  int gizmoStep_ = 0;        // mouse moves of a gizmo_drag done so far (0: not started)
-  Eigen::Vector2f gizmoFrom_ = Eigen::Vector2f::Zero(), gizmoBy_ = Eigen::Vector2f::Zero();
+  ScriptProgress progress_;  // of the action running
   ScriptedInput input_;
-  std::deque<std::function<void(ScriptedInput&)>> inputSteps_;
-  bool inputQueued_ = false;
-  double waitStarted_ = 0.0;
-  double timeout_ = 300.0;
   std::string error_;
   int exitCode_ = 0;
   State state_ = State::Running;

@@ -1,5 +1,7 @@
 #include "Selection.h"
 
+#include "ClothNodes.h"
+
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -120,11 +122,9 @@ void addFixedAttachments(nlohmann::json& document, const std::vector<int>& nodes
   const int cloths = static_cast<int>(vertexOffset.size()) - 1;
   std::vector<std::vector<int>> perCloth(static_cast<std::size_t>(std::max(cloths, 0)));
   for (int node : nodes) {
-    if (cloths <= 0 || node < 0 || node >= vertexOffset.back())
+    const int cloth = clothOfNode(vertexOffset, node);
+    if (cloth < 0)
       throw std::invalid_argument("vertex " + std::to_string(node) + " is not a cloth vertex");
-    const int cloth =
-        static_cast<int>(std::upper_bound(vertexOffset.begin(), vertexOffset.end(), node) -
-                         vertexOffset.begin() - 1);
     perCloth[static_cast<std::size_t>(cloth)].push_back(
         node - vertexOffset[static_cast<std::size_t>(cloth)]);
   }

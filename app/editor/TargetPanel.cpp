@@ -14,7 +14,7 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   EditorDocument& doc = session.document();
 
   // The loss of the cached run under the task as it is now.
-  const LossValue& loss = session.liveLoss();
+  const LossValue& loss = session.targets().liveLoss();
   if (loss.available) {
     ImGui::Text("Loss of the cached run: %.6g", loss.total);
     for (const auto& [name, value] : loss.terms) ImGui::BulletText("%s: %.6g", name.c_str(), value);
@@ -24,25 +24,25 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   ImGui::Separator();
 
   // Final-frame targets.
-  const std::vector<FinalTarget> list = session.targets();
+  const std::vector<FinalTarget> list = session.targets().all();
   const std::vector<int>& selected = session.selection().nodes();
   ImGui::Text("Final-frame targets: %zu", list.size());
   ImGui::BeginDisabled(selected.empty());
   if (ImGui::Button("Set at selected vertices")) {
-    const std::string error = session.setTargetsFromSelection();
+    const std::string error = session.targets().setTargetsFromSelection();
     app.report(
         error.empty() ? "targets set at " + std::to_string(selected.size()) + " vertices" : error,
         !error.empty());
   }
   ImGui::SameLine();
   if (ImGui::Button("Remove selected")) {
-    const std::string error = session.removeTargets(selected);
+    const std::string error = session.targets().removeTargets(selected);
     if (!error.empty()) app.report(error, true);
   }
   ImGui::EndDisabled();
   ImGui::BeginDisabled(list.empty());
   if (ImGui::Button("Clear all targets")) {
-    const std::string error = session.removeTargets({});
+    const std::string error = session.targets().removeTargets({});
     if (!error.empty()) app.report(error, true);
   }
   ImGui::EndDisabled();
@@ -64,7 +64,7 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
     ImGui::BeginDisabled(selected.empty());
     if (ImGui::Button("Move selected targets by the offset")) {
       const std::string error =
-          session.moveTargets(selected, Vec3(offset_[0], offset_[1], offset_[2]));
+          session.targets().moveTargets(selected, Vec3(offset_[0], offset_[1], offset_[2]));
       if (!error.empty()) app.report(error, true);
     }
     ImGui::EndDisabled();
@@ -82,12 +82,12 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
             ImGui::InputScalarN(label, ImGuiDataType_Double, p, 3, nullptr, nullptr, "%.4f");
         if (ImGui::IsItemActivated()) ++editSerial_;
         if (changed) {
-          const std::string error = session.setTarget(
+          const std::string error = session.targets().setTarget(
               t.node, Vec3(p[0], p[1], p[2]), "target field " + std::to_string(editSerial_));
           if (!error.empty()) app.report(error, true);
         }
         ImGui::SameLine();
-        if (ImGui::SmallButton("x")) session.removeTargets({t.node});
+        if (ImGui::SmallButton("x")) session.targets().removeTargets({t.node});
         ImGui::PopID();
       }
       if (list.size() > 64) ImGui::TextDisabled("... and %zu more", list.size() - 64);
@@ -104,7 +104,7 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   if (motion && motion->is_string()) {
     ImGui::TextWrapped("Target motion: %s", motion->get<std::string>().c_str());
     if (ImGui::Button("Remove target motion")) {
-      const std::string error = session.removeTargetMotion();
+      const std::string error = session.targets().removeTargetMotion();
       if (!error.empty()) app.report(error, true);
     }
   } else {
@@ -117,13 +117,13 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   ImGui::SameLine();
   ImGui::BeginDisabled(motionPath_[0] == '\0');
   if (ImGui::Button("Load motion")) {
-    const std::string error = session.loadTargetMotion(motionPath_);
+    const std::string error = session.targets().loadTargetMotion(motionPath_);
     app.report(error.empty() ? std::string("target motion ") + motionPath_ : error, !error.empty());
   }
   ImGui::SameLine();
   // The final shape: a mesh of the garment's vertices, placed as the garment's own file.
   if (ImGui::Button("Load shape")) {
-    const std::string error = session.loadTargetMesh(motionPath_);
+    const std::string error = session.targets().loadTargetMesh(motionPath_);
     app.report(error.empty() ? std::string("target shape ") + motionPath_ : error, !error.empty());
   }
   ImGui::EndDisabled();
@@ -137,7 +137,7 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
         "Hemline: %zu vertices at %s m", count,
         hemline->contains("height") ? hemline->at("height").dump().c_str() : "(a cone's height)");
     if (ImGui::Button("Remove hemline")) {
-      const std::string error = session.removeHemline();
+      const std::string error = session.targets().removeHemline();
       if (!error.empty()) app.report(error, true);
     }
   } else {
@@ -148,7 +148,7 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   ImGui::SameLine();
   ImGui::BeginDisabled(selected.empty());
   if (ImGui::Button("Hemline at selected")) {
-    const std::string error = session.setHemline(hemlineHeight_);
+    const std::string error = session.targets().setHemline(hemlineHeight_);
     app.report(error.empty() ? "hemline set" : error, !error.empty());
   }
   ImGui::EndDisabled();

@@ -1,6 +1,6 @@
 #include "VertexInspector.h"
 
-#include <algorithm>
+#include "ClothNodes.h"
 
 namespace weft::editor {
 
@@ -10,9 +10,8 @@ std::optional<VertexReport> inspectVertex(const CachedFrame& frame, int node, do
   VertexReport r;
   r.node = node;
   r.state = frame.state;
-  if (vertexOffset.size() >= 2 && node < vertexOffset.back()) {
-    r.cloth = static_cast<int>(std::upper_bound(vertexOffset.begin(), vertexOffset.end(), node) -
-                               vertexOffset.begin() - 1);
+  if (const int cloth = clothOfNode(vertexOffset, node); cloth >= 0) {
+    r.cloth = cloth;
     r.localVertex = node - vertexOffset[static_cast<std::size_t>(r.cloth)];
   }
   r.position = frame.positions.row(node).transpose();

@@ -269,19 +269,22 @@ TEST(EditorSessionGizmo, OneUndoStepPerDragAndAnObjectGoneMidDrag) {
   doc["obstacles"] = {
       {{"box", {{"center", {0.0, 0.0, 0.0}}, {"size", {0.4, 0.4, 0.4}}}}, {"friction", 0.3}}};
   session.newDocument(doc);
-  EXPECT_NE(session.beginGizmoDrag(GizmoHandle::TranslateY, 0, 0, kWidth, kHeight)
+  EXPECT_NE(session.placement()
+                .beginGizmoDrag(GizmoHandle::TranslateY, 0, 0, kWidth, kHeight)
                 .find("nothing to move"),
             std::string::npos);
-  ASSERT_EQ(session.setActiveObject("obstacles.0"), "");
+  ASSERT_EQ(session.placement().setActiveObject("obstacles.0"), "");
   session.camera() = frontCamera();
-  const auto g = session.gizmo(kWidth, kHeight);
+  const auto g = session.placement().gizmo(kWidth, kHeight);
   ASSERT_TRUE(g);
   const auto grab = g->grabPixel(GizmoHandle::TranslateY);
   ASSERT_TRUE(grab);
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight),
+  ASSERT_EQ(session.placement().beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(),
+                                               kWidth, kHeight),
             "");
-  for (int k = 1; k <= 5; ++k) EXPECT_EQ(session.dragGizmo(grab->x(), grab->y() - 5.0f * k), "");
-  session.endGizmoDrag();
+  for (int k = 1; k <= 5; ++k)
+    EXPECT_EQ(session.placement().dragGizmo(grab->x(), grab->y() - 5.0f * k), "");
+  session.placement().endGizmoDrag();
   const nlohmann::json* centre = session.document().find("obstacles.0.box.center");
   ASSERT_TRUE(centre);
   EXPECT_NEAR((*centre)[1].get<double>(), 25.0 * g->metresPerPixel(), 1e-6);
@@ -290,14 +293,16 @@ TEST(EditorSessionGizmo, OneUndoStepPerDragAndAnObjectGoneMidDrag) {
   EXPECT_EQ(session.document().find("obstacles.0.box.center")->at(1), 0.0);
   EXPECT_FALSE(session.document().canUndo()) << "the five moves were one step";
 
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight),
+  ASSERT_EQ(session.placement().beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(),
+                                               kWidth, kHeight),
             "");
   ASSERT_EQ(session.document().removeValue("obstacles.0"), "");
-  EXPECT_NE(session.dragGizmo(grab->x(), grab->y() - 10.0f).find("no longer in the scene"),
-            std::string::npos);
+  EXPECT_NE(
+      session.placement().dragGizmo(grab->x(), grab->y() - 10.0f).find("no longer in the scene"),
+      std::string::npos);
   session.tick(0.0);  // the next frame lets go of it
-  EXPECT_EQ(session.activeObject().kind, EditorObject::Kind::None);
-  EXPECT_EQ(session.draggedHandle(), GizmoHandle::None);
+  EXPECT_EQ(session.placement().activeObject().kind, EditorObject::Kind::None);
+  EXPECT_EQ(session.placement().draggedHandle(), GizmoHandle::None);
 }
 
 // A moving obstacle's gizmo sits where the viewport shows it at the timeline's time, and a drag
@@ -311,19 +316,20 @@ TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
       "friction": 0.3, "motion": {"keyframes": [{"time": 0.0, "offset": [0, 0, 0]},
                                                {"time": 0.4, "offset": [0.4, 0, 0]}]}}])");
   session.newDocument(doc);
-  ASSERT_EQ(session.setActiveObject("obstacles.0"), "");
+  ASSERT_EQ(session.placement().setActiveObject("obstacles.0"), "");
   session.camera() = frontCamera();
-  session.playback().scrub(20, session.timelineFrames());  // t = 0.2 s: offset (0.2, 0, 0)
-  const auto g = session.gizmo(kWidth, kHeight);
+  session.playback().scrub(20, session.timeline().frames());  // t = 0.2 s: offset (0.2, 0, 0)
+  const auto g = session.placement().gizmo(kWidth, kHeight);
   ASSERT_TRUE(g);
   EXPECT_NEAR(g->origin().x(), 0.2f, 1e-6f);
   EXPECT_NEAR(g->origin().y(), 0.0f, 1e-6f);
   const auto grab = g->grabPixel(GizmoHandle::TranslateY);
   ASSERT_TRUE(grab);
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(), kWidth, kHeight),
+  ASSERT_EQ(session.placement().beginGizmoDrag(GizmoHandle::TranslateY, grab->x(), grab->y(),
+                                               kWidth, kHeight),
             "");
-  ASSERT_EQ(session.dragGizmo(grab->x(), grab->y() - 20.0f), "");
-  session.endGizmoDrag();
+  ASSERT_EQ(session.placement().dragGizmo(grab->x(), grab->y() - 20.0f), "");
+  session.placement().endGizmoDrag();
   const nlohmann::json* centre = session.document().find("obstacles.0.box.center");
   ASSERT_TRUE(centre);
   EXPECT_NEAR((*centre)[1].get<double>(), 20.0 * g->metresPerPixel(), 1e-6);
@@ -334,17 +340,18 @@ TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
   doc["obstacles"][0]["motion"] = nlohmann::json::parse(
       R"({"rotate": {"center": [0, 0, 0], "axis": [0, 1, 0], "degrees_per_second": 90.0}})");
   session.newDocument(doc);
-  ASSERT_EQ(session.setActiveObject("obstacles.0"), "");
+  ASSERT_EQ(session.placement().setActiveObject("obstacles.0"), "");
   session.camera() = frontCamera();
-  session.playback().scrub(100, session.timelineFrames());
-  const auto turned = session.gizmo(kWidth, kHeight);
+  session.playback().scrub(100, session.timeline().frames());
+  const auto turned = session.placement().gizmo(kWidth, kHeight);
   ASSERT_TRUE(turned);
   const auto grabX = turned->grabPixel(GizmoHandle::TranslateX);
   ASSERT_TRUE(grabX);
-  ASSERT_EQ(
-      session.beginGizmoDrag(GizmoHandle::TranslateX, grabX->x(), grabX->y(), kWidth, kHeight), "");
-  ASSERT_EQ(session.dragGizmo(grabX->x() + 20.0f, grabX->y()), "");
-  session.endGizmoDrag();
+  ASSERT_EQ(session.placement().beginGizmoDrag(GizmoHandle::TranslateX, grabX->x(), grabX->y(),
+                                               kWidth, kHeight),
+            "");
+  ASSERT_EQ(session.placement().dragGizmo(grabX->x() + 20.0f, grabX->y()), "");
+  session.placement().endGizmoDrag();
   centre = session.document().find("obstacles.0.box.center");
   ASSERT_TRUE(centre);
   const double moved = 20.0 * turned->metresPerPixel();
@@ -354,12 +361,14 @@ TEST(EditorSessionGizmo, AMovingObstacleIsMovedWhereItIsShown) {
   const nlohmann::json before = session.document().document();
   const auto ring = turned->grabPixel(GizmoHandle::RotateZ);
   ASSERT_TRUE(ring);
-  ASSERT_EQ(session.beginGizmoDrag(GizmoHandle::RotateZ, ring->x(), ring->y(), kWidth, kHeight),
+  ASSERT_EQ(session.placement().beginGizmoDrag(GizmoHandle::RotateZ, ring->x(), ring->y(), kWidth,
+                                               kHeight),
             "");
-  EXPECT_NE(
-      session.dragGizmo(ring->x() + 15.0f, ring->y() + 15.0f).find("its motion has turned it"),
-      std::string::npos);
-  session.endGizmoDrag();
+  EXPECT_NE(session.placement()
+                .dragGizmo(ring->x() + 15.0f, ring->y() + 15.0f)
+                .find("its motion has turned it"),
+            std::string::npos);
+  session.placement().endGizmoDrag();
   EXPECT_EQ(session.document().document(), before);
 }
 

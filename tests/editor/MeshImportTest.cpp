@@ -256,7 +256,7 @@ std::optional<MeshImportOptions> exportedGrid(const TempDir& dir, const std::str
 // Imports `o.file` as a new garment the way the dialog does; the new cloth's mesh (what the
 // engine reads from the file), or nullptr after a test failure.
 const TriangleMesh* importGarmentMesh(EditorSession& session, const MeshImportOptions& o) {
-  const std::string error = session.importGarment(o);
+  const std::string error = session.additions().importGarment(o);
   const Scene* scene = session.document().scene();
   if (!error.empty() || !scene) {
     ADD_FAILURE() << "import: " << error << " " << session.document().validationError();
@@ -277,7 +277,7 @@ TEST(MeshImport, FbxGarmentComesBackConnected) {
   ASSERT_TRUE(exported);
   const MeshImportOptions& o = *exported;
   EditorSession session("");
-  const MeshImport preview = session.previewGarment(o);
+  const MeshImport preview = session.additions().previewGarment(o);
   ASSERT_TRUE(preview.ok()) << preview.error;
   EXPECT_EQ(preview.triangles, 18);
   EXPECT_EQ(preview.vertices, 16);
@@ -329,7 +329,7 @@ TEST(MeshImport, GltfGarmentFromAssimpsExporterKeepsItsVertices) {
   for (int v = 0; v < 16; ++v)
     EXPECT_LT((cloth.vertices.row(v).transpose() - gridPoint(v % 4, v / 4)).norm(), 1e-6)
         << "vertex " << v;
-  EXPECT_TRUE(session.previewGarment(*exported).warnings.empty());
+  EXPECT_TRUE(session.additions().previewGarment(*exported).warnings.empty());
 }
 
 }  // namespace

@@ -187,20 +187,20 @@ TEST(EditorSessionPicking, CtrlClickAtKnownPixelsChoosesWhatTheGizmoPlaces) {
     EXPECT_TRUE(p.has_value());
     return p.value_or(Eigen::Vector2f::Zero());
   };
-  ASSERT_EQ(session.selectNodes({7}, false), "");
+  ASSERT_EQ(session.selecting().selectNodes({7}, false), "");
   auto click = [&](const Eigen::Vector2f& p) {
-    EXPECT_EQ(session.clickObject(p.x(), p.y(), width, height), "");
-    return session.activeObject().path();
+    EXPECT_EQ(session.placement().clickObject(p.x(), p.y(), width, height), "");
+    return session.placement().activeObject().path();
   };
   EXPECT_EQ(click(pixelOf(-0.4f, 0.6f, 0.3f)), "obstacles.0")
       << "the sphere, in front of the cloth";
   EXPECT_EQ(click(pixelOf(0.2f, 1.2f, 0.0f)), "cloths.0");
   EXPECT_EQ(click(pixelOf(0.3f, -0.2f, 0.4f)), "obstacles.1");
-  ASSERT_TRUE(session.gizmo(width, height).has_value()) << "the gizmo is on the box";
-  EXPECT_EQ(session.gizmo(width, height)->origin(), Eigen::Vector3f(0.0f, -0.2f, 0.0f));
+  ASSERT_TRUE(session.placement().gizmo(width, height).has_value()) << "the gizmo is on the box";
+  EXPECT_EQ(session.placement().gizmo(width, height)->origin(), Eigen::Vector3f(0.0f, -0.2f, 0.0f));
   // Empty space takes the gizmo off (as Esc does).
   EXPECT_EQ(click(pixelOf(-1.2f, 1.4f, 0.0f)), "");
-  EXPECT_FALSE(session.gizmo(width, height).has_value());
+  EXPECT_FALSE(session.placement().gizmo(width, height).has_value());
   EXPECT_EQ(session.selection().nodes(), std::vector<int>{7})
       << "object picking leaves the vertex selection";
 }

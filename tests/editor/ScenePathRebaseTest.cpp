@@ -154,7 +154,7 @@ std::string openProjectWithTarget(const TempDir& dir, EditorSession& session) {
       test::writeScene(dir.file("project/scene.json"), sceneWithMesh("meshes/strip.obj"));
   session.open(original);
   EXPECT_TRUE(session.document().valid()) << session.document().validationError();
-  EXPECT_EQ(session.setTarget(3, Vec3(0.1, 0.2, 0.3)), "");
+  EXPECT_EQ(session.targets().setTarget(3, Vec3(0.1, 0.2, 0.3)), "");
   return original;
 }
 
@@ -163,10 +163,10 @@ TEST(ScenePathRebase, SessionSaveAsWritesItsTargetsBesideTheNewSceneAndKeepsTheR
   fs::create_directories(dir.file("elsewhere"));
   EditorSession session("");
   openProjectWithTarget(dir, session);
-  ASSERT_EQ(session.simulate(2), "");
+  ASSERT_EQ(session.timeline().simulate(2), "");
   session.cache().wait();
   ASSERT_EQ(session.cache().status(), SimulationCache::Status::Done) << session.cache().error();
-  ASSERT_FALSE(session.cacheStale());
+  ASSERT_FALSE(session.timeline().cacheStale());
 
   const std::string copy = dir.file("elsewhere/copy.json");
   EXPECT_EQ(session.saveAs(copy), "");
@@ -181,8 +181,8 @@ TEST(ScenePathRebase, SessionSaveAsWritesItsTargetsBesideTheNewSceneAndKeepsTheR
   const Scene loaded = loadScene(copy);
   EXPECT_NO_THROW(TaskLoss{loaded});
 
-  EXPECT_FALSE(session.cacheStale()) << "the same files, so the same run";
-  EXPECT_EQ(session.availableFrames(), 3);
+  EXPECT_FALSE(session.timeline().cacheStale()) << "the same files, so the same run";
+  EXPECT_EQ(session.timeline().availableFrames(), 3);
 }
 
 // Save As beside the original: the copy gets its own target file, so editing the copy's targets
@@ -199,7 +199,7 @@ TEST(ScenePathRebase, SaveAsBesideTheOriginalGivesTheCopyItsOwnTargetFile) {
   EXPECT_EQ(readJson(copy)["task"]["loss"]["final"]["target"], "copy-final-target.npy");
   EXPECT_EQ(test::readFile(dir.file("project/copy-final-target.npy")), originalTargets)
       << "the same targets, in the copy's own file";
-  ASSERT_EQ(session.setTarget(3, Vec3(0.4, 0.5, 0.6)), "");
+  ASSERT_EQ(session.targets().setTarget(3, Vec3(0.4, 0.5, 0.6)), "");
   ASSERT_EQ(session.save(), "");
   EXPECT_NE(test::readFile(dir.file("project/copy-final-target.npy")), originalTargets);
   EXPECT_EQ(test::readFile(dir.file("project/scene-final-target.npy")), originalTargets)

@@ -112,10 +112,10 @@ TEST(PinSelection, AddsOneFixedAttachmentPerClothWithLocalIndices) {
 TEST(EditorSession, PinSelectionIsOneUndoableEditThatTheLoaderAccepts) {
   EditorSession session("");
   const int before = int(session.document().scene()->cloths[0].attachments.size());
-  EXPECT_NE(session.pinSelection(), "") << "nothing selected";
-  EXPECT_NE(session.selectNodes({0, 100000}, false), "");
-  ASSERT_EQ(session.selectNodes({3, 5}, false), "");
-  ASSERT_EQ(session.pinSelection(), "");
+  EXPECT_NE(session.selecting().pinSelection(), "") << "nothing selected";
+  EXPECT_NE(session.selecting().selectNodes({0, 100000}, false), "");
+  ASSERT_EQ(session.selecting().selectNodes({3, 5}, false), "");
+  ASSERT_EQ(session.selecting().pinSelection(), "");
   ASSERT_TRUE(session.document().valid()) << session.document().validationError();
   const auto& attachments = session.document().scene()->cloths[0].attachments;
   ASSERT_EQ(int(attachments.size()), before + 1);
@@ -127,20 +127,20 @@ TEST(EditorSession, PinSelectionIsOneUndoableEditThatTheLoaderAccepts) {
 TEST(EditorSession, ViewportShowsTheRestStateThenTheCachedFrames) {
   EditorSession session("");
   ASSERT_EQ(session.document().setValue("time.steps", 4), "");
-  const render::RenderScene* rest = session.viewportScene();
+  const render::RenderScene* rest = session.viewport().scene();
   ASSERT_TRUE(rest);
-  EXPECT_FALSE(session.showingCache());
+  EXPECT_FALSE(session.viewport().showingCache());
   const float restY = rest->cloth.positions(288, 1);
-  ASSERT_EQ(session.simulate(), "");
+  ASSERT_EQ(session.timeline().simulate(), "");
   session.cache().wait();
-  session.playback().scrub(4, session.availableFrames());
-  const render::RenderScene* last = session.viewportScene();
+  session.playback().scrub(4, session.timeline().availableFrames());
+  const render::RenderScene* last = session.viewport().scene();
   ASSERT_TRUE(last);
-  EXPECT_TRUE(session.showingCache());
+  EXPECT_TRUE(session.viewport().showingCache());
   EXPECT_LT(last->cloth.positions(288, 1), restY) << "the free corner has fallen";
-  EXPECT_FALSE(session.cacheStale());
+  EXPECT_FALSE(session.timeline().cacheStale());
   session.document().setValue("cloths.0.material.stretch", 500.0);
-  EXPECT_TRUE(session.cacheStale());
+  EXPECT_TRUE(session.timeline().cacheStale());
 }
 
 }  // namespace

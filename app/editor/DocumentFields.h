@@ -1,0 +1,36 @@
+#pragma once
+// Dear ImGui widgets bound to a JSON path of the document: each change is one document edit,
+// and consecutive changes of the same item (typing, dragging) merge into one undo step. A
+// refused edit is shown as the app's message. `fallback` is shown when the key is absent.
+
+#include <string>
+
+namespace weft::editor {
+
+class EditorApp;
+class EditorSession;
+
+class DocumentFields {
+ public:
+  DocumentFields(EditorSession& session, EditorApp& app) : session_(session), app_(app) {}
+
+  bool number(const char* label, const std::string& path, double fallback,
+              const char* format = "%.6g");
+  bool integer(const char* label, const std::string& path, int fallback);
+  bool vector(const char* label, const std::string& path, const double* fallback);
+  void combo(const char* label, const std::string& path, const char* const* options, int count,
+             const char* fallback);
+  // Reports an edit's error; `itemId` is the ImGui item that made it (0: none), whose next change
+  // merges into the same undo step.
+  void apply(const std::string& error, unsigned itemId = 0);
+
+ private:
+  template <class Value, class Widget>
+  bool field(const char* label, const std::string& path, Value value, Widget&& widget);
+
+  EditorSession& session_;
+  EditorApp& app_;
+  unsigned lastEditId_ = 0;  // ImGui item that made the last document edit (coalescing)
+};
+
+}  // namespace weft::editor

@@ -1,0 +1,27 @@
+#pragma once
+// What the Add menu and the import dialog add to the scene: a garment from a mesh file, an
+// analytic obstacle (plane, sphere, capsule, box, cylinder), an obstacle from a mesh file. Each
+// returns an error text ("" on success) and is one undo step; nothing is added when the mesh or
+// shape is rejected.
+
+#include "EditorDocument.h"
+#include "MeshImport.h"
+
+#include <string>
+
+namespace weft::editor {
+
+class SceneAdditions {
+ public:
+  explicit SceneAdditions(EditorDocument& document) : document_(document) {}
+
+  MeshImport previewGarment(const MeshImportOptions& options) const;  // what importGarment adds
+  std::string importGarment(const MeshImportOptions& options);
+  std::string addObstacle(const std::string& shape);
+  std::string importMeshObstacle(const MeshImportOptions& options);
+
+ private:
+  EditorDocument& document_;
+};
+
+}  // namespace weft::editor
