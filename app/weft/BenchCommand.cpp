@@ -1,3 +1,4 @@
+#include "BenchNames.h"
 #include "CommandLine.h"
 #include "Commands.h"
 
@@ -31,9 +32,7 @@ int benchCommand(const std::vector<std::string>& arguments) {
                   "--subdivisions", "--resolution", "--first-step", "--min-curvature-step"},
                  {"--quick", "--resume", "--calibrate"});
   if (cl.positional().size() != 1)
-    cl.fail("NAME",
-            "bench takes one benchmark name: forward, backward, continuity, contact, applications "
-            "or render");
+    cl.fail("NAME", "bench takes one benchmark name (" + benchNameList() + ")");
   const std::string name = cl.positional()[0];
   const std::string out = cl.value("--out", "out/bench-" + name);
   for (const char* option : {"--subdivisions", "--resolution"})
@@ -58,8 +57,7 @@ int benchCommand(const std::vector<std::string>& arguments) {
   if (cl.has("--resolutions"))
     cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
   if (name == "continuity") return continuityBenchmark(cl, out);
-  cl.fail("NAME", "unknown benchmark '" + name +
-                      "' (known: forward, backward, continuity, contact, applications, render)");
+  cl.fail("NAME", "unknown benchmark '" + name + "' (known: " + benchNameList() + ")");
 }
 
 }  // namespace weft::cli
