@@ -20,6 +20,7 @@ weft_missing_packages() {
 }
 
 weft_ensure_deps() {
+  [ -n "${WEFT_DRY_RUN:-}" ] && return 0
   local missing
   missing=$(weft_missing_packages)
   [ -z "$missing" ] && return 0
@@ -38,10 +39,18 @@ weft_ensure_deps() {
     || { echo "weft: apt-get install failed; run: sudo apt-get install -y $missing" >&2; return 1; }
 }
 
-# Configures and builds Release into build/ (or $WEFT_BUILD_DIR).
+# Configures and builds Release into build/ (or $WEFT_BUILD_DIR): the targets named (e.g. `weft`),
+# or every target, tests included, when none is named. With WEFT_DRY_RUN=1 it only prints the
+# build command.
 weft_build() {
   local dir=${WEFT_BUILD_DIR:-build}
   local jobs
   jobs=$(nproc 2>/dev/null || echo 2)
-  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null && cmake --build "$dir" -j "$jobs"
+  local build=(cmake --build "$dir" -j "$jobs")
+  [ $# -gt 0 ] && build+=(--target "$@")
+  if [ -n "${WEFT_DRY_RUN:-}" ]; then
+    echo "${build[*]}"
+    return 0
+  fi
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release >/dev/null && "${build[@]}"
 }

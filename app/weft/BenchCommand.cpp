@@ -7,6 +7,7 @@
 
 #include <weft/bench/ApplicationsBench.h>
 #include <weft/bench/BackwardBench.h>
+#include <weft/bench/BenchNames.h>
 #include <weft/bench/BenchAssets.h>
 #include <weft/bench/ContactBench.h>
 #include <weft/bench/ContinuityBench.h>
@@ -208,9 +209,7 @@ int benchCommand(const std::vector<std::string>& arguments) {
                   "--subdivisions", "--resolution", "--first-step", "--min-curvature-step"},
                  {"--quick", "--resume", "--calibrate"});
   if (cl.positional().size() != 1)
-    cl.fail("NAME",
-            "bench takes one benchmark name: forward, backward, continuity, contact, applications "
-            "or render");
+    cl.fail("NAME", "bench takes one benchmark name (" + bench::benchNameList() + ")");
   const std::string name = cl.positional()[0];
   const std::string out = cl.value("--out", "out/bench-" + name);
   for (const char* option : {"--subdivisions", "--resolution"})
@@ -272,8 +271,7 @@ int benchCommand(const std::vector<std::string>& arguments) {
     o.resolution = cl.integer("--resolution", 0, 0, 400);
     return bench::runContinuityBench(o, out);
   }
-  cl.fail("NAME", "unknown benchmark '" + name +
-                      "' (known: forward, backward, continuity, contact, applications, render)");
+  cl.fail("NAME", "unknown benchmark '" + name + "' (known: " + bench::benchNameList() + ")");
 }
 
 }  // namespace weft::cli

@@ -11,6 +11,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -34,27 +35,39 @@ int simulateCommand(const std::vector<std::string>& args) {
   const std::string outDir = cl.value("--out", "out/" + scene.name);
   StagedDirectory out(outDir);  // fails early on an unusable --out, before simulating
 
-  const auto start = std::chrono::steady_clock::now();
+  // The run goes to its files state by state as it is simulated (RunWriter.h): memory stays
+  // that of the simulator, whatever the steps and contacts.
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   Simulator sim(scene);
-  Trajectory trajectory;
+  RunWriter writer(out.path(), scene, sim.model(), steps, sim.contact() != nullptr && steps > 0);
+  double writing = 0.0;  // seconds spent writing, left out of the simulation's wall time
+  auto timed = [&writing](auto&& write) {
+    const auto t = Clock::now();
+    write();
+    writing += std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  timed([&] { writer.addInitialState(sim.positions()); });
   const bool quiet = cl.has("--quiet");
   const int every = std::max(1, steps / 10);
-  sim.run(steps, trajectory, [&](const StepStats& s) {
+  long long iterations = 0;
+  for (int k = 0; k < steps; ++k) {
+    const StepStats& s = sim.step();
+    timed([&] { writer.addStep(sim.positions(), s, &sim.lastContacts()); });
+    iterations += s.pdIterations;
     if (!quiet && (s.step % every == 0))
       std::fprintf(stderr, "\rstep %d/%d  pd %d  residual %.2e", s.step, steps, s.pdIterations,
                    s.residual);
-  });
+  }
   if (!quiet && steps > 0) std::fprintf(stderr, "\n");
   RunSummary run;
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.seconds = std::chrono::duration<double>(Clock::now() - start).count() - writing;
   run.moduleNames = sim.moduleNames();
   run.moduleSeconds = sim.moduleSeconds();
   run.threads = threads;
-  writeRun(out.path(), scene, sim.model(), trajectory, run);
+  writer.finish(run);
   out.commit();
 
-  long long iterations = 0;
-  for (const StepStats& s : trajectory.steps) iterations += s.pdIterations;
   std::printf(
       "simulate: %s: %d steps, %d vertices, %.3f s (%.2f ms/step, %.1f PD iterations/step) -> %s\n",
       scene.name.c_str(), steps, sim.model().nodeCount(), run.seconds,

@@ -4,6 +4,7 @@
 #include "../process/PassiveOpenMpWait.h"
 #include "BuildInfo.h"
 #include "Commands.h"
+#include "Usage.h"
 
 #include <weft/bench/BuildRecord.h>
 #include <weft/core/Error.h>
@@ -13,41 +14,40 @@
 #include <string>
 #include <vector>
 
-namespace {
-
-const char* kUsage =
-    "usage: weft <verb> [arguments]\n"
-    "  simulate SCENE [--steps N] [--out DIR] [--set PATH=VALUE ...] [--threads N] [--quiet]\n"
-    "  render SCENE|RUNDIR [--frames A:B:S] [--size WxH] [--camera front|side|top|auto]\n"
-    "         [--overlay contacts|strain|speed|none] [--wireframe] [--out DIR] [--video FILE.mp4]\n"
-    "         [--backend auto|osmesa|egl] [--set PATH=VALUE ...] [--quiet]\n"
-    "  bench NAME [--out DIR] [--quick]        (NAME: forward, backward, continuity, contact, "
-    "render)\n"
-    "  gradcheck SCENE [--param PATH ...] [--eps E] [--json] [--set PATH=VALUE ...]\n"
-    "         [--backward gmres|fixed_point|direct] [--forward-tolerance T] [--backward-tolerance "
-    "T]\n"
-    "  optimize SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]\n"
-    "         [--max-evaluations N] [--learning-rate R] [--first-step L]\n"
-    "         [--min-curvature-step L] [--set PATH=VALUE ...]\n"
-    "  landscape SCENE --param A [--param B] [--grid N] [--range PATH=LO:HI ...] [--out DIR]\n"
-    "         [--set PATH=VALUE ...] [--threads N] [--quiet]\n"
-    "  --version                                 (the commit this build was made from)\n"
-    "Exit codes: 0 success, 2 bad input or usage, 3 numerical failure.\n";
-
-}  // namespace
-
 int main(int argc, char** argv) {
   weft::process::preferPassiveOpenMpWait(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-    std::fputs(kUsage, args.empty() ? stderr : stdout);
-    return args.empty() ? 2 : 0;
+  if (args.empty()) {
+    std::fputs(weft::cli::generalUsage().c_str(), stderr);
+    return 2;
+  }
+  if (args[0] == "--help" || args[0] == "-h" || (args[0] == "help" && args.size() == 1)) {
+    std::fputs(weft::cli::generalUsage().c_str(), stdout);
+    return 0;
   }
   if (args[0] == "--version") {
     std::printf("weft %s, %s\n", WEFT_VERSION,
                 weft::bench::describeBuild(weft::cli::buildInfoJson()).c_str());
     return 0;
   }
+  // `weft help VERB` and `weft VERB --help` (or -h anywhere among its arguments): the verb's
+  // usage and its section of docs/cli.md.
+  if (args[0] == "help") {
+    if (args.size() > 2 || !weft::cli::isVerb(args[1])) {
+      std::fprintf(stderr, "error: weft: help %s: %s\n%s", args[1].c_str(),
+                   args.size() > 2 ? "help takes one verb" : "unknown verb",
+                   weft::cli::generalUsage().c_str());
+      return 2;
+    }
+    std::fputs(weft::cli::verbHelp(args[1]).c_str(), stdout);
+    return 0;
+  }
+  if (weft::cli::isVerb(args[0]))
+    for (std::size_t i = 1; i < args.size(); ++i)
+      if (args[i] == "--help" || args[i] == "-h") {
+        std::fputs(weft::cli::verbHelp(args[0]).c_str(), stdout);
+        return 0;
+      }
   const std::string verb = args[0];
   args.erase(args.begin());
   try {
@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
     if (verb == "gradcheck") return weft::cli::gradcheckCommand(args);
     if (verb == "optimize") return weft::cli::optimizeCommand(args);
     if (verb == "landscape") return weft::cli::landscapeCommand(args);
-    std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(), kUsage);
+    std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(),
+                 weft::cli::generalUsage().c_str());
     return 2;
   } catch (const weft::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -47,7 +47,7 @@ struct BackwardCase {
   std::string name, file;
   int steps;
   std::function<std::vector<SceneOverride>(int)> resolution;
-  SceneOverride targetChange;
+  std::function<SceneOverride(int)> targetChange;  // at n x n
   std::vector<std::string> parameters;
   // pd_tolerance (m/s^2) of the recorded forward run at n x n. Slope's is looser: the ribbon
   // slides over a metre, and the residual's round-off floor (about 1e-16 |P| |x| / (m h^2)) grows
@@ -58,21 +58,28 @@ struct BackwardCase {
   std::function<double(int)> forwardTolerance;
 };
 
+// wind_reference.json's wind strength (N/m^2), set for 24^2 quads.
+constexpr double kReferenceWindAt24 = 0.0905;
+
 std::vector<BackwardCase> backwardCases(const std::vector<std::string>& names) {
   auto grid = [](int n) { return "[" + std::to_string(n) + "," + std::to_string(n) + "]"; };
   // The hanging napkin (its two top corners held at every resolution); the target run blows
   // harder.
+  // `wind(n)`: the wind strength at n x n quads; the target blows 1.5 times as hard.
   auto hangingNapkin = [grid](const std::string& title, const std::string& scene,
-                              const std::string& targetWind) {
+                              std::function<double(int)> wind) {
     return BackwardCase{title,
                         assetFile(scene),
                         200,
-                        [grid](int n) {
+                        [grid, wind](int n) {
                           return std::vector<SceneOverride>{
                               {"cloths.0.mesh.grid.resolution", grid(n)},
-                              {"cloths.0.attachments.0.vertices", "[0," + std::to_string(n) + "]"}};
+                              {"cloths.0.attachments.0.vertices", "[0," + std::to_string(n) + "]"},
+                              {"wind.strength", formatNumber(wind(n), 8)}};
                         },
-                        {"wind.strength", targetWind},
+                        [wind](int n) {
+                          return SceneOverride{"wind.strength", formatNumber(1.5 * wind(n), 8)};
+                        },
                         {"wind.strength", "wind.direction.0", "cloths.0.material.stretch",
                          "cloths.0.material.density"},
                         [](int) { return 1e-8; }};
@@ -80,12 +87,18 @@ std::vector<BackwardCase> backwardCases(const std::vector<std::string>& names) {
   std::vector<BackwardCase> cases;
   for (const std::string& name : names) {
     if (name == "wind")
-      cases.push_back(hangingNapkin("Wind", "scenes/wind.json", "1.5"));
+      cases.push_back(hangingNapkin("Wind", "scenes/wind.json", [](int) { return 1.0; }));
     else if (name == "wind_reference")
       // The same napkin with the DiffCloth authors' own parameters (a 6-unit cloth, stretch 100,
-      // density 0.054): the scene their published backward timings come from.
+      // density 0.054): the scene their published backward timings come from. Their windScene
+      // pushes every vertex with the same force, (0, 0.004, 0.004) N, at any resolution;
+      // wind_reference.json spreads it as a pressure over an interior vertex's area at 24^2
+      // quads, 0.0905 N/m^2 over (6/24 m)^2. At n^2 quads a vertex covers (6/n m)^2, so the same
+      // force per vertex is 0.0905 (n/24)^2 N/m^2: 0.362 at 48^2 (49 x 49 vertices; at
+      // DiffCloth's 48 x 48 vertices, 47^2 quads, it would be 0.347).
       cases.push_back(
-          hangingNapkin("Wind (reference parameters)", "scenes/wind_reference.json", "0.13575"));
+          hangingNapkin("Wind (reference parameters)", "scenes/wind_reference.json",
+                        [](int n) { return kReferenceWindAt24 * (n / 24.0) * (n / 24.0); }));
     else if (name == "slope")
       cases.push_back(
           {"Slope",
@@ -94,7 +107,9 @@ std::vector<BackwardCase> backwardCases(const std::vector<std::string>& names) {
            [grid](int n) {
              return std::vector<SceneOverride>{{"cloths.0.mesh.grid.resolution", grid(n)}};
            },
-           {"obstacles.0.friction", "0.25"},
+           [](int) {
+             return SceneOverride{"obstacles.0.friction", "0.25"};
+           },
            {"obstacles.0.friction", "cloths.0.material.stretch", "cloths.0.material.density"},
            [](int n) { return n >= 48 ? 5e-7 : 1e-7; }});
   }
@@ -275,7 +290,7 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
       // it.
       std::fprintf(stderr, "backward: %s %dx%d target run...\n", c.name.c_str(), n, n);
       std::vector<SceneOverride> perturbed = base;
-      perturbed.push_back(c.targetChange);
+      perturbed.push_back(c.targetChange(n));
       // The target is data only (the loss's reference), so it is simulated with the scene's own
       // solver settings: at 48^2 the tight solve would take minutes and change nothing measured.
       const ForwardPass target = runForwardPass(loadScene(c.file, perturbed));
@@ -388,7 +403,9 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
       "(reference "
       "parameters): the same with the DiffCloth authors' public scene parameters (6-unit cloth, "
       "stretch 100, "
-      "density 0.054, constant wind), target at 1.5 times its wind strength. Slope: the ribbon on "
+      "density 0.054, constant wind; their force per vertex at every resolution, i.e. "
+      "wind.strength 0.0905 (n/24)^2 N/m^2 at n x n quads: 0.0226 at 12^2, 0.0905 at 24^2, 0.362 "
+      "at 48^2), target at 1.5 times its wind strength. Slope: the ribbon on "
       "the 20 degree plane, h = 1/100 s, every node in contact (slip), self-collision on; loss = "
       "trajectory "
       "distance to the same scene at friction 0.25; parameters obstacles.0.friction, stretch, "

@@ -136,9 +136,8 @@ int ContactSolver::linearize() {
   // r_j) (p: the pairs' impulses on the node); contact by contact, that Gauss-Seidel iteration
   // diverges where a slip contact's Jacobian has a large gain, which happens when the branch was
   // decided at another free velocity than the one it is linearised at (an iterate whose sweeps
-  // had not settled: at the Sock's ankle, a node on the leg and the foot capsules had a slip
-  // Jacobian of norm 16, and the linearised impulses overflowed after 128 sweeps, so the Newton
-  // step became NaN). The block is solved directly instead, R = (I - B)^+ A (q + p), with the
+  // had not settled; docs/how-it-works/contact.md). The block is solved directly instead,
+  // R = (I - B)^+ A (q + p), with the
   // minimum-norm solution where the split between the contacts is undetermined (two sticks),
   // as the backward pass picks it (ContactAdjoint).
   const int groups = static_cast<int>(groupStart_.size()) - 1;

@@ -1,10 +1,9 @@
 #pragma once
 // Handles whose targets pass inside an obstacle. The attachment's spring then pulls its vertices
 // into the obstacle while the contact holds them on its skin: a stiff spring stretched by
-// centimetres against grams of cloth (the Sock's starting guess put 200 N on vertices of 9.7 mg,
-// 2e7 m/s^2), and the steps cannot meet an absolute solver tolerance of 1e-4 m/s^2 in double
-// precision. Found before simulating, so the user is told why, not just that steps did not
-// converge.
+// centimetres against grams of cloth, whose accelerations are so large that the steps cannot meet
+// an absolute solver tolerance (solver.pd_tolerance, m/s^2) in double precision. Found before
+// simulating, so the user is told why, not just that steps did not converge.
 
 #include <weft/scene/Scene.h>
 

@@ -117,8 +117,7 @@ void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displa
   }
   // Cells twice the size of a typical box: O(1) cells per box and O(1) boxes per cell. Cells of
   // one box size put each box in about 8 cells, and the table's scattered writes then cost more
-  // than the extra pair tests of larger cells (Slope at 96^2 quads: 3.2 against 1.9-2.8 ms per
-  // detection for 1.5-3 box sizes).
+  // than the extra pair tests of larger cells (docs/how-it-works/contact.md).
   const double cell = kCellOverBoxSize * std::max(n > 0 ? extent / n : 0.0, largestDistance);
   candidates_.clear();
   if (n > 1) grid_.overlappingPairs(lower_, upper_, cell, candidates_);

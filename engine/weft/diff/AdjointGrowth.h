@@ -5,17 +5,9 @@
 // the linearised step has unstable modes (a cloth without bending in compression buckles: K has
 // small or negative eigenvalues), z grows exponentially in them and so does every step's error,
 // while the gradient, a sum over steps, is mostly cancellation.
-// Growth = max_n |z_n| / (the first nonzero |z_n| of the pass, in backward order).
-//
-// Measured 2026-12-02 (relative error of the GMRES gradient against the direct one, at relative
-// residuals 1e-4 / 1e-6):
-//   the DiffCloth authors' soft napkin (wind_reference.json, 200 steps, trajectory loss; `weft
-//   bench backward --scenes wind_reference --resolutions 12,24,48`): growth 1.8e5, 1.25e8, 3.1e11
-//   at 12^2, 24^2, 48^2; error 8.8e-5 / 9.0e-7, 2.1e-2 / 7.2e-6, 1.97 / 8.1e-3. At 48^2 the
-//   direct gradient agrees with central differences to 1.1e-4 (docs/benchmarks.md);
-//   sphere_sysid (`weft gradcheck --backward direct|gmres --backward-tolerance T`, forward at
-//   1e-8): growth 1.2e9, error 1.8e-3 / 8.9e-5;
-//   flag (the same commands): growth 890, error 8.0e-4 at 1e-4.
+// Growth = max_n |z_n| / (the first nonzero |z_n| of the pass, in backward order). Growth and
+// gradient error measured on the soft napkin, sphere_sysid and the Flag:
+// docs/how-it-works/backward.md, "When the tolerance is not enough".
 
 #include <weft/core/Types.h>
 #include <weft/diff/AdjointSolver.h>
@@ -26,10 +18,9 @@ namespace weft {
 
 // A rough size for the relative error of an iterative backward pass's gradient from its solves'
 // relative residual `tolerance` and the pass's growth: tolerance * sqrt(growth) / 100. A fit to
-// the measurements above, not a bound: for growth from 1e5 up it is within a factor of 20 of the
-// measured error (4x under at 48^2 and 1e-4: 0.55 against 1.97; 19x over on sphere_sysid at
-// 1e-4: 3.5e-2 against 1.8e-3); at small growth it is under the error (flag: 3e-5 against
-// 8.0e-4), which is then small anyway.
+// measurements (docs/how-it-works/backward.md), not a bound: for growth from 1e5 up it is within
+// a factor of 20 of the measured error; at small growth it is under the error, which is then
+// small anyway.
 double adjointGradientErrorEstimate(double growth, double tolerance);
 // Commands warn when that estimate reaches this.
 constexpr double kAdjointGradientErrorWarning = 1e-3;

@@ -16,12 +16,10 @@ std::unique_ptr<AdjointLinearSolver> makeAdjointLinearSolver(const BackwardSetti
   if (settings.method == "fixed_point")
     return std::make_unique<FixedPointSolver>(settings.tolerance, settings.maxIterations);
   if (settings.method == "direct") return std::make_unique<DirectLuSolver>();
-  // No restart below 200 iterations: on stretched cloth GMRES preconditioned by P needs 100-200
-  // iterations per step at 1e-6, and restarting at 50 loses the Krylov space it needs (Wind
-  // 24^2: 43.5 % fallbacks with restarts at 50, 4 % without; docs/benchmarks.md). The basis
-  // costs 2 x 200 x 3m doubles (23 MB at 48^2).
-  // Each step starts from the previous step's z (Wind 12^2: 76 -> 63 iterations per step at 1e-4,
-  // 109 -> 98 at 1e-6, preconditioned by P), or from the best combination of the last
+  // No restart below 200 iterations: on stretched cloth GMRES preconditioned by P needs up to
+  // about 200 iterations per step at 1e-6, and restarting earlier loses the Krylov space it needs
+  // (docs/benchmarks.md, "GMRES without restarts"). The basis costs 2 x 200 x 3m doubles.
+  // Each step starts from the previous step's z, or from the best combination of the last
   // settings.history solutions (SolutionHistory).
   return std::make_unique<GmresSolver>(
       settings.tolerance, settings.maxIterations, std::min(settings.maxIterations, 200),

@@ -73,11 +73,9 @@ class AdjointSystem {
   // (I - Pi) F^-1 (I - Pi) g and u = Q w with Q S's inverse on the tangent plane (a direction
   // where 1 - g < m / P_ii is pinned instead: there S ~ 0 and K's column is nearly M's); the
   // pinned part is then exact, c = M^-1 Pi (g - K u). F's solve alone models the columns M Pi as
-  // P's, larger by h^2 times the node's stiffness: on Slope at 24^2 and 1e-6 GMRES needed 6.1
-  // iterations per step and up to 200 that way, 3.1 and at most 14 this way; on the Sock, whose
-  // contacts mostly slip slowly as it comes to rest on the foot, 343 of 400 backward steps fell
-  // back to the LU, 166 with the pinned part alone, none with the map through S's inverse
-  // (docs/benchmarks.md, "Contact-pinned velocities in the preconditioner"). One more product
+  // P's, larger by h^2 times the node's stiffness, which slows GMRES on contact steps and sends
+  // slowly slipping ones to the LU fallback (docs/benchmarks.md, "Contact-pinned velocities in
+  // the preconditioner"). One more product
   // with K per application; the forward's Newton contact solve preconditions its Jacobian, the
   // transpose of this K, the same way (Simulator::preconditionContact), for obstacles only.
   // A self-collision pair whose nodes have no other contact is the same in its relative velocity:
@@ -93,9 +91,8 @@ class AdjointSystem {
   // (prepareDerivative(x, true)), i.e. h^2 times the implicit-Euler Hessian with each element's
   // indefinite part removed: symmetric positive definite (M > 0), equal to K wherever no element
   // is compressed. P keeps the transverse and rotational stiffness that Delta P takes away from a
-  // cloth in tension, which is why GMRES preconditioned by P needs 100-200 iterations per step on
-  // Wind; H needs a handful. Its factor is not reused: K changes too fast from step to step
-  // (a factor one step old already needs 2-3x the iterations, docs/benchmarks.md).
+  // cloth in tension, which is why GMRES preconditioned by P needs many iterations per step on
+  // Wind and H a handful (docs/benchmarks.md).
   // factorClampedHessian assembles H at the prepared state (as assembleK) and
   // factorises it with CHOLMOD (3m x 3m, symbolic analysis kept); false if that fails.
   bool factorClampedHessian();
@@ -113,9 +110,8 @@ class AdjointSystem {
   // 3 x 3 blocks, so its flops are about 26 times P's factor's; an iteration is a P solve of 12
   // flops and a K product of about 18 flops per stored entry). Not proportional to the flop
   // ratio: the larger the matrix, the larger CHOLMOD's supernodes and the faster its BLAS runs
-  // per flop. Fitted to `weft bench backward --calibrate` (Wind with the reference and with
-  // Weft's parameters, Slope; 12^2-48^2 quads; two runs): measured 36-158 iterations for flop
-  // ratios 12-116, the estimate within 0.77-1.45 of each.
+  // per flop. kFactorCostScale is fitted to `weft bench backward --calibrate`
+  // (docs/benchmarks.md, "The clamped Hessian from element blocks").
   double hessianFactorCost() const;
   // H's factorisation flops over an iteration's (SparseCholesky::blockFactorFlopRatio).
   double hessianFlopRatio() const;
@@ -123,8 +119,8 @@ class AdjointSystem {
   // operation counts: a one-column solve with H's factor (4 flops per entry of its L; before H's
   // first analysis 9 times P's entries, H having P's pattern in 3 x 3 blocks) and a product with
   // K (18 flops per stored entry of P), over a three-column solve with P's factor (12 flops per
-  // entry) and the same product. 2.2-2.5 on Wind and the soft napkin at 12^2-48^2; `weft bench
-  // backward --calibrate` prints it beside the timed ratio.
+  // entry) and the same product. `weft bench backward --calibrate` prints it beside the timed
+  // ratio.
   double hessianIterationCost() const;
   static constexpr double kFactorCostScale = 15.0;
 

@@ -191,9 +191,9 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
   // every solution gives; the forward picked one split. A shift of the diagonal makes the solve
   // pick the minimum-norm split (as the shift goes to 0), and the direct fallback's augmented
   // system takes the same shifted block. Which groups of coupled contacts are singular is read
-  // from their singular values: rounding leaves the stick-slip block's zeros at 1e-17, where the
-  // sparse LU finds no zero pivot, and the unshifted augmented system then failed UMFPACK (the
-  // Sock, step 282) or gave a gradient 20 % off (ContactGradientTest, the turned corner).
+  // from their singular values: rounding leaves the stick-slip block's zeros slightly off zero,
+  // where the sparse LU finds no zero pivot, and the unshifted augmented system then fails
+  // UMFPACK or gives a wrong gradient (docs/how-it-works/backward.md).
   for (const std::vector<int>& group : coupledGroups(sharing, count)) {
     const int size = 3 * static_cast<int>(group.size());
     Eigen::MatrixXd block(size, size);

@@ -122,8 +122,8 @@ class ContactAdjoint {
   // 1e-9 relative outside the split's null space.
   static constexpr double kSingularCouplingShift = 1e-9;  // the error message quotes it
   // A group of coupled contacts is singular when its block of T^T has a singular value below
-  // this fraction of its largest (exact zeros come out of rounding at about 1e-16; the Sock's
-  // genuinely ill-conditioned slip pairs have 1e-5 and are left exact).
+  // this fraction of its largest: exact zeros come out of rounding at about 1e-16, while
+  // genuinely ill-conditioned slip pairs lie orders of magnitude above and are left exact.
   static constexpr double kSingularCouplingRatio = 1e-12;
   std::vector<PinnedContact> pinned_;
   std::vector<int> pinnedSlot_;  // node -> index in pinned_ or -1 (reset after each prepare)

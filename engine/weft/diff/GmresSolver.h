@@ -16,9 +16,8 @@
 // (Preconditioner::ClampedHessian, AdjointSystem::factorClampedHessian: one sparse Cholesky of
 // 3m unknowns per step, then a handful of iterations), or Preconditioner::Automatic, which picks
 // one per step: P is right where contacts pin the cloth's soft out-of-plane modes or the cloth
-// is slack (Slope: 1-5 iterations per step), the Hessian where the cloth hangs free in tension
-// (Wind: 60-130 iterations with P, 2-5 with the Hessian), and the factorisation costs as much
-// as 36-158 iterations with P at 12^2-48^2 (AdjointSystem::hessianFactorCost). A step
+// is slack (Slope), the Hessian where the cloth hangs free in tension (Wind), and the
+// factorisation costs many iterations with P (AdjointSystem::hessianFactorCost). A step
 // first runs with P for as many iterations as a factorisation costs divided by the steps a
 // factor serves (counted in the pass, from a prior of kAutomaticPriorReuse; at least
 // kAutomaticPIterations); if P has not converged by then, the Hessian is factored and the solve
@@ -29,10 +28,9 @@
 // iterations as the run's steps have cost on average, at least kAutomaticPIterations: a
 // factorisation by hessianFactorCost, an iteration with H by hessianIterationCost) and
 // staying with P if it converged within them, and dropping back to P as soon as a fresh factor
-// needs more than kAutomaticPIterations (the hard iterations came from the contact part Delta R,
-// which neither factor models: Slope's hardest steps needed 79 iterations with P, 39 with the
-// Hessian, until AdjointSystem::precondition inverted the contact-prescribed velocities exactly
-// around either factor; at most 15 since, at 12^2-48^2 and 1e-6).
+// needs more than kAutomaticPIterations (such iterations come from the contact part Delta R,
+// which neither factor models beyond the contact-prescribed velocities that
+// AdjointSystem::precondition inverts exactly around either factor).
 // The choice depends on iteration and operation counts only, so repeated runs stay
 // bit-identical.
 // With warmStart each step starts from the previous step's solution, or with history > 0 from
@@ -40,8 +38,7 @@
 // smoothly along the trajectory), and then takes at least kHistoryMinimumIterations
 // iterations: such a guess can meet the tolerance without resolving what is new in the step's
 // right-hand side (the loss's own term at that step), and the parts left out add up coherently
-// over the pass (Slope at 12^2, 1e-4: gradient error against the direct solve 3.4e-4 from the
-// last solution, 5.4e-3 from the combination alone, 5.4e-5 with three iterations at least).
+// over the pass (docs/how-it-works/backward.md, "Measured on the way").
 
 #include <weft/diff/AdjointLinearSolver.h>
 #include <weft/diff/SolutionHistory.h>
@@ -59,8 +56,8 @@ class GmresSolver final : public AdjointLinearSolver {
   static constexpr int kAutomaticReprobe = 10;
   // Automatic: iterations with a kept Hessian factor beyond which the next step refactors.
   static constexpr int kAutomaticRefactor = 6;
-  // Automatic: the steps a factor is assumed to serve before any has (on Wind at 24^2, a kept
-  // factor served 3-5 steps; a prior of 1 kept P at 120-150 iterations per step there).
+  // Automatic: the steps a factor is assumed to serve before any has (a prior of 1 keeps P too
+  // long on a cloth in tension: docs/how-it-works/backward.md).
   static constexpr int kAutomaticPriorReuse = 2;
   GmresSolver(double tolerance, int maxIterations, int restart = 50, bool warmStart = false,
               Preconditioner preconditioner = Preconditioner::P, int history = 0)

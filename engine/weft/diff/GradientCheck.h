@@ -3,10 +3,9 @@
 // `weft gradcheck` prints). Both use the same tightened forward solver (withTightForwardSolver),
 // so their difference measures the adjoint, not the forward solver's stopping noise; the adjoint
 // solves are tightened too (backwardTolerance replaces solver.backward.tolerance, which is the
-// setting for optimisation). Measured on wind_sysid: the relative error of the gradient follows
-// the backward tolerance (1e-4 gives errors up to ~1e-4, 1e-8 below ~1e-6), while the forward
-// tolerance mostly shows up as noise in the finite differences (a residual floor of ~1e-9 m/s^2:
-// asking for 1e-10 leaves steps unconverged at the iteration cap).
+// setting for optimisation). The relative error of the gradient follows the backward tolerance,
+// while the forward tolerance mostly shows up as noise in the finite differences, down to the
+// forward residual's round-off floor (docs/how-it-works/backward.md).
 //
 // Finite differences: L'(theta) ~ (L(theta + d) - L(theta - d)) / (2 d) with the relative step
 // d = eps * |theta| (d = eps when theta = 0). Relative error: |adjoint - fd| / max(|adjoint|,

@@ -7,10 +7,13 @@
 #include <numeric>
 #include <regex>
 #include <sstream>
+#include <utility>
 
 namespace weft {
 
-void writeNpy(const std::string& path, const std::vector<std::size_t>& shape, const double* data) {
+NpyWriter::NpyWriter(std::string path, const std::vector<std::size_t>& shape)
+    : path_(std::move(path)),
+      expected_(std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>())) {
   std::ostringstream dict;
   dict << "{'descr': '<f8', 'fortran_order': False, 'shape': (";
   for (std::size_t i = 0; i < shape.size(); ++i)
@@ -21,19 +24,40 @@ void writeNpy(const std::string& path, const std::vector<std::size_t>& shape, co
   const std::size_t unpadded = 10 + header.size() + 1;
   header.append((64 - unpadded % 64) % 64, ' ');
   header.push_back('\n');
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError(path, "output", "cannot open for writing");
+  out_.open(path_, std::ios::binary);
+  if (!out_) throw InputError(path_, "output", "cannot open for writing");
   const char magic[8] = {'\x93', 'N', 'U', 'M', 'P', 'Y', 1, 0};
-  out.write(magic, 8);
+  out_.write(magic, 8);
   const std::uint16_t len = static_cast<std::uint16_t>(header.size());
   const char lenBytes[2] = {static_cast<char>(len & 0xff), static_cast<char>(len >> 8)};
-  out.write(lenBytes, 2);
-  out.write(header.data(), static_cast<std::streamsize>(header.size()));
-  const std::size_t count =
-      std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
-  out.write(reinterpret_cast<const char*>(data),
-            static_cast<std::streamsize>(count * sizeof(double)));
-  if (!out) throw InputError(path, "output", "write failed");
+  out_.write(lenBytes, 2);
+  out_.write(header.data(), static_cast<std::streamsize>(header.size()));
+  if (!out_) throw InputError(path_, "output", "write failed");
+}
+
+void NpyWriter::append(const double* data, std::size_t count) {
+  if (written_ + count > expected_)
+    throw InputError(path_, "output", "more values than the array's shape holds");
+  out_.write(reinterpret_cast<const char*>(data),
+             static_cast<std::streamsize>(count * sizeof(double)));
+  if (!out_) throw InputError(path_, "output", "write failed");
+  written_ += count;
+}
+
+void NpyWriter::close() {
+  if (written_ != expected_)
+    throw InputError(
+        path_, "output",
+        "holds " + std::to_string(written_) + " values, its shape " + std::to_string(expected_));
+  out_.close();
+  if (!out_) throw InputError(path_, "output", "write failed");
+}
+
+void writeNpy(const std::string& path, const std::vector<std::size_t>& shape, const double* data) {
+  NpyWriter out(path, shape);
+  out.append(data,
+             std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>()));
+  out.close();
 }
 
 NpyArray readNpy(const std::string& path) {

@@ -6,12 +6,12 @@
 //
 // The iteration is Weft's own (the loop of LBFGSpp's LBFGSBSolver, which it reproduces
 // evaluation for evaluation with the default settings; AnalyticOptimizerTest), for two settings
-// that solver does not have, both for gradients that jitter at small scales (the Sock's changes by
-// 7-14 % over 0.04 mm; docs/applications-history.md, "The Sock"):
+// that solver does not have, both for gradients that jitter at small scales (the Sock's;
+// docs/how-it-works/optimisers.md):
 // - OptimizerSettings::lbfgsbFirstStep: the length of the first trial step, in optimiser
 //   coordinates, along the normalised direction to the first Cauchy point. LBFGSpp tries 1, a
 //   box-sized step on most tasks: the loss there is far off, the line search comes back to a
-//   step of 1e-5, and the first curvature pair is measured over that step, where the jitter is
+//   tiny step, and the first curvature pair is measured over that step, where the jitter is
 //   all it sees.
 // - OptimizerSettings::lbfgsbMinCurvatureStep: curvature pairs (s, y) with |s| below this length
 //   are not added to the BFGS matrix (the step is still taken). Over such a step |y| is the

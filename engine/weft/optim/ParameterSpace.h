@@ -14,20 +14,16 @@
 // width, so the box spans 2 units whatever the start.
 //
 // Why the handles differ: a knot's components are the coordinates of a path, and one's size says
-// nothing about how far it, or another, may move. The Sock's tangents start at 0, 0.012 or
-// 0.33 m/s in the same [-1, 1] m/s box; scaled by their starts, L-BFGS-B's first trial step (one
-// unit) would move one by 1 m/s and another by 12 mm/s, and the evolution strategies (SearchBox
-// caps a box at 2 units) would search the 0.012 one over +-24 mm/s of its 2 m/s box. A material
-// constant's or the wind's magnitude is a scale, and there the box is not better: with every
-// finite box used so, the reduced T-shirt and Flag identifications (TShirtTask, FlagTask tests)
-// ended their evaluation caps with the wind phase 2.2 % and 9.8 % off, against within 2 %.
+// nothing about how far it, or another, may move; scaled by their starts, knots starting near 0
+// would take steps far smaller than their box. A material constant's or the wind's magnitude is
+// a scale, and there the box is not better (docs/how-it-works/optimisers.md, "Parameter
+// scaling").
 //
 // Gradients follow by the chain rule: dL/dz = dL/dtheta * dtheta/dz, with dtheta/dz = theta (log)
 // or s (linear).
 //
-// The start maps back exactly: exp(log(v)) is not always v (500 comes back as
-// 499.99999999999983), and a scene whose forward solve stops unconverged on some steps moves by
-// micrometres under such a change (the T-shirt: 152 unconverged steps instead of 148). So a
+// The start maps back exactly: exp(log(v)) is not always v, and a scene whose forward solve stops
+// unconverged on some steps moves under such a last-bit change. So a
 // coordinate equal to the start's is mapped to the scene's own value, and an optimiser's first
 // evaluation is the run `weft simulate` makes of the scene as written.
 

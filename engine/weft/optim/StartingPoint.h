@@ -10,10 +10,9 @@
 // manipulator paths that pull the garment onto the body, Figs. 9-10), and it is not one the
 // simulator can solve: the attachment's spring pulls cloth centimetres into the obstacle
 // against the contact (HandleObstacleCheck.h), steps stop unconverged, and the loss around it
-// jumps. The Sock's seed 1 drew such a start (its handles up to 28 mm inside the foot and the
-// leg; 55 of 400 steps unconverged, residual up to 2.5e4 m/s^2). Only the start is kept out;
-// the optimisers may still search anywhere in the box. A draw that is accepted first is the
-// draw earlier versions made, so tasks without handles or obstacles start where they did.
+// jumps. Only the start is kept out; the optimisers may still search anywhere in the box. A
+// draw accepted at once is the first draw of the stream, so tasks without handles or obstacles
+// start at the first draw.
 
 #include <weft/diff/ParameterSet.h>
 #include <weft/optim/ParameterSpace.h>

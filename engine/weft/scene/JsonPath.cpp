@@ -71,6 +71,35 @@ nlohmann::json parseOverrideValue(const std::string& text) {
   return text;
 }
 
+std::string createJsonPathObjects(nlohmann::json& doc, const std::string& path) {
+  const auto parts = splitJsonPath(path);
+  if (parts.size() < 2) return "";
+  nlohmann::json* node = &doc;
+  std::size_t k = 0;
+  for (; k + 1 < parts.size(); ++k) {
+    const std::string& p = parts[k];
+    if (node->is_object()) {
+      auto it = node->find(p);
+      if (it == node->end()) break;
+      node = &*it;
+    } else if (node->is_array()) {
+      std::size_t i;
+      if (!parseIndex(p, i) || i >= node->size()) return "";
+      node = &(*node)[i];
+    } else {
+      return "";
+    }
+  }
+  if (k + 1 == parts.size() || !node->is_object()) return "";  // every parent exists
+  std::size_t unused;
+  for (std::size_t j = k; j < parts.size(); ++j)
+    if (parts[j].empty() || parseIndex(parts[j], unused)) return "";
+  std::string created;
+  for (std::size_t j = 0; j <= k; ++j) created += (j ? "." : "") + parts[j];
+  for (; k + 1 < parts.size(); ++k) node = &((*node)[parts[k]] = nlohmann::json::object());
+  return created;
+}
+
 std::string setJsonPath(nlohmann::json& doc, const std::string& path, const nlohmann::json& value) {
   const auto parts = splitJsonPath(path);
   if (parts.empty() || path.empty()) return "empty path";

@@ -24,4 +24,12 @@ nlohmann::json parseOverrideValue(const std::string& text);
 // on success.
 std::string setJsonPath(nlohmann::json& doc, const std::string& path, const nlohmann::json& value);
 
+// Creates the objects `path` passes through that `doc` lacks, as empty objects, so that a key a
+// file leaves at its default can still be set: "solver.backward.tolerance" on a scene without
+// "solver". Only object members are created, never array elements (a path with an index below
+// the first missing object creates nothing). Whether the created keys are keys of the format is
+// for the scene validator to decide (its lists of allowed keys are the one schema). Returns the
+// path of the outermost object created, or "" when nothing was created.
+std::string createJsonPathObjects(nlohmann::json& doc, const std::string& path);
+
 }  // namespace weft

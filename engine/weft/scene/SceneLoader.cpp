@@ -542,21 +542,38 @@ Scene loadScene(const std::string& file, const std::vector<SceneOverride>& overr
     const std::string reason = detail != std::string::npos ? what.substr(detail + 2) : what;
     throw InputError(file, "<json>", "invalid JSON" + where + ": " + reason);
   }
-  std::vector<std::string> created;
+  // Per override that introduced keys: the outermost key it created (the path itself, or the
+  // first of the objects it had to create), the override's path, and whether it created objects.
+  struct Created {
+    std::string key, option;
+    bool objects;
+  };
+  std::vector<Created> created;
   for (const SceneOverride& o : overrides) {
     const bool existed = findJsonPath(doc, o.path) != nullptr;
+    // Keys the format defines are settable when the file leaves them (and their objects) at
+    // their defaults; the validator below rejects the keys it does not define.
+    const std::string createdObject = existed ? "" : createJsonPathObjects(doc, o.path);
     const std::string err = setJsonPath(doc, o.path, parseOverrideValue(o.value));
     if (!err.empty()) throw InputError(file, "--set " + o.path, err);
-    if (!existed) created.push_back(o.path);
+    if (!existed)
+      created.push_back(
+          {createdObject.empty() ? o.path : createdObject, o.path, !createdObject.empty()});
   }
   const std::string directory = fs::path(file).parent_path().string();
   try {
     return parseScene(doc, file, directory.empty() ? "." : directory);
   } catch (const InputError& e) {
-    // A key that only an override introduced is reported against the option that wrote it.
-    for (const std::string& p : created)
-      if (e.path() == p || e.path().rfind(p + ".", 0) == 0)
-        throw InputError(file, "--set " + p, e.reason() == "" ? "invalid" : e.reason());
+    // A key that only an override introduced is reported against the option that wrote it; an
+    // object it created that the format does not define makes the path an unknown one.
+    for (const Created& c : created)
+      if (e.path() == c.key || e.path().rfind(c.key + ".", 0) == 0) {
+        const std::string reason = e.reason() == "" ? "invalid" : e.reason();
+        throw InputError(file, "--set " + c.option,
+                         c.objects && reason.rfind("unknown key", 0) == 0
+                             ? "unknown path: " + e.path() + ": " + reason
+                             : reason);
+      }
     throw;
   }
 }
