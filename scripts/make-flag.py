@@ -17,7 +17,7 @@ and the task starts away from them (START). Everything else below is chosen here
   (grid rotated 90 degrees about X, so row j = 0 is the top edge) with its centre at
   (0, 1, 0); its left edge (column i = 0, the 20 vertices j * 27) is fixed to the pole (one
   fixed attachment, stiffness 1e4 N/m per vertex, the default);
-- Eq. 35 is Weft's wind with `falloff.center` at the flag centre (engine/weft/scene/Scene.h,
+- Eq. 35 is Weft's wind with `falloff.center` at the flag centre (engine/include/weft/scene/Scene.h,
   struct Wind): node i receives strength * k_i * 0.5 (sin(2 pi frequency t + phase) + 1) *
   direction. Weft's frequency is in Hz (w = 2 pi frequency). d = strength * direction with
   strength fixed at 1e-3 N m as a unit (not a parameter), so the three components of d are the

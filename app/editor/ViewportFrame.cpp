@@ -1,6 +1,6 @@
 #include "ViewportFrame.h"
 
-#include <FrameBuilder.h>
+#include <weft/frames/FrameBuilder.h>
 
 #include "FinalTargets.h"
 #include "VertexInspector.h"

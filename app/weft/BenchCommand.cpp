@@ -7,8 +7,8 @@
 
 #include <weft/bench/ApplicationsBench.h>
 #include <weft/bench/BackwardBench.h>
-#include <weft/bench/BenchNames.h>
 #include <weft/bench/BenchAssets.h>
+#include <weft/bench/BenchNames.h>
 #include <weft/bench/ContactBench.h>
 #include <weft/bench/ContinuityBench.h>
 #include <weft/bench/ForwardBench.h>

@@ -2,14 +2,14 @@
 // cloth draped on a sphere at 1280x720, per overlay) and how long a 200-frame run takes to
 // render to PNG. Writes render.csv and render.md. Reported, not asserted.
 
-#include "ClothFields.h"
 #include "CommandLine.h"
 #include "Commands.h"
-#include "FrameBuilder.h"
-#include "RenderJob.h"
-#include "SyntheticDrape.h"
 
 #include <weft/core/Error.h>
+#include <weft/frames/ClothFields.h>
+#include <weft/frames/FrameBuilder.h>
+#include <weft/frames/RenderJob.h>
+#include <weft/frames/SyntheticDrape.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/render/HeadlessContext.h>
 #include <weft/render/RenderError.h>

@@ -3,11 +3,11 @@
 
 #include "CommandLine.h"
 #include "Commands.h"
-#include "RenderJob.h"
 #include "SceneOverrideOption.h"
 #include "SceneWarnings.h"
 
 #include <weft/core/Error.h>
+#include <weft/frames/RenderJob.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/output/RunFolder.h>
 #include <weft/physics/Simulator.h>

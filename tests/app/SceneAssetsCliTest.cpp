@@ -5,7 +5,7 @@
 
 #include "CliSupport.h"
 
-#include <weft/diff/AdjointSystem.h>
+#include <weft/bench/BackwardBench.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -259,7 +259,7 @@ TEST(SceneAssets, BackwardBenchCalibrateWritesTheEstimateBesideTheTimings) {
   for (std::size_t c = 3; c <= 6; ++c) EXPECT_GT(std::stod(row[c]), 0.0) << columns[c];
   const double flopRatio = std::stod(row[7]);
   EXPECT_GT(flopRatio, 1.0);
-  EXPECT_NEAR(std::stod(row[8]), AdjointSystem::kFactorCostScale * std::sqrt(flopRatio),
+  EXPECT_NEAR(std::stod(row[8]), bench::factorCostScale() * std::sqrt(flopRatio),
               1e-2 * std::stod(row[8]));
   // An iteration with H's factor (3m unknowns, one column) does more work than one with P's
   // (m unknowns, three columns): H's L has about 9 times P's entries.

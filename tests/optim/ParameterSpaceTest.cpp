@@ -1,4 +1,4 @@
-// ParameterSpace (engine/weft/optim/ParameterSpace.h): the coordinates optimisers work in.
+// ParameterSpace (engine/include/weft/optim/ParameterSpace.h): the coordinates optimisers work in.
 
 #include <diff/DiffTestSupport.h>
 

@@ -1,7 +1,7 @@
 // The per-vertex fields the overlays colour: strain and speed.
 
-#include <ClothFields.h>
-#include <SyntheticDrape.h>
+#include <weft/frames/ClothFields.h>
+#include <weft/frames/SyntheticDrape.h>
 
 #include <weft/mesh/GridMesh.h>
 

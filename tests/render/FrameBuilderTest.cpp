@@ -1,7 +1,7 @@
 // The adapter from scenes to frame descriptions: obstacles, attachment markers, handle
 // trajectories and target ghosts come from the scene; the cloth from the state given.
 
-#include <FrameBuilder.h>
+#include <weft/frames/FrameBuilder.h>
 
 #include <support/SceneBuilder.h>
 #include <support/TempDir.h>

@@ -4,7 +4,7 @@
 #include "GoldenImage.h"
 #include "RenderTestSupport.h"
 
-#include <ClothFields.h>
+#include <weft/frames/ClothFields.h>
 
 #include <gtest/gtest.h>
 

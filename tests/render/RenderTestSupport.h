@@ -7,7 +7,7 @@
 #include <weft/render/Camera.h>
 #include <weft/render/Renderer.h>
 
-#include <SyntheticDrape.h>
+#include <weft/frames/SyntheticDrape.h>
 
 #include <array>
 #include <cstdint>

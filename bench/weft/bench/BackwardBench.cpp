@@ -223,6 +223,10 @@ struct Method {
 
 }  // namespace
 
+double factorCostScale() {
+  return AdjointSystem::kFactorCostScale;
+}
+
 int runBackwardBench(const BackwardBenchOptions& options, const std::string& outDir) {
   const bool quick = options.quick;
   const std::vector<BackwardCase> cases = backwardCases(

@@ -19,6 +19,11 @@ struct BackwardBenchOptions {
   bool calibrate = false;
 };
 
+// The scale of the adjoint's factorisation-cost estimate (AdjointSystem::hessianFactorCost, in
+// GMRES iterations: this scale times the square root of H's factor flops over P's), which
+// --calibrate's estimated_iterations column uses.
+double factorCostScale();
+
 // Writes the tables into `outDir` (staged); returns the exit code.
 int runBackwardBench(const BackwardBenchOptions& options, const std::string& outDir);
 

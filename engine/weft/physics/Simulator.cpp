@@ -1,11 +1,18 @@
 #include <weft/physics/Simulator.h>
 
+#include <weft/contact/FrictionalContact.h>
 #include <weft/core/Error.h>
 #include <weft/physics/AttachmentConstraint.h>
 #include <weft/physics/BendingConstraint.h>
+#include <weft/physics/ExternalForce.h>
 #include <weft/physics/GravityForce.h>
+#include <weft/physics/ModuleTimer.h>
 #include <weft/physics/NodalForces.h>
+#include <weft/physics/ProjectiveConstraint.h>
+#include <weft/physics/StepContext.h>
+#include <weft/physics/StepSolver.h>
 #include <weft/physics/StretchConstraint.h>
+#include <weft/physics/SystemMatrix.h>
 #include <weft/physics/WindForce.h>
 
 #include <cmath>
@@ -25,12 +32,15 @@ constexpr double kBlowUpSpeed = 1e5;  // m/s
 }  // namespace
 
 Simulator::Simulator(const Scene& scene)
-    : scene_(scene), model_(buildClothModel(scene)), h_(scene.time.dt) {
-  solverModule_ = timer_.add("solver");
+    : scene_(scene),
+      model_(buildClothModel(scene)),
+      h_(scene.time.dt),
+      timer_(std::make_unique<ModuleTimer>()) {
+  solverModule_ = timer_->add("solver");
   // Constraint modules: only those with at least one instance.
   auto addConstraint = [this](std::unique_ptr<ProjectiveConstraint> c) {
     if (c->rowCount() == 0) return;
-    constraintModule_.push_back(timer_.add(c->name()));
+    constraintModule_.push_back(timer_->add(c->name()));
     constraints_.push_back(std::move(c));
   };
   addConstraint(std::make_unique<StretchConstraint>(makeStretchConstraint(scene, model_)));
@@ -42,7 +52,7 @@ Simulator::Simulator(const Scene& scene)
 
   // Force modules: only the effects the scene names.
   auto addForce = [this](std::unique_ptr<ExternalForce> f) {
-    forceModule_.push_back(timer_.add(f->name()));
+    forceModule_.push_back(timer_->add(f->name()));
     forces_.push_back(std::move(f));
   };
   if (scene.gravity) addForce(std::make_unique<GravityForce>(*scene.gravity, model_.mass));
@@ -61,12 +71,12 @@ Simulator::Simulator(const Scene& scene)
   if (!scene.obstacles.empty() || scene.hasSelfCollision()) {
     const auto start = ModuleTimer::Clock::now();
     contact_ = std::make_unique<FrictionalContact>(scene, model_);
-    if (contact_->hasObstacles()) contactDetectionModule_ = timer_.add("contact_detection");
-    if (contact_->hasSelfCollision()) selfCollisionModule_ = timer_.add("self_collision");
-    contactSolveModule_ = timer_.add("contact_solve");
+    if (contact_->hasObstacles()) contactDetectionModule_ = timer_->add("contact_detection");
+    if (contact_->hasSelfCollision()) selfCollisionModule_ = timer_->add("self_collision");
+    contactSolveModule_ = timer_->add("contact_solve");
     // Building the shapes (mesh BVHs) and the self-collision tables counts as detection.
-    timer_.charge(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_,
-                  ModuleTimer::secondsSince(start));
+    timer_->charge(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_,
+                   ModuleTimer::secondsSince(start));
   }
 
   const int m = model_.nodeCount();
@@ -79,15 +89,25 @@ Simulator::Simulator(const Scene& scene)
   force_.setZero(m, 3);
   if (contact_) predicted_.setZero(m, 3);
 
-  timer_.timed(solverModule_,
-               [&] { system_ = std::make_unique<SystemMatrix>(model_.mass, constraints_, h_); });
+  timer_->timed(solverModule_,
+                [&] { system_ = std::make_unique<SystemMatrix>(model_.mass, constraints_, h_); });
   context_ =
       std::make_unique<StepContext>(scene, model_, x_, constraints_, constraintModule_, *system_,
-                                    timer_, solverModule_, contact_.get(), contactSolveModule_);
+                                    *timer_, solverModule_, contact_.get(), contactSolveModule_);
   solver_ = makeStepSolver(*context_);
 }
 
 Simulator::~Simulator() = default;
+
+const std::vector<std::string>& Simulator::moduleNames() const {
+  return timer_->names();
+}
+const std::vector<double>& Simulator::moduleSeconds() const {
+  return timer_->seconds();
+}
+const Eigen::SparseMatrix<double>& Simulator::systemMatrix() const {
+  return system_->matrix();
+}
 
 const StepStats& Simulator::step() {
   const double h2 = h_ * h_;
@@ -98,17 +118,17 @@ const StepStats& Simulator::step() {
   stats = StepStats{};
   stats.step = step_ + 1;
   stats.time = t1;
-  timer_.beginStep();
+  timer_->beginStep();
   ctx.solveLimit = solver.pdIterations;
 
   // External forces at the end of the step (implicit Euler, Eqs. 1-2).
   force_.setZero();
   for (std::size_t f = 0; f < forces_.size(); ++f)
-    timer_.timed(forceModule_[f], [&] { forces_[f]->accumulate(t1, force_); });
+    timer_->timed(forceModule_[f], [&] { forces_[f]->accumulate(t1, force_); });
   for (std::size_t c = 0; c < constraints_.size(); ++c)
-    timer_.timed(constraintModule_[c], [&] { constraints_[c]->beginStep(t1, x_); });
+    timer_->timed(constraintModule_[c], [&] { constraints_[c]->beginStep(t1, x_); });
 
-  timer_.timed(solverModule_, [&] {
+  timer_->timed(solverModule_, [&] {
     // y = x_n + h v_n + h^2 M^{-1} f_ext (Eq. 3)
     ctx.y = x_ + h_ * v_ + h2 * (ctx.inverseMass.asDiagonal() * force_);
     ctx.massY = model_.mass.asDiagonal() * ctx.y;
@@ -125,19 +145,19 @@ const StepStats& Simulator::step() {
     // step is solved again from its result, each pass with a fresh iteration budget.
     for (int pass = 0; pass < kMissedContactPasses && solver_->resolvesMissedContacts(); ++pass) {
       int added = 0;
-      timer_.timed(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_,
-                   [&] {
-                     ctx.change = ctx.global - x_;
-                     added = contact_->addMissedContacts(x_, predicted_, ctx.change);
-                   });
+      timer_->timed(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_,
+                    [&] {
+                      ctx.change = ctx.global - x_;
+                      added = contact_->addMissedContacts(x_, predicted_, ctx.change);
+                    });
       if (added == 0) break;
       stats.lateContacts += added;
-      timer_.timed(contactSolveModule_, [&] { solver_->prepareContacts(ctx); });
-      timer_.timed(solverModule_, [&] { ctx.iterate = ctx.global; });
+      timer_->timed(contactSolveModule_, [&] { solver_->prepareContacts(ctx); });
+      timer_->timed(solverModule_, [&] { ctx.iterate = ctx.global; });
       ctx.solveLimit = stats.pdIterations + solver.pdIterations;
       solver_->solve(ctx);
     }
-    timer_.timed(contactSolveModule_, [&] {
+    timer_->timed(contactSolveModule_, [&] {
       solver_->record(ctx, lastContacts_);
       countBranches(lastContacts_, stats);
       lastContacts_.sweeps = stats.contactSweeps;
@@ -151,7 +171,7 @@ const StepStats& Simulator::step() {
   } else {
     solver_->solve(ctx);
   }
-  stats.moduleSeconds = timer_.stepSeconds();
+  stats.moduleSeconds = timer_->stepSeconds();
 
   // The last global solution is the step's result (one PD iteration past the checked iterate).
   if (!ctx.global.allFinite()) diagnoseNonFinite(x_);
@@ -173,15 +193,15 @@ void Simulator::detectContacts(double t0, double t1) {
   // v_n) of DiffCloth Eq. 9; after the solve, step() adds contacts the path taken violated and
   // the predicted one missed (FrictionalContact::addMissedContacts).
   const int first = contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_;
-  timer_.timed(first, [&] {
+  timer_->timed(first, [&] {
     contact_->beginStep(t0, t1);
     predicted_ = context_->iterate - x_;
   });
   if (contact_->hasObstacles())
-    timer_.timed(contactDetectionModule_, [&] { contact_->detectObstacles(x_, predicted_); });
+    timer_->timed(contactDetectionModule_, [&] { contact_->detectObstacles(x_, predicted_); });
   if (contact_->hasSelfCollision())
-    timer_.timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, predicted_); });
-  timer_.timed(contactSolveModule_, [&] { solver_->prepareContacts(*context_); });
+    timer_->timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, predicted_); });
+  timer_->timed(contactSolveModule_, [&] { solver_->prepareContacts(*context_); });
 }
 
 void Simulator::restart(int step, const NodeMatrix& x, const NodeMatrix& v) {
@@ -215,7 +235,7 @@ void Simulator::run(int steps, Trajectory& trajectory,
   if (trajectory.positions.empty()) {
     trajectory.positions.push_back(x_);
     trajectory.velocities.push_back(v_);
-    trajectory.moduleNames = timer_.names();
+    trajectory.moduleNames = timer_->names();
   }
   trajectory.positions.reserve(trajectory.positions.size() + steps);
   trajectory.velocities.reserve(trajectory.velocities.size() + steps);

@@ -1,4 +1,4 @@
-#include "SyntheticDrape.h"
+#include <weft/frames/SyntheticDrape.h>
 
 #include <weft/mesh/GridMesh.h>
 

@@ -1,8 +1,8 @@
-#include "RenderJob.h"
+#include <weft/frames/RenderJob.h>
 
-#include "AsyncPngWriter.h"
-#include "ClothFields.h"
-#include "FrameBuilder.h"
+#include <weft/frames/AsyncPngWriter.h>
+#include <weft/frames/ClothFields.h>
+#include <weft/frames/FrameBuilder.h>
 
 #include <weft/render/Image.h>
 #include <weft/render/RenderError.h>

@@ -21,9 +21,9 @@ struct TimeSettings {
 };
 
 struct BackwardSettings {
-  // The adjoint's linear solve per step (engine/weft/diff/AdjointSolver.h): "gmres" (Krylov,
-  // preconditioned by the factor of P), "fixed_point" (DiffCloth Eq. 20/30) or "direct" (sparse
-  // LU).
+  // The adjoint's linear solve per step (engine/include/weft/diff/AdjointSolver.h): "gmres"
+  // (Krylov, preconditioned by the factor of P), "fixed_point" (DiffCloth Eq. 20/30) or "direct"
+  // (sparse LU).
   std::string method = "gmres";
   double tolerance = 1e-4;  // relative residual |g - K z| / |g| of each step's adjoint solve
   int maxIterations = 200;

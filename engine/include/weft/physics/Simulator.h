@@ -8,15 +8,9 @@
 // detected contact. The simulator builds the modules, starts each step, detects contacts,
 // delegates the solve, checks for non-finite values and advances.
 
-#include <weft/contact/FrictionalContact.h>
 #include <weft/core/Types.h>
 #include <weft/model/ClothModel.h>
-#include <weft/physics/ExternalForce.h>
-#include <weft/physics/ModuleTimer.h>
-#include <weft/physics/ProjectiveConstraint.h>
-#include <weft/physics/StepContext.h>
-#include <weft/physics/StepSolver.h>
-#include <weft/physics/SystemMatrix.h>
+#include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
 #include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
@@ -27,6 +21,15 @@
 #include <vector>
 
 namespace weft {
+
+// The engine's internals the simulator owns (private headers of the engine).
+class ExternalForce;
+class FrictionalContact;
+class ModuleTimer;
+class ProjectiveConstraint;
+class StepSolver;
+struct StepContext;
+class SystemMatrix;
 
 class Simulator {
  public:
@@ -58,8 +61,8 @@ class Simulator {
   void restart(int step, const NodeMatrix& x, const NodeMatrix& v);
 
   // Modules built for this scene, in a fixed order, with their accumulated seconds.
-  const std::vector<std::string>& moduleNames() const { return timer_.names(); }
-  const std::vector<double>& moduleSeconds() const { return timer_.seconds(); }
+  const std::vector<std::string>& moduleNames() const;
+  const std::vector<double>& moduleSeconds() const;
   const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const {
     return constraints_;
   }
@@ -69,7 +72,7 @@ class Simulator {
   // The contacts of the last step (empty before the first step or without contact).
   const StepContacts& lastContacts() const { return lastContacts_; }
   // The one-coordinate system matrix M + h^2 sum_i w_i A_i^T A_i (P = this (x) I_3).
-  const Eigen::SparseMatrix<double>& systemMatrix() const { return system_->matrix(); }
+  const Eigen::SparseMatrix<double>& systemMatrix() const;
 
  private:
   void detectContacts(double t0, double t1);
@@ -78,7 +81,7 @@ class Simulator {
   const Scene& scene_;
   ClothModel model_;
   double h_;
-  ModuleTimer timer_;
+  std::unique_ptr<ModuleTimer> timer_;
   std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
   std::vector<int> constraintModule_;
   std::vector<std::unique_ptr<ExternalForce>> forces_;

@@ -1,4 +1,4 @@
-#include "AsyncPngWriter.h"
+#include <weft/frames/AsyncPngWriter.h>
 
 #include <algorithm>
 

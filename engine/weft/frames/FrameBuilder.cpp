@@ -1,4 +1,4 @@
-#include "FrameBuilder.h"
+#include <weft/frames/FrameBuilder.h>
 
 #include <weft/core/Error.h>
 #include <weft/io/Npy.h>

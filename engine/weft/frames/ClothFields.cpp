@@ -1,4 +1,4 @@
-#include "ClothFields.h"
+#include <weft/frames/ClothFields.h>
 
 #include <Eigen/Dense>
 
