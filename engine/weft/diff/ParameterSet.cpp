@@ -29,12 +29,9 @@ Eigen::VectorXd ParameterSet::values(const Scene& scene) const {
 }
 
 Scene ParameterSet::withValues(const Scene& scene, const Eigen::VectorXd& values) const {
-  nlohmann::json doc = scene.document;
-  for (int i = 0; i < size(); ++i) {
-    const std::string err = setJsonPath(doc, parameters_[i].path, values[i]);
-    if (!err.empty()) throw InputError(scene.file, parameters_[i].path, err);
-  }
-  return parseScene(doc, scene.file, scene.directory);
+  Scene changed = scene;
+  for (int i = 0; i < size(); ++i) setParameterValue(changed, parameters_[i], values[i]);
+  return changed;
 }
 
 Scene withDocumentValue(const Scene& scene, const std::string& path, const nlohmann::json& value) {

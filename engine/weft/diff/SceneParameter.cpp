@@ -2,6 +2,8 @@
 
 #include <weft/core/Error.h>
 #include <weft/scene/JsonPath.h>
+#include <weft/scene/JsonReader.h>
+#include <weft/scene/ValueChecks.h>
 
 #include <cstdlib>
 
@@ -129,11 +131,113 @@ SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path
   return p;  // not reached
 }
 
+namespace {
+
+// The typed scene's vector that holds a vector parameter's component (null for scalars); Scene or
+// const Scene.
+template <class SceneT>
+auto vectorOf(SceneT& scene, const SceneParameter& p)
+    -> decltype(&scene.cloths[0].initialVelocity) {
+  using Kind = SceneParameter::Kind;
+  switch (p.kind) {
+    case Kind::InitialVelocity:
+      return &scene.cloths[p.cloth].initialVelocity;
+    case Kind::NodalForce:
+      return &scene.cloths[p.cloth].forces[p.index].force;
+    case Kind::WindDirection:
+      return &scene.wind->direction;
+    case Kind::Gravity:
+      return &*scene.gravity;
+    case Kind::HandleOffset:
+      return &scene.cloths[p.cloth].attachments[p.index].trajectory.offsets[p.knot];
+    case Kind::HandleTangent:
+      return &scene.cloths[p.cloth].attachments[p.index].trajectory.tangents[p.knot];
+    default:
+      return nullptr;
+  }
+}
+
+// The typed scene's number that holds the parameter; Scene or const Scene.
+template <class SceneT>
+auto scalarOf(SceneT& scene, const SceneParameter& p) -> decltype((scene.time.dt)) {
+  using Kind = SceneParameter::Kind;
+  switch (p.kind) {
+    case Kind::Stretch:
+      return scene.cloths[p.cloth].material.stretch;
+    case Kind::Bend:
+      return scene.cloths[p.cloth].material.bend;
+    case Kind::Density:
+      return scene.cloths[p.cloth].material.density;
+    case Kind::WindStrength:
+      return scene.wind->strength;
+    case Kind::WindFrequency:
+      return scene.wind->frequency;
+    case Kind::WindPhase:
+      return scene.wind->phase;
+    case Kind::ObstacleFriction:
+      return scene.obstacles[p.index].friction;
+    case Kind::SelfCollisionFriction:
+      return scene.cloths[p.cloth].selfCollision->friction;
+    case Kind::AttachmentStiffness:
+      return scene.cloths[p.cloth].attachments[p.index].stiffness;
+    default:
+      return (*vectorOf(scene, p))[p.component];
+  }
+}
+
+// The JSON path of the vector a component path names ("gravity.1" -> "gravity").
+std::string parentPath(const std::string& path) {
+  return path.substr(0, path.rfind('.'));
+}
+
+}  // namespace
+
 double parameterValue(const Scene& scene, const SceneParameter& parameter) {
-  const nlohmann::json* v = findJsonPath(scene.document, parameter.path);
-  if (!v || !v->is_number())
-    throw InputError(scene.file, parameter.path, "parameter names no number in the scene");
-  return v->get<double>();
+  return scalarOf(scene, parameter);
+}
+
+void setParameterValue(Scene& scene, const SceneParameter& p, double value) {
+  using Kind = SceneParameter::Kind;
+  // The value is read back through the loader's own check of the node it would sit in.
+  if (Vec3* vector = vectorOf(scene, p)) {
+    nlohmann::json node = {(*vector)[0], (*vector)[1], (*vector)[2]};
+    node[p.component] = value;
+    const JsonReader reader(node, scene.file, parentPath(p.path));
+    *vector = p.kind == Kind::WindDirection ? readWindDirection(reader) : reader.vec3();
+  } else {
+    const nlohmann::json node = value;
+    const JsonReader reader(node, scene.file, p.path);
+    double& slot = scalarOf(scene, p);
+    switch (p.kind) {
+      case Kind::Stretch:
+      case Kind::Bend:
+        slot = readStiffness(reader);
+        break;
+      case Kind::Density:
+        slot = readDensity(reader);
+        break;
+      case Kind::WindStrength:
+        slot = readWindStrength(reader);
+        break;
+      case Kind::WindFrequency:
+        slot = readWindFrequency(reader);
+        break;
+      case Kind::WindPhase:
+        slot = readWindPhase(reader);
+        break;
+      case Kind::ObstacleFriction:
+      case Kind::SelfCollisionFriction:
+        slot = readFriction(reader);
+        break;
+      case Kind::AttachmentStiffness:
+        slot = readAttachmentStiffness(reader);
+        break;
+      default:
+        break;
+    }
+  }
+  const std::string err = setJsonPath(scene.document, p.path, value);
+  if (!err.empty()) throw InputError(scene.file, p.path, err);
 }
 
 namespace {

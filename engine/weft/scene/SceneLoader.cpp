@@ -5,6 +5,7 @@
 #include <weft/mesh/MeshCheck.h>
 #include <weft/scene/JsonPath.h>
 #include <weft/scene/JsonReader.h>
+#include <weft/scene/ValueChecks.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -16,8 +17,6 @@ namespace fs = std::filesystem;
 
 namespace weft {
 namespace {
-
-constexpr double kMaxStiffness = 1e12;
 
 RigidTransform readTransform(const JsonReader& r) {
   r.allowOnly({"translate", "rotate_deg"});
@@ -163,9 +162,9 @@ Cloth readCloth(const JsonReader& r, const std::string& directory,
 
   const JsonReader mat = r.at("material");
   mat.allowOnly({"density", "stretch", "bend", "bend_model"});
-  cloth.material.density = mat.at("density").positive();
-  cloth.material.stretch = mat.at("stretch").number(0.0, kMaxStiffness);
-  cloth.material.bend = mat.number("bend", 0.0, 0.0, kMaxStiffness);
+  cloth.material.density = readDensity(mat.at("density"));
+  cloth.material.stretch = readStiffness(mat.at("stretch"));
+  if (auto b = mat.optional("bend")) cloth.material.bend = readStiffness(*b);
   if (auto v = mat.optional("bend_model"))
     cloth.material.bendModel = v->choice({"magnitude", "oriented"}) == "oriented"
                                    ? Material::BendModel::Oriented
@@ -181,8 +180,7 @@ Cloth readCloth(const JsonReader& r, const std::string& directory,
       const std::string kind =
           a.optional("kind") ? a.at("kind").choice({"fixed", "handle"}) : "fixed";
       att.kind = kind == "fixed" ? Attachment::Kind::Fixed : Attachment::Kind::Handle;
-      if (auto s = a.optional("stiffness")) att.stiffness = s->positive();
-      if (att.stiffness > kMaxStiffness) a.at("stiffness").fail("is unreasonably large");
+      if (auto s = a.optional("stiffness")) att.stiffness = readAttachmentStiffness(*s);
       if (att.kind == Attachment::Kind::Handle) {
         att.trajectory = readTrajectory(a.at("trajectory").object());
       } else if (a.has("trajectory")) {
@@ -206,7 +204,7 @@ Cloth readCloth(const JsonReader& r, const std::string& directory,
     sc->allowOnly({"radius", "friction"});
     SelfCollision s;
     s.radius = sc->at("radius").positive();
-    s.friction = sc->number("friction", s.friction, 0.0, 1e3);
+    if (auto f = sc->optional("friction")) s.friction = readFriction(*f);
     cloth.selfCollision = s;
   }
   return cloth;
@@ -216,7 +214,7 @@ Obstacle readObstacle(const JsonReader& r, const std::string& directory) {
   r.allowOnly(
       {"plane", "sphere", "capsule", "box", "cylinder", "mesh", "friction", "thickness", "motion"});
   Obstacle o;
-  o.friction = r.number("friction", 0.0, 0.0, 1e3);
+  if (auto f = r.optional("friction")) o.friction = readFriction(*f);
   o.thickness = r.number("thickness", o.thickness, 0.0, 1.0);
   // Kinematic motion: the same keyframes / Hermite spline / rotation as a handle trajectory.
   if (auto m = r.optional("motion")) o.motion = readTrajectory(m->object());
@@ -266,11 +264,10 @@ Obstacle readObstacle(const JsonReader& r, const std::string& directory) {
 Wind readWind(const JsonReader& r, const std::vector<Cloth>& cloths) {
   r.allowOnly({"direction", "strength", "frequency", "phase", "model", "falloff"});
   Wind w;
-  w.direction = r.at("direction").vec3();
-  if (!(w.direction.norm() > 0.0)) r.at("direction").fail("must be a nonzero vector");
-  w.strength = r.at("strength").number(-1e6, 1e6);
-  w.frequency = r.number("frequency", 0.0, 0.0, 1e6);
-  w.phase = r.number("phase", 0.0, -1e6, 1e6);
+  w.direction = readWindDirection(r.at("direction"));
+  w.strength = readWindStrength(r.at("strength"));
+  if (auto f = r.optional("frequency")) w.frequency = readWindFrequency(*f);
+  if (auto p = r.optional("phase")) w.phase = readWindPhase(*p);
   if (auto m = r.optional("model")) w.constant = m->choice({"sinusoid", "constant"}) == "constant";
   if (auto f = r.optional("falloff")) {
     // Eq. 35's k: each node's inverse distance to the centre at the initial state (the rest mesh).

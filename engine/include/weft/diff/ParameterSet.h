@@ -1,8 +1,9 @@
 #pragma once
 // The parameters a gradient is taken with respect to, in a fixed order: from `--param` options
-// or from the scene's task.parameters. Setting values edits the scene's JSON document and runs
-// it through the strict loader again (parseScene), so a value out of range (a negative density,
-// a zero wind direction) is the same InputError a scene file would give.
+// or from the scene's task.parameters. Each path is resolved once; setting values writes them into
+// a copy of the typed scene (setParameterValue), checked as the loader checks a file, so a value
+// out of range (a negative density, a zero wind direction) is the same InputError a scene file
+// would give, and no file is read again.
 
 #include <weft/diff/SceneParameter.h>
 
@@ -27,14 +28,16 @@ class ParameterSet {
   const std::vector<SceneParameter>& parameters() const { return parameters_; }
 
   Eigen::VectorXd values(const Scene& scene) const;
-  // A new validated scene: `scene`'s document with the parameters set to `values`.
+  // A copy of `scene` with the parameters set to `values` (typed setters; reads no file).
   Scene withValues(const Scene& scene, const Eigen::VectorXd& values) const;
 
  private:
   std::vector<SceneParameter> parameters_;
 };
 
-// A new validated scene with one JSON path set to a value (the building block of withValues).
+// A new validated scene with any JSON path set to a value, through the strict loader (parseScene,
+// which reads the scene's mesh files again): for edits that are not task parameters, such as a
+// grid resolution.
 Scene withDocumentValue(const Scene& scene, const std::string& path, const nlohmann::json& value);
 
 }  // namespace weft

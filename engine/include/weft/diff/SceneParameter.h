@@ -56,8 +56,14 @@ struct SceneParameter {
 SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path,
                                      const std::string& where);
 
-// The parameter's current value, read from the scene document.
+// The parameter's current value, read from the typed scene.
 double parameterValue(const Scene& scene, const SceneParameter& parameter);
+
+// Writes `value` into the typed scene (and its document, which stays the scene's description),
+// checked as the loader checks the file (scene/ValueChecks.h): an out-of-range value throws the
+// InputError the same scene file would give. Reads no file and rebuilds nothing, so an objective
+// evaluation can set its parameters on a copy of the loaded scene.
+void setParameterValue(Scene& scene, const SceneParameter& parameter, double value);
 
 // Every path of the scene document that resolveSceneParameter accepts, in the document's key
 // order: the parameters a user may choose to optimise (the editor's Optimise tab offers them).
