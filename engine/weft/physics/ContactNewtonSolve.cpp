@@ -22,9 +22,8 @@ constexpr int kPIterations = 5;
 // Where one factorisation of K+ costs more than this many iterations with P (keepStiffnessFactor_),
 // a step starts from the previous step's factor of K+ instead of P.
 constexpr double kKeepFactorAbovePIterations = 30.0;
-// Measured seconds per flop of CHOLMOD's supernodal factorisation of K+ over those of an
-// iteration with P (reference BLAS, one thread; 48x48 Slope: 200 ms per factorisation, 2.5 ms
-// per iteration, against a flop ratio of 116).
+// Seconds per flop of CHOLMOD's supernodal factorisation of K+ over those of an iteration with P,
+// measured (docs/how-it-works/contact.md, "Measured on the way").
 constexpr double kFactorTimePerFlopRatio = 0.7;
 constexpr int kGmresRestart = 100;
 // Backtracking stops below this step length; then a full Newton step is still taken if its
@@ -90,25 +89,22 @@ void ContactNewtonSolve::solveNewton(StepContext& ctx) {
   //    (ContactSolver::setContacts; the augmentation parameter of Alart and Curnier's
   //    formulation). The law decides a contact's branch from its free velocity
   //    w = v + (b - P x) / (h m~): with m~ = m the elastic imbalance of an unconverged iterate is
-  //    amplified by P_ii / m_i (about 535 at 24^2 quads on the Sphere scene) and the branches of
-  //    rim nodes flip from one iterate to the next; with m~ = P_ii the decisions follow the
-  //    iterate's velocity, which lags when a resting cloth starts to slide (Slope: 83 of 100
-  //    steps converged against 100). The geometric mean converged all of Slope's steps and as
-  //    many of the Sphere's as P_ii (measured over 100 steps each).
+  //    amplified by P_ii / m_i and the branches of rim nodes flip from one iterate to the next;
+  //    with m~ = P_ii the decisions follow the iterate's velocity, which lags when a resting
+  //    cloth starts to slide. The geometric mean converges where each of them fails
+  //    (docs/how-it-works/contact.md, "Measured on the way").
   //  - Its Jacobian, with K = P - Delta P (Sec. 4.1) and R' = dr/df from each contact's branch
   //    (ContactLawJacobian.h), J = K + R' (K - M~) (the transpose of the backward pass's
   //    operator, Eq. 29, with M~ for M), is not symmetric, so J d = -G is solved by GMRES (on
   //    M^-1/2 J d = -M^-1/2 G, so that it minimises the convergence test's norm), right-
   //    preconditioned by preconditionContact. P is a poor preconditioner here: P^-1 K has one
-  //    eigenvalue per node between m/P_ii and about 0.05 (measured at step 20 of the Sphere
-  //    scene without self-collision: 613 of 1875 eigenvalues in [1.4e-3, 0.045], their vectors
-  //    97-100 % along the cloth normal), the out-of-plane modes PD's quadratic stretch energy
-  //    makes as stiff as in-plane stretching, and GMRES needed about 25 iterations per decade
-  //    of residual. A factor of the clamped Hessian K+ brings that to a few. Each step starts
-  //    with P (where contacts pin the normal motion, as on Slope, it needs 1-4 iterations); once
-  //    a solve takes more than kPIterations, K+ is factorised at the current iterate, the solve
-  //    continues from where it was, and K+ is refactorised whenever a later solve needs more than
-  //    kRefactorIterations.
+  //    small eigenvalue per node, between m/P_ii and a few hundredths: the out-of-plane modes
+  //    PD's quadratic stretch energy makes as stiff as in-plane stretching, and GMRES needs
+  //    tens of iterations per decade of residual (docs/how-it-works/contact.md). A factor of the
+  //    clamped Hessian K+ brings that to a few. Each step starts with P (where contacts pin the
+  //    normal motion, as on Slope, it needs 1-4 iterations); once a solve takes more than
+  //    kPIterations, K+ is factorised at the current iterate, the solve continues from where it
+  //    was, and K+ is refactorised whenever a later solve needs more than kRefactorIterations.
   // The step is damped by backtracking on the residual norm; where that fails (the direction
   // crosses a branch switch), a full step is still taken if it does not raise the residual more
   // than kRelaxedGrowth-fold over the best (non-monotone), and the step's result is the best
@@ -140,8 +136,7 @@ void ContactNewtonSolve::solveNewton(StepContext& ctx) {
   best = ctx.iterate;
   // Where a factorisation of K+ costs more than kKeepFactorAbovePIterations iterations with P
   // (about 24x24 quads and up), the factor of an earlier step is kept as the preconditioner
-  // (refactorised when a solve with it is slow, as within a step): on Slope at 48x48, K+ was
-  // factorised anew on 10 of 100 steps at 200 ms each, where the previous steps' factor served.
+  // (refactorised when a solve with it is slow, as within a step).
   bool factored = stiffnessFactored_ && keepStiffnessFactor_;
   stiffnessFactored_ = factored;  // (applyPreconditioner uses P until K+ is factorised)
   double forcing = 0.1, previous = 0.0;
@@ -260,11 +255,10 @@ void ContactNewtonSolve::solveNewton(StepContext& ctx) {
 void ContactNewtonSolve::finishWithPerNodeIterations(StepContext& ctx) {
   // The semismooth Newton solve stalled (its line search on the residual norm found no
   // decrease): the PD contact iteration continues from its result with the rest of the budget.
-  // Where Newton stalls the residual can sit on a few nodes away from any contact (the Sock at
-  // step 45: four nodes of one hinge below the toe held 99.9 % of it), where a stretch or
-  // bending projection's derivative is discontinuous (a collapsed or flipped element) and the
-  // residual norm is not smooth; the PD iteration needs no derivative there. It runs with the
-  // lumped mass in the law (the PD iteration is not a contraction with Newton's m~, see
+  // Where Newton stalls the residual can sit on a few nodes away from any contact, where a
+  // stretch or bending projection's derivative is discontinuous (a collapsed or flipped element)
+  // and the residual norm is not smooth; the PD iteration needs no derivative there. It runs with
+  // the lumped mass in the law (the PD iteration is not a contraction with Newton's m~, see
   // solveNewton's end), which does not change the solution, and the free momentum it
   // hands the law is then the lumped mass's too: built with m~, the law saw the velocity
   // (m~ / m) v (about 55 v on the Sock), which leaves a stick or slip decision unchanged but

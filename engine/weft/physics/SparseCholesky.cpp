@@ -30,8 +30,7 @@ namespace {
 // CHOLMOD 3 (SuiteSparse 5) runs the scatter and clearing loops of its supernodal factorisation
 // on CHOLMOD_OMP_NUM_THREADS (4) OpenMP threads whatever the caller's budget. Under a smaller
 // budget (a one-thread run, the 2-core CI machine) they run serially: the extra threads only
-// contend for the cores (Slope K+ at 48^2 quads, one thread asked for: 114 ms per factorisation
-// with CHOLMOD's four threads, 75 ms serial).
+// contend for the cores (docs/how-it-works/forward.md, "Measured on the way").
 class OpenMpBudget {
  public:
   OpenMpBudget()

@@ -12,9 +12,8 @@
 //    dense row-major panels, in single precision once L outgrows the cache (the arithmetic
 //    stays double); otherwise simplicial as above. A preconditioner only needs to be close:
 //    a float factor changes the solve by about 1e-7 relative, and it halves the memory the
-//    solve streams, which is what a large solve is bound by (Slope K+ at 96^2 quads: 8 ms per
-//    solve, 17 ms with double panels, 27 ms simplicial with AMD; at 48^2, where L fits in the
-//    cache, double panels are the faster: 1.2 against 1.3 ms, simplicial 2.1 ms).
+//    solve streams, which is what a large solve is bound by (docs/how-it-works/forward.md,
+//    "Measured on the way").
 #include <weft/core/Types.h>
 
 #include <Eigen/SparseCore>

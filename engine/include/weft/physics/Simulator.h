@@ -15,6 +15,8 @@
 #include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
 
+#include <Eigen/SparseCore>
+
 #include <functional>
 #include <memory>
 #include <string>
