@@ -1,5 +1,8 @@
 #include "PhysicsTestSupport.h"
 
+#include <weft/physics/ExternalForce.h>
+#include <weft/physics/ProjectiveConstraint.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
