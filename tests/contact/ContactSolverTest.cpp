@@ -17,7 +17,7 @@ namespace weft {
 namespace {
 
 struct RandomContacts {
-  std::vector<ContactConstraint> obstacle, pairs;
+  std::vector<ContactPoint> obstacle, pairs;
   std::vector<int> layerStart;
   Eigen::VectorXd mass;
   NodeMatrix freeMomentum;
@@ -32,7 +32,7 @@ RandomContacts makeContacts(int nodes, int seed, bool coupled) {
   r.freeMomentum =
       NodeMatrix::NullaryExpr(nodes, 3, [&](Eigen::Index, Eigen::Index) { return 1e-4 * g(rng); });
   auto contact = [&](int node, int partner) {
-    ContactConstraint c;
+    ContactPoint c;
     c.node = node;
     c.partner = partner;
     c.obstacle = partner < 0 ? static_cast<int>(u(rng) * 3) : -1;
@@ -48,7 +48,7 @@ RandomContacts makeContacts(int nodes, int seed, bool coupled) {
     // A node in a static corner, touching both surfaces (zero reference velocities). With
     // different references both contacts could not stick at once, and the sweeps may cycle.
     if (coupled && u(rng) < 0.2 && !r.obstacle.empty() && r.obstacle.back().node == i) {
-      ContactConstraint c = contact(i, -1);
+      ContactPoint c = contact(i, -1);
       c.reference.setZero();
       r.obstacle.back().reference.setZero();
       c.obstacle = 3;
@@ -131,8 +131,8 @@ int checkLinearization(bool withPairs, int seed, int nodes) {
     r.layerStart.assign(1, 0);
   }
   std::vector<int> contactsOf(nodes, 0);
-  for (const ContactConstraint& c : r.obstacle) ++contactsOf[c.node];
-  for (const ContactConstraint& c : r.pairs) ++contactsOf[c.node], ++contactsOf[c.partner];
+  for (const ContactPoint& c : r.obstacle) ++contactsOf[c.node];
+  for (const ContactPoint& c : r.pairs) ++contactsOf[c.node], ++contactsOf[c.partner];
   ContactSolver solver(nodes);
   bool converged = true;
   auto solve = [&](const NodeMatrix& f, StepContacts& out) {

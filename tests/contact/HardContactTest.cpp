@@ -175,12 +175,12 @@ TEST(HardContact, NodeTheWallMovesOverGetsTheWallsNormal) {
   x.row(0) = Vec3(-0.149, kSkin, 0.1).transpose();  // the node the wall reaches
   x.row(1) = Vec3(0.1, kSkin, 0.1).transpose();     // on the floor only
   ObstacleContactDetector detector(obstacles, 2e-3);
-  std::vector<ContactConstraint> contacts;
+  std::vector<ContactPoint> contacts;
   detector.detect(x, NodeMatrix::Zero(2, 3), 0.01, contacts);
   ASSERT_EQ(contacts.size(), 3u);
   EXPECT_EQ(contacts[0].node, 0);
   EXPECT_EQ(contacts[0].obstacle, 0);
-  const ContactConstraint& wall = contacts[1];
+  const ContactPoint& wall = contacts[1];
   ASSERT_EQ(wall.node, 0);
   ASSERT_EQ(wall.obstacle, 1);
   EXPECT_LT((wall.normal - Vec3::UnitX()).norm(), 1e-12) << wall.normal.transpose();

@@ -158,10 +158,10 @@ TEST(SelfCollisionDetector, ExcludesOnlyMeshNeighboursThatStartWithinTheReach) {
 
   // Detection at rest (no motion) pairs the layers and the two cloths: every pair it reports is
   // within the reach and not excluded, and the two far-from-the-fold examples above are among them.
-  std::vector<ContactConstraint> pairs;
+  std::vector<ContactPoint> pairs;
   detector.detect(model.rest.vertices, NodeMatrix::Zero(model.nodeCount(), 3), 0.01, pairs);
   bool layers = false, cloths = false;
-  for (const ContactConstraint& c : pairs) {
+  for (const ContactPoint& c : pairs) {
     EXPECT_LT(restDistance(c.node, c.partner), reach);
     EXPECT_FALSE(detector.excluded(c.node, c.partner));
     layers |= c.node == node(0) && c.partner == node(20);

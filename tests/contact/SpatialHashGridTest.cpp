@@ -80,7 +80,7 @@ TEST(SelfCollisionDetector, FindsExactlyTheBruteForceSweptPairs) {
     x.row(i) = 0.15 * Vec3(u(rng), u(rng), u(rng)).transpose();
     d.row(i) = Vec3(0.2, -0.1, 0.05).transpose() + 0.03 * Vec3(u(rng), u(rng), u(rng)).transpose();
   }
-  std::vector<ContactConstraint> pairs;
+  std::vector<ContactPoint> pairs;
   detector.detect(x, d, 0.01, pairs);
 
   std::set<std::pair<int, int>> expected;
@@ -96,7 +96,7 @@ TEST(SelfCollisionDetector, FindsExactlyTheBruteForceSweptPairs) {
     }
   ASSERT_GT(expected.size(), 100u);
   std::set<std::pair<int, int>> found;
-  for (const ContactConstraint& c : pairs) {
+  for (const ContactPoint& c : pairs) {
     found.emplace(c.node, c.partner);
     EXPECT_NEAR(c.normal.norm(), 1.0, 1e-12);
     // Normal from partner to node, at the start of the step.

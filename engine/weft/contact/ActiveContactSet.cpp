@@ -24,8 +24,8 @@ constexpr int kFlipsBeforeHolding = 4, kFlipsBeforeFreezing = 8;
 
 }  // namespace
 
-void ActiveContactSet::reset(const std::vector<ContactConstraint>& obstacleContacts,
-                             const std::vector<ContactConstraint>& pairs, const NodeMatrix& x0,
+void ActiveContactSet::reset(const std::vector<ContactPoint>& obstacleContacts,
+                             const std::vector<ContactPoint>& pairs, const NodeMatrix& x0,
                              const Eigen::VectorXd& mass, double h, double velocityTolerance) {
   x0_ = &x0;
   h_ = h;
@@ -36,45 +36,50 @@ void ActiveContactSet::reset(const std::vector<ContactConstraint>& obstacleConta
   for (int node : rememberedNodes_) previous_[node] = Previous{};
   rememberedNodes_.clear();
   for (const Contact& c : contacts_)
-    if (c.b < 0 && c.branch != ContactBranch::TakeOff &&
-        previous_[c.a].branch == ContactBranch::None) {
-      previous_[c.a] = Previous{c.branch, c.slipLimit};
-      rememberedNodes_.push_back(c.a);
+    if (c.point.partner < 0 && c.point.branch != ContactBranch::TakeOff &&
+        previous_[c.point.node].branch == ContactBranch::None) {
+      previous_[c.point.node] = Previous{c.point.branch, c.slipLimit};
+      rememberedNodes_.push_back(c.point.node);
     }
   contacts_.clear();
   rows_.clear();
   lastChange_ = 0.0;
-  auto add = [&](const ContactConstraint& c, double effectiveMass) {
-    contacts_.push_back(Contact{c.node, c.partner, c.obstacle, c.normal, c.reference, c.friction,
-                                effectiveMass, ContactBranch::TakeOff, Vec3::Zero(), 0.0,
-                                Vec3::Zero(), 0, Vec3::Zero(), 0.0, c.sample, c.pathFraction});
+  auto add = [&](const ContactPoint& detected, double effectiveMass) {
+    Contact c;
+    c.point = detected;
+    c.point.branch = ContactBranch::TakeOff;
+    c.point.impulse.setZero();
+    c.point.velocity.setZero();
+    c.point.effectiveMass = effectiveMass;
+    contacts_.push_back(c);
   };
-  for (const ContactConstraint& c : obstacleContacts) add(c, mass[c.node]);
-  for (const ContactConstraint& c : pairs)
+  for (const ContactPoint& c : obstacleContacts) add(c, mass[c.node]);
+  for (const ContactPoint& c : pairs)
     add(c, mass[c.node] * mass[c.partner] / (mass[c.node] + mass[c.partner]));
 }
 
 Vec3 ActiveContactSet::relativeVelocity(const Contact& c, const NodeMatrix& x) const {
-  Vec3 u = (x.row(c.a) - x0_->row(c.a)).transpose() / h_;
-  if (c.b >= 0) u -= (x.row(c.b) - x0_->row(c.b)).transpose() / h_;
-  return u - c.reference;
+  Vec3 u = (x.row(c.point.node) - x0_->row(c.point.node)).transpose() / h_;
+  if (c.point.partner >= 0)
+    u -= (x.row(c.point.partner) - x0_->row(c.point.partner)).transpose() / h_;
+  return u - c.point.reference;
 }
 
 void ActiveContactSet::guessBranches(const NodeMatrix& x) {
   for (Contact& c : contacts_) {
-    c.velocity = relativeVelocity(c, x);
+    c.point.velocity = relativeVelocity(c, x);
     c.slipLimit = 0.0;
-    c.impulse.setZero();
+    c.point.impulse.setZero();
     c.flips = 0;
-    c.branch = c.normal.dot(c.velocity) >= 0.0 ? ContactBranch::TakeOff
-               : c.friction > 0.0              ? ContactBranch::Stick
-                                               : ContactBranch::Slip;
+    c.point.branch = c.point.normal.dot(c.point.velocity) >= 0.0 ? ContactBranch::TakeOff
+                     : c.point.friction > 0.0                    ? ContactBranch::Stick
+                                                                 : ContactBranch::Slip;
     // A node that rested or slid on an obstacle last step most likely still does: start from
     // that branch (and friction) instead of stick, which saves a release round per step.
-    if (c.branch != ContactBranch::TakeOff && c.b < 0 &&
-        previous_[c.a].branch != ContactBranch::None) {
-      c.branch = previous_[c.a].branch;
-      c.slipLimit = previous_[c.a].slipLimit;
+    if (c.point.branch != ContactBranch::TakeOff && c.point.partner < 0 &&
+        previous_[c.point.node].branch != ContactBranch::None) {
+      c.point.branch = previous_[c.point.node].branch;
+      c.slipLimit = previous_[c.point.node].slipLimit;
     }
   }
   buildRows();
@@ -85,12 +90,14 @@ void ActiveContactSet::buildRows() {
   rows_.clear();
   for (int k = 0; k < static_cast<int>(contacts_.size()); ++k) {
     const Contact& c = contacts_[k];
-    if (c.branch == ContactBranch::TakeOff) continue;
-    Vec3 start = x0_->row(c.a).transpose() + h_ * c.reference;
-    if (c.b >= 0) start -= x0_->row(c.b).transpose();
-    auto addRow = [&](const Vec3& dir) { rows_.push_back(Row{c.a, c.b, k, dir, dir.dot(start)}); };
-    if (c.branch == ContactBranch::Slip) {
-      addRow(c.normal);
+    if (c.point.branch == ContactBranch::TakeOff) continue;
+    Vec3 start = x0_->row(c.point.node).transpose() + h_ * c.point.reference;
+    if (c.point.partner >= 0) start -= x0_->row(c.point.partner).transpose();
+    auto addRow = [&](const Vec3& dir) {
+      rows_.push_back(Row{c.point.node, c.point.partner, k, dir, dir.dot(start)});
+    };
+    if (c.point.branch == ContactBranch::Slip) {
+      addRow(c.point.normal);
     } else {
       for (int axis = 0; axis < 3; ++axis) addRow(Vec3::Unit(axis));
     }
@@ -169,12 +176,12 @@ void ActiveContactSet::projectPositions(NodeMatrix& x) const {
 }
 
 void ActiveContactSet::refreshVelocities(const NodeMatrix& x) {
-  for (Contact& c : contacts_) c.velocity = relativeVelocity(c, x);
+  for (Contact& c : contacts_) c.point.velocity = relativeVelocity(c, x);
 }
 
 Vec3 ActiveContactSet::slide(const Contact& c, const NodeMatrix& x) const {
   const Vec3 u = relativeVelocity(c, x);
-  return u - c.normal.dot(u) * c.normal;
+  return u - c.point.normal.dot(u) * c.point.normal;
 }
 
 Vec3 ActiveContactSet::frictionImpulse(const Contact& c, const NodeMatrix& x) const {
@@ -187,10 +194,10 @@ Vec3 ActiveContactSet::frictionImpulse(const Contact& c, const NodeMatrix& x) co
 
 void ActiveContactSet::addFriction(const NodeMatrix& x, double h, NodeMatrix& residual) const {
   for (const Contact& c : contacts_) {
-    if (c.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
+    if (c.point.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
     const Vec3 f = h * frictionImpulse(c, x);
-    residual.row(c.a) += f.transpose();
-    if (c.b >= 0) residual.row(c.b) -= f.transpose();
+    residual.row(c.point.node) += f.transpose();
+    if (c.point.partner >= 0) residual.row(c.point.partner) -= f.transpose();
   }
 }
 
@@ -198,14 +205,14 @@ double ActiveContactSet::frictionPotential(const NodeMatrix& x) const {
   // Phi = sum mu r_N |u_T|: its gradient in x_a is mu r_N u_T / (|u_T| h) = -friction / h.
   double phi = 0.0;
   for (const Contact& c : contacts_)
-    if (c.branch == ContactBranch::Slip && c.slipLimit > 0.0)
+    if (c.point.branch == ContactBranch::Slip && c.slipLimit > 0.0)
       phi += c.slipLimit * slide(c, x).norm();
   return phi;
 }
 
 void ActiveContactSet::prepareFrictionHessian(const NodeMatrix& x) {
   for (Contact& c : contacts_) {
-    if (c.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
+    if (c.point.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
     c.hessianSlide = slide(c, x);
     c.hessianNorm = std::max(c.hessianSlide.norm(), smoothing_);
   }
@@ -216,16 +223,16 @@ void ActiveContactSet::addFrictionHessian(const NodeMatrix& d, NodeMatrix& out) 
   // projector, with |u_T| floored at eps in both places (near rest the true curvature is
   // unbounded); positive semi-definite, so CG stays valid.
   for (const Contact& c : contacts_) {
-    if (c.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
-    Vec3 rel = d.row(c.a).transpose();
-    if (c.b >= 0) rel -= d.row(c.b).transpose();
-    const Vec3 tangential = rel - c.normal.dot(rel) * c.normal;
+    if (c.point.branch != ContactBranch::Slip || c.slipLimit == 0.0) continue;
+    Vec3 rel = d.row(c.point.node).transpose();
+    if (c.point.partner >= 0) rel -= d.row(c.point.partner).transpose();
+    const Vec3 tangential = rel - c.point.normal.dot(rel) * c.point.normal;
     const Vec3 f =
         (c.slipLimit / c.hessianNorm) *
         (tangential -
          (c.hessianSlide.dot(tangential) / (c.hessianNorm * c.hessianNorm)) * c.hessianSlide);
-    out.row(c.a) += f.transpose();
-    if (c.b >= 0) out.row(c.b) -= f.transpose();
+    out.row(c.point.node) += f.transpose();
+    if (c.point.partner >= 0) out.row(c.point.partner) -= f.transpose();
   }
 }
 
@@ -236,18 +243,18 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual,
     multipliers(residual, lambda_);
     lambda_ = -lambda_;
   }
-  for (Contact& c : contacts_) c.impulse.setZero();
+  for (Contact& c : contacts_) c.point.impulse.setZero();
   for (std::size_t r = 0; r < rows_.size(); ++r)
-    contacts_[rows_[r].contact].impulse += (lambda_[r] / h_) * rows_[r].dir;
+    contacts_[rows_[r].contact].point.impulse += (lambda_[r] / h_) * rows_[r].dir;
 
   int changed = 0;
   lastChange_ = 0.0;
   blocked_ = 0;
   for (Contact& c : contacts_) {
-    c.velocity = relativeVelocity(c, x);
-    const double impulseTolerance = c.effectiveMass * velocityTolerance;
-    const double normalImpulse = c.normal.dot(c.impulse);
-    const ContactBranch before = c.branch;
+    c.point.velocity = relativeVelocity(c, x);
+    const double impulseTolerance = c.point.effectiveMass * velocityTolerance;
+    const double normalImpulse = c.point.normal.dot(c.point.impulse);
+    const ContactBranch before = c.point.branch;
     // Anti-cycling: a contact that keeps switching is first kept active (no more take-off), and
     // finally frozen in its branch for the rest of the step.
     // Releasing (stick -> take-off or slip, slip -> take-off or stick) is judged on a settled
@@ -255,32 +262,32 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual,
     // penetrates is judged at every iterate.
     const bool mayRelease = settled && c.flips < kFlipsBeforeHolding,
                mayChange = c.flips < kFlipsBeforeFreezing;
-    switch (mayChange ? c.branch : ContactBranch::None) {
+    switch (mayChange ? c.point.branch : ContactBranch::None) {
       case ContactBranch::TakeOff:
-        if (c.normal.dot(c.velocity) < -velocityTolerance) {
-          c.branch = c.friction > 0.0 ? ContactBranch::Stick : ContactBranch::Slip;
+        if (c.point.normal.dot(c.point.velocity) < -velocityTolerance) {
+          c.point.branch = c.point.friction > 0.0 ? ContactBranch::Stick : ContactBranch::Slip;
           c.slipLimit = 0.0;
         }
         break;
       case ContactBranch::Stick: {
-        const Vec3 tangential = c.impulse - normalImpulse * c.normal;
+        const Vec3 tangential = c.point.impulse - normalImpulse * c.point.normal;
         // The tangential release comes first: a node held in all three directions may need a
         // pulling normal impulse only because it is held tangentially; freed at once it would
         // penetrate, and be caught again (a cycle). So a pulling node slides first (with no
         // friction, the cone of a non-positive r_N being empty), and takes off from slip.
-        const double cone = c.friction * std::max(normalImpulse, 0.0);
+        const double cone = c.point.friction * std::max(normalImpulse, 0.0);
         if (tangential.norm() > cone + impulseTolerance && mayRelease) {
           // The cone cannot hold it: slide against the direction the holding force pointed.
-          c.branch = ContactBranch::Slip;
+          c.point.branch = ContactBranch::Slip;
           c.slipLimit = cone;
         } else if (normalImpulse < -impulseTolerance && mayRelease) {
-          c.branch = ContactBranch::TakeOff;
+          c.point.branch = ContactBranch::TakeOff;
         }
         break;
       }
       case ContactBranch::Slip: {
         if (normalImpulse < -impulseTolerance && mayRelease) {
-          c.branch = ContactBranch::TakeOff;
+          c.point.branch = ContactBranch::TakeOff;
           c.slipLimit = 0.0;
           break;
         }
@@ -289,44 +296,44 @@ int ActiveContactSet::update(const NodeMatrix& x, const NodeMatrix& residual,
         // judging: it follows the slide inside the Newton solve (frictionImpulse).
         if (!settled) break;
         const double speed = slide(c, x).norm();
-        if (c.friction > 0.0 && speed <= smoothing_) {
+        if (c.point.friction > 0.0 && speed <= smoothing_) {
           // Stopped: the cone holds it (if not, the stick check releases it again).
-          c.branch = ContactBranch::Stick;
+          c.point.branch = ContactBranch::Stick;
           c.slipLimit = 0.0;
           break;
         }
-        const double limit = c.friction * std::max(normalImpulse, 0.0);
-        lastChange_ = std::max(lastChange_, std::abs(limit - c.slipLimit) / c.effectiveMass);
+        const double limit = c.point.friction * std::max(normalImpulse, 0.0);
+        lastChange_ = std::max(lastChange_, std::abs(limit - c.slipLimit) / c.point.effectiveMass);
         c.slipLimit = limit;
         break;
       }
       default:
         break;
     }
-    if (c.branch != before)
+    if (c.point.branch != before)
       ++changed, ++c.flips;
     else if (settled && (c.flips >= kFlipsBeforeHolding) && violatesLaw(c, velocityTolerance))
       ++blocked_;
-    if (c.branch == ContactBranch::TakeOff) c.impulse.setZero();
-    if (c.branch == ContactBranch::Slip)
-      c.impulse = normalImpulse * c.normal + frictionImpulse(c, x);
+    if (c.point.branch == ContactBranch::TakeOff) c.point.impulse.setZero();
+    if (c.point.branch == ContactBranch::Slip)
+      c.point.impulse = normalImpulse * c.point.normal + frictionImpulse(c, x);
   }
   if (changed > 0) buildRows();
   return changed;
 }
 
 bool ActiveContactSet::violatesLaw(const Contact& c, double velocityTolerance) const {
-  const double impulseTolerance = c.effectiveMass * velocityTolerance;
-  const double rN = c.normal.dot(c.impulse), uN = c.normal.dot(c.velocity);
-  const Vec3 rT = c.impulse - rN * c.normal;
-  switch (c.branch) {
+  const double impulseTolerance = c.point.effectiveMass * velocityTolerance;
+  const double rN = c.point.normal.dot(c.point.impulse), uN = c.point.normal.dot(c.point.velocity);
+  const Vec3 rT = c.point.impulse - rN * c.point.normal;
+  switch (c.point.branch) {
     case ContactBranch::TakeOff:
       return uN < -velocityTolerance;
     case ContactBranch::Stick:
-      return rN < -impulseTolerance || rT.norm() > c.friction * rN + impulseTolerance;
+      return rN < -impulseTolerance || rT.norm() > c.point.friction * rN + impulseTolerance;
     case ContactBranch::Slip:
       return rN < -impulseTolerance ||
-             std::abs(rT.norm() - c.friction * std::max(rN, 0.0)) > impulseTolerance;
+             std::abs(rT.norm() - c.point.friction * std::max(rN, 0.0)) > impulseTolerance;
     default:
       return false;
   }
@@ -335,22 +342,7 @@ bool ActiveContactSet::violatesLaw(const Contact& c, double velocityTolerance) c
 void ActiveContactSet::record(StepContacts& out) const {
   out.points.clear();
   out.points.reserve(contacts_.size());
-  for (const Contact& c : contacts_) {
-    ContactPoint p;
-    p.node = c.a;
-    p.partner = c.b;
-    p.obstacle = c.obstacle;
-    p.branch = c.branch;
-    p.normal = c.normal;
-    p.impulse = c.impulse;
-    p.velocity = c.velocity;
-    p.friction = c.friction;
-    p.effectiveMass = c.effectiveMass;
-    p.reference = c.reference;
-    p.sample = c.sample;
-    p.pathFraction = c.pathFraction;
-    out.points.push_back(p);
-  }
+  for (const Contact& c : contacts_) out.points.push_back(c.point);
   out.sweepChange = lastChange_;
   out.pairLayers = 0;
 }

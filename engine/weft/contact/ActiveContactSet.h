@@ -6,7 +6,7 @@
 // the iteration cap long before the contact impulses settle.
 //
 // Each contact is in one branch of Eq. 8, and the branch says which part of the contact's
-// end-of-step velocity u = v_a (- v_b) - reference is prescribed (see ContactConstraint.h for the
+// end-of-step velocity u = v_a (- v_b) - reference is prescribed (see ContactPoint.h for the
 // gap-aware reference):
 //   take-off  nothing                   (r = 0)
 //   stick     u = 0, three rows          (r = multiplier / h)
@@ -29,7 +29,7 @@
 // Positions are always feasible for the current branches, so whatever the iteration count, no
 // contact ends the step on the wrong side of its constraint.
 
-#include <weft/contact/ContactConstraint.h>
+#include <weft/record/ContactPoint.h>
 #include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
 
@@ -44,8 +44,8 @@ class ActiveContactSet {
  public:
   // The step's contacts (obstacle contacts, then pairs) with the start-of-step positions x0,
   // which must stay alive and unchanged during the step.
-  void reset(const std::vector<ContactConstraint>& obstacleContacts,
-             const std::vector<ContactConstraint>& pairs, const NodeMatrix& x0,
+  void reset(const std::vector<ContactPoint>& obstacleContacts,
+             const std::vector<ContactPoint>& pairs, const NodeMatrix& x0,
              const Eigen::VectorXd& mass, double h, double velocityTolerance);
   bool empty() const { return contacts_.empty(); }
 
@@ -87,19 +87,15 @@ class ActiveContactSet {
   void record(StepContacts& out) const;
 
  private:
+  // A contact in the solve: its record (the detected frame; the branch, impulse (on node,
+  // friction included), velocity u at the last update and mass the solve leaves) and the solve's
+  // own state.
   struct Contact {
-    int a, b, obstacle;
-    Vec3 normal, reference;
-    double friction, effectiveMass;
-    ContactBranch branch;
-    Vec3 impulse;       // on node a (N s), friction included
-    double slipLimit;   // slip: mu r_N, the friction impulse's size (lagged)
-    Vec3 velocity;      // u at the last update (m/s)
-    int flips;          // branch switches this step
-    Vec3 hessianSlide;  // slip: u_T and max(|u_T|, eps) where the friction Hessian was prepared
-    double hessianNorm;
-    Vec3 sample;  // detection's surface sample (recorded for the backward pass)
-    double pathFraction;
+    ContactPoint point;
+    double slipLimit = 0.0;            // slip: mu r_N, the friction impulse's size (lagged)
+    int flips = 0;                     // branch switches this step
+    Vec3 hessianSlide = Vec3::Zero();  // slip: u_T and max(|u_T|, eps) where the friction
+    double hessianNorm = 0.0;          // Hessian was prepared
   };
   struct Row {
     int a, b, contact;

@@ -5,20 +5,20 @@
 
 namespace weft {
 
-void ContactLayering::order(std::vector<ContactConstraint>& pairs,
-                            const std::vector<int>& obstacleNodes, std::vector<int>& layerStart) {
+void ContactLayering::order(std::vector<ContactPoint>& pairs, const std::vector<int>& obstacleNodes,
+                            std::vector<int>& layerStart) {
   layerStart.assign(1, 0);
   const int count = static_cast<int>(pairs.size());
   if (count == 0) return;
 
   // Nodes of the pair graph, numbered densely, and their adjacency (pair indices).
   touched_.clear();
-  for (const ContactConstraint& p : pairs)
+  for (const ContactPoint& p : pairs)
     for (int v : {p.node, p.partner})
       if (slot_[v] < 0) slot_[v] = static_cast<int>(touched_.size()), touched_.push_back(v);
   const int n = static_cast<int>(touched_.size());
   adjacencyStart_.assign(n + 1, 0);
-  for (const ContactConstraint& p : pairs)
+  for (const ContactPoint& p : pairs)
     ++adjacencyStart_[slot_[p.node] + 1], ++adjacencyStart_[slot_[p.partner] + 1];
   std::partial_sum(adjacencyStart_.begin(), adjacencyStart_.end(), adjacencyStart_.begin());
   adjacency_.resize(2 * count);
@@ -41,7 +41,7 @@ void ContactLayering::order(std::vector<ContactConstraint>& pairs,
       const int l = level_[touched_[s]];
       deepest = std::max(deepest, l);
       for (int k = adjacencyStart_[s]; k < adjacencyStart_[s + 1]; ++k) {
-        const ContactConstraint& p = pairs[adjacency_[k]];
+        const ContactPoint& p = pairs[adjacency_[k]];
         const int other = slot_[p.node] == s ? slot_[p.partner] : slot_[p.node];
         if (level_[touched_[other]] < 0) level_[touched_[other]] = l + 1, queue_.push_back(other);
       }
@@ -68,7 +68,7 @@ void ContactLayering::order(std::vector<ContactConstraint>& pairs,
   pairLayer_.resize(count);
   int layers = 0;
   for (int e : orderBuffer_) {
-    const ContactConstraint& p = pairs[e];
+    const ContactPoint& p = pairs[e];
     const int layer = std::max(last_[p.node], last_[p.partner]) + 1;
     last_[p.node] = last_[p.partner] = layer;
     pairLayer_[e] = layer;

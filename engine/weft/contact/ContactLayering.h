@@ -10,7 +10,7 @@
 // the last layer of either of its nodes (greedy edge colouring), which keeps every node's pairs
 // in visiting order; isolated pairs all land in layer 0, as in DiffCloth.
 
-#include <weft/contact/ContactConstraint.h>
+#include <weft/record/ContactPoint.h>
 
 #include <vector>
 
@@ -23,14 +23,14 @@ class ContactLayering {
 
   // Reorders `pairs` layer by layer; layerStart gets the layer boundaries (size layers + 1).
   // `obstacleNodes`: nodes with an obstacle contact this step. No allocation once grown.
-  void order(std::vector<ContactConstraint>& pairs, const std::vector<int>& obstacleNodes,
+  void order(std::vector<ContactPoint>& pairs, const std::vector<int>& obstacleNodes,
              std::vector<int>& layerStart);
 
  private:
   std::vector<int> level_, last_, slot_;  // per node, reset after use
   std::vector<int> touched_, adjacencyStart_, adjacency_, queue_, pairKey_, pairLayer_,
       orderBuffer_;
-  std::vector<ContactConstraint> sorted_;
+  std::vector<ContactPoint> sorted_;
 };
 
 }  // namespace weft

@@ -19,8 +19,24 @@ constexpr int kLinearSweeps = 1000;
 
 }  // namespace
 
-void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleContacts,
-                                const std::vector<ContactConstraint>& pairs,
+// A detected contact as the solve starts it: in take-off, no impulse, `recordMass` (the lumped
+// mass) for the record and `lawMass` (m~) for the law.
+ContactSolver::Contact ContactSolver::started(const ContactPoint& detected, int a, int b,
+                                              double lawMass, double recordMass) {
+  Contact c;
+  c.point = detected;
+  c.point.branch = ContactBranch::TakeOff;
+  c.point.impulse.setZero();
+  c.point.effectiveMass = recordMass;
+  c.a = a;
+  c.b = b;
+  c.lawMass = lawMass;
+  c.law.setZero();
+  return c;
+}
+
+void ContactSolver::setContacts(const std::vector<ContactPoint>& obstacleContacts,
+                                const std::vector<ContactPoint>& pairs,
                                 const std::vector<int>& layerStart, const Eigen::VectorXd& lumped,
                                 const Eigen::VectorXd* lawMass) {
   const Eigen::VectorXd& mass = lawMass ? *lawMass : lumped;
@@ -37,22 +53,19 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
   };
   coupled_ = false;
   for (std::size_t k = 0; k < obstacleContacts.size(); ++k) {
-    const ContactConstraint& c = obstacleContacts[k];
+    const ContactPoint& c = obstacleContacts[k];
     const bool sameNode = k > 0 && obstacleContacts[k - 1].node == c.node;
     if (!sameNode) groupStart_.push_back(static_cast<int>(contacts_.size()));
     coupled_ = coupled_ || sameNode;
-    contacts_.push_back(Contact{slotFor(c.node), -1, c.obstacle, c.normal, c.reference, c.friction,
-                                mass[c.node], lumped[c.node], Vec3::Zero(), ContactBranch::TakeOff,
-                                c.sample, c.pathFraction, Mat3::Zero()});
+    contacts_.push_back(started(c, slotFor(c.node), -1, mass[c.node], lumped[c.node]));
   }
   groupStart_.push_back(static_cast<int>(contacts_.size()));
   pairBegin_ = static_cast<int>(contacts_.size());
-  for (const ContactConstraint& c : pairs) {
+  for (const ContactPoint& c : pairs) {
     const double ma = mass[c.node], mb = mass[c.partner];
     const double la = lumped[c.node], lb = lumped[c.partner];
-    contacts_.push_back(Contact{slotFor(c.node), slotFor(c.partner), -1, c.normal, c.reference,
-                                c.friction, ma * mb / (ma + mb), la * lb / (la + lb), Vec3::Zero(),
-                                ContactBranch::TakeOff, c.sample, c.pathFraction, Mat3::Zero()});
+    contacts_.push_back(
+        started(c, slotFor(c.node), slotFor(c.partner), ma * mb / (ma + mb), la * lb / (la + lb)));
   }
   coupled_ = coupled_ || !pairs.empty();
   layerStart_ = layerStart;
@@ -61,26 +74,26 @@ void ContactSolver::setContacts(const std::vector<ContactConstraint>& obstacleCo
 Vec3 ContactSolver::freeVelocity(const Contact& c) const {
   // Velocity of the contact without its own impulse (the other contacts' impulses included).
   const Slot& a = slots_[c.a];
-  Vec3 free = a.freeVelocity + (a.impulse - c.impulse) / a.mass;
+  Vec3 free = a.freeVelocity + (a.impulse - c.point.impulse) / a.mass;
   if (c.b >= 0) {
     const Slot& b = slots_[c.b];
-    free -= b.freeVelocity + (b.impulse + c.impulse) / b.mass;
+    free -= b.freeVelocity + (b.impulse + c.point.impulse) / b.mass;
   }
-  return free - c.reference;
+  return free - c.point.reference;
 }
 
 double ContactSolver::update(Contact& c) {
   Slot& a = slots_[c.a];
   const Vec3 free = freeVelocity(c);
   Vec3 change;
-  c.branch =
-      solveSignoriniCoulomb(c.normal, c.friction, free, change);  // DiffCloth Eq. 8 / Ly et al.
-  const Vec3 impulse = c.effectiveMass * change;
-  const Vec3 delta = impulse - c.impulse;
-  c.impulse = impulse;
+  // DiffCloth Eq. 8, in the closed form of Ly et al.
+  c.point.branch = solveSignoriniCoulomb(c.point.normal, c.point.friction, free, change);
+  const Vec3 impulse = c.lawMass * change;
+  const Vec3 delta = impulse - c.point.impulse;
+  c.point.impulse = impulse;
   a.impulse += delta;
   if (c.b >= 0) slots_[c.b].impulse -= delta;
-  return delta.norm() / c.effectiveMass;
+  return delta.norm() / c.lawMass;
 }
 
 int ContactSolver::solve(const NodeMatrix& freeMomentum, double tolerance, int maxSweeps) {
@@ -120,16 +133,18 @@ int ContactSolver::linearize() {
   for (Slot& s : slots_) s.pinned.setZero();
   int changed = 0;
   for (Contact& c : contacts_) {
-    changed += c.branch != c.linearized;
-    c.linearized = c.branch;
-    c.law = differentiateSignoriniCoulomb(c.branch, c.normal, c.friction, freeVelocity(c)).velocity;
-    if (c.b >= 0 || c.branch == ContactBranch::TakeOff) continue;
+    changed += c.point.branch != c.linearized;
+    c.linearized = c.point.branch;
+    c.law = differentiateSignoriniCoulomb(c.point.branch, c.point.normal, c.point.friction,
+                                          freeVelocity(c))
+                .velocity;
+    if (c.b >= 0 || c.point.branch == ContactBranch::TakeOff) continue;
     Mat3& pinned = slots_[c.a].pinned;
     // A second prescribed direction on the node (two obstacles): pin it whole.
-    if (c.branch == ContactBranch::Stick || !pinned.isZero(0.0))
+    if (c.point.branch == ContactBranch::Stick || !pinned.isZero(0.0))
       pinned.setIdentity();
     else
-      pinned = c.normal * c.normal.transpose();
+      pinned = c.point.normal * c.point.normal.transpose();
   }
   // A node on several obstacles: its contacts' linearised impulses solved together. In
   // addLawJacobian's sweeps contact k of the node takes r_k = (m~_k / m) L_k (q + p + sum_{j != k}
@@ -151,7 +166,7 @@ int ContactSolver::linearize() {
     Eigen::MatrixXd system = Eigen::MatrixXd::Identity(3 * count, 3 * count), source(3 * count, 3);
     for (int k = 0; k < count; ++k) {
       const Contact& c = contacts_[begin + k];
-      const Mat3 a = (c.effectiveMass / slots_[c.a].mass) * c.law;
+      const Mat3 a = (c.lawMass / slots_[c.a].mass) * c.law;
       source.middleRows<3>(3 * k) = a;
       for (int j = 0; j < count; ++j)
         if (j != k) system.block<3, 3>(3 * k, 3 * j) = -a;
@@ -195,12 +210,12 @@ void ContactSolver::addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const {
       const Slot& b = slots_[c.b];
       w -= (q.row(b.node).transpose() + linearTotal_[c.b] + linearImpulse_[k]) / b.mass;
     }
-    const Vec3 impulse = c.effectiveMass * (c.law * w);
+    const Vec3 impulse = c.lawMass * (c.law * w);
     const Vec3 delta = impulse - linearImpulse_[k];
     linearImpulse_[k] = impulse;
     linearTotal_[c.a] += delta;
     if (c.b >= 0) linearTotal_[c.b] -= delta;
-    return delta.norm() / c.effectiveMass;
+    return delta.norm() / c.lawMass;
   };
   // A node's obstacle contacts together (linearize()): R = groupResponse_ (q + p).
   auto updateGroup = [&](int g) {
@@ -215,7 +230,7 @@ void ContactSolver::addLawJacobian(const NodeMatrix& q, NodeMatrix& out) const {
       const Vec3 delta = impulse - linearImpulse_[begin + k];
       linearImpulse_[begin + k] = impulse;
       linearTotal_[slot] += delta;
-      change = std::max(change, delta.norm() / c.effectiveMass);
+      change = std::max(change, delta.norm() / c.lawMass);
     }
     return change;
   };
@@ -250,7 +265,7 @@ ContactBranch ContactSolver::branchOfNode(int node) const {
   const int slot = node >= 0 && node < static_cast<int>(slotOf_.size()) ? slotOf_[node] : -1;
   if (slot >= 0)
     for (const Contact& c : contacts_)
-      if (c.a == slot || c.b == slot) return c.branch;
+      if (c.a == slot || c.b == slot) return c.point.branch;
   return ContactBranch::None;
 }
 
@@ -258,23 +273,12 @@ void ContactSolver::record(StepContacts& out) const {
   out.points.clear();
   out.points.reserve(contacts_.size());
   for (const Contact& c : contacts_) {
-    const Slot& a = slots_[c.a];
-    ContactPoint p;
-    p.node = a.node;
-    p.partner = c.b >= 0 ? slots_[c.b].node : -1;
-    p.obstacle = c.obstacle;
-    p.branch = c.branch;
-    p.normal = c.normal;
-    p.impulse = c.impulse;
+    ContactPoint p = c.point;
     // The velocity with all impulses applied, the one Eq. 8 is checked against.
+    const Slot& a = slots_[c.a];
     Vec3 u = a.freeVelocity + a.impulse / a.mass;
     if (c.b >= 0) u -= slots_[c.b].freeVelocity + slots_[c.b].impulse / slots_[c.b].mass;
-    p.velocity = u - c.reference;
-    p.friction = c.friction;
-    p.effectiveMass = c.recordMass;
-    p.reference = c.reference;
-    p.sample = c.sample;
-    p.pathFraction = c.pathFraction;
+    p.velocity = u - c.point.reference;
     out.points.push_back(p);
   }
   out.sweepChange = lastChange_;

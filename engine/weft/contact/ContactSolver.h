@@ -17,7 +17,7 @@
 // residual (Simulator) measures what is left, since any change of r between PD iterations moves
 // the next global solve.
 
-#include <weft/contact/ContactConstraint.h>
+#include <weft/record/ContactPoint.h>
 #include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
 
@@ -40,8 +40,8 @@ class ContactSolver {
   // a larger one (Simulator::solveContactNewton). The caller's free momentum must then be
   // m~ v + (b - P x) / h. The record reports the lumped (reduced) mass either way, so that what
   // it holds (r, u and d = m u - r with the lumped m) reads as DiffCloth's convention.
-  void setContacts(const std::vector<ContactConstraint>& obstacleContacts,
-                   const std::vector<ContactConstraint>& pairs, const std::vector<int>& layerStart,
+  void setContacts(const std::vector<ContactPoint>& obstacleContacts,
+                   const std::vector<ContactPoint>& pairs, const std::vector<int>& layerStart,
                    const Eigen::VectorXd& mass, const Eigen::VectorXd* lawMass = nullptr);
   bool empty() const { return contacts_.empty(); }
   int contactCount() const { return static_cast<int>(contacts_.size()); }
@@ -81,19 +81,19 @@ class ContactSolver {
     Vec3 impulse;       // total contact impulse on the node
     Mat3 pinned;        // projector onto the prescribed velocity directions (linearize())
   };
+  // A contact in the solve: its record (the detected frame, then the branch and impulse the
+  // sweeps leave) and the solve's own state.
   struct Contact {
-    int a, b;  // slots (b = -1 for an obstacle contact)
-    int obstacle;
-    Vec3 normal, reference;
-    double friction, effectiveMass;  // effectiveMass: the law's (reduced) mass m~
-    double recordMass;               // the lumped (reduced) mass, for the record
-    Vec3 impulse;                    // on slot a (slot b receives the opposite)
-    ContactBranch branch;
-    Vec3 sample;  // detection's surface sample (recorded for the backward pass)
-    double pathFraction;
-    Mat3 law;  // d du / d w in the contact's branch (linearize())
+    ContactPoint point;    // point.effectiveMass: the lumped (reduced) mass, for the record
+    int a = -1, b = -1;    // slots (b = -1 for an obstacle contact)
+    double lawMass = 0.0;  // the law's (reduced) mass m~
+    Mat3 law;              // d du / d w in the contact's branch (linearize())
     ContactBranch linearized = ContactBranch::None;  // the branch at the last linearize()
   };
+  // A detected contact as the solve starts it: in take-off, no impulse, `recordMass` (the lumped
+  // mass) for the record and `lawMass` (m~) for the law.
+  static Contact started(const ContactPoint& detected, int a, int b, double lawMass,
+                         double recordMass);
   Vec3 freeVelocity(const Contact& c) const;  // w: the contact's velocity without its own impulse
   double update(Contact& c);                  // one Gauss-Seidel update; returns |delta r| / m
 

@@ -18,29 +18,29 @@ double meanEdgeLength(const TriangleMesh& mesh) {
 
 using ContactKey = std::tuple<int, int, int>;  // node, partner, obstacle
 
-ContactKey keyOf(const ContactConstraint& c) {
+ContactKey keyOf(const ContactPoint& c) {
   return {c.node, c.partner, c.obstacle};
 }
 
 // Detection's order: by node, then partner (pairs) or obstacle (obstacle contacts).
-bool detectionOrder(const ContactConstraint& a, const ContactConstraint& b) {
+bool detectionOrder(const ContactPoint& a, const ContactPoint& b) {
   return keyOf(a) < keyOf(b);
 }
 
 // Appends the contacts of `found` that `set` lacks (the same node with the same obstacle or
 // partner) and whose constraint the displacement `actual` violates by more than `tolerance` (m):
 // it ends the step closer along the contact's normal than the constraint allows
-// (ContactConstraint.h: n . (x_{n+1} - c) >= skin, i.e. h n . (v - reference) >= 0). A contact the
+// (ContactPoint.h: n . (x_{n+1} - c) >= skin, i.e. h n . (v - reference) >= 0). A contact the
 // step does not violate would be in take-off at its result and change nothing. Returns how many;
 // `keys` is scratch; `set` keeps its order, the new ones at its end.
-int appendViolated(const std::vector<ContactConstraint>& found, const NodeMatrix& actual, double h,
-                   double tolerance, std::vector<ContactConstraint>& set,
+int appendViolated(const std::vector<ContactPoint>& found, const NodeMatrix& actual, double h,
+                   double tolerance, std::vector<ContactPoint>& set,
                    std::vector<ContactKey>& keys) {
   keys.clear();
-  for (const ContactConstraint& c : set) keys.push_back(keyOf(c));
+  for (const ContactPoint& c : set) keys.push_back(keyOf(c));
   std::sort(keys.begin(), keys.end());
   const std::size_t old = set.size();
-  for (const ContactConstraint& c : found) {
+  for (const ContactPoint& c : found) {
     Vec3 d = actual.row(c.node).transpose();
     if (c.partner >= 0) d -= actual.row(c.partner).transpose();
     if (c.normal.dot(d - h * c.reference) >= -tolerance) continue;
@@ -82,7 +82,7 @@ void FrictionalContact::detectSelfCollisions(const NodeMatrix& x, const NodeMatr
 
 void FrictionalContact::orderPairs() {
   obstacleNodes_.clear();
-  for (const ContactConstraint& c : obstacleContacts_)
+  for (const ContactPoint& c : obstacleContacts_)
     if (obstacleNodes_.empty() || obstacleNodes_.back() != c.node) obstacleNodes_.push_back(c.node);
   layering_.order(pairs_, obstacleNodes_, layerStart_);
 }

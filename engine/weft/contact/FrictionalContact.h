@@ -91,7 +91,7 @@ class FrictionalContact {
   ContactLayering layering_;
   ContactSolver solver_;
   ActiveContactSet activeSet_;
-  std::vector<ContactConstraint> obstacleContacts_, pairs_, found_;
+  std::vector<ContactPoint> obstacleContacts_, pairs_, found_;
   std::vector<std::tuple<int, int, int>>
       keys_;  // addMissedContacts' scratch: node, partner, obstacle
   std::vector<int> obstacleNodes_, layerStart_;

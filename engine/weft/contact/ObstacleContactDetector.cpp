@@ -13,11 +13,11 @@ constexpr int kMaxPathSegments = 16;
 }  // namespace
 
 void ObstacleContactDetector::detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,
-                                     std::vector<ContactConstraint>& out) {
+                                     std::vector<ContactPoint>& out) {
   const int m = static_cast<int>(x.rows());
   const int obstacleCount = static_cast<int>(obstacles_.size());
   const std::size_t first = out.size();
-  collector_.collect(m, out, [&](int i, std::vector<ContactConstraint>& local) {
+  collector_.collect(m, out, [&](int i, std::vector<ContactPoint>& local) {
     const Vec3 start = x.row(i);
     const Vec3 path = displacement.row(i);
     // Start, middle and end (DiffCloth); finer when the path is long against the margin, so a
@@ -35,13 +35,13 @@ void ObstacleContactDetector::detect(const NodeMatrix& x, const NodeMatrix& disp
               s.distance < reach;
       if (!hit) continue;
       const double fraction = double(k - 1) / segments;
-      ContactConstraint c;
+      ContactPoint c;
       c.node = i;
       c.obstacle = o;
       c.normal = s.normal;
       c.friction = obstacle.friction();
       // Gap of the node's start to the end-of-step tangent plane, less the skin (see
-      // ContactConstraint.h); the surface's own velocity enters tangentially only.
+      // ContactPoint.h); the surface's own velocity enters tangentially only.
       const double gap = s.normal.dot(start - s.point) - obstacle.thickness();
       const Vec3 surface = obstacle.surfaceVelocity(s.point);
       c.reference = surface - s.normal.dot(surface) * s.normal - (gap / h) * s.normal;
@@ -52,7 +52,7 @@ void ObstacleContactDetector::detect(const NodeMatrix& x, const NodeMatrix& disp
   });
   // The contacts are already in node order when the runtime hands out the static blocks in
   // thread order (as GCC's does); make the order independent of that.
-  auto byNode = [](const ContactConstraint& a, const ContactConstraint& b) {
+  auto byNode = [](const ContactPoint& a, const ContactPoint& b) {
     return a.node != b.node ? a.node < b.node : a.obstacle < b.obstacle;
   };
   if (!std::is_sorted(out.begin() + first, out.end(), byNode))

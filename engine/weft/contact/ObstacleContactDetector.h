@@ -7,9 +7,9 @@
 // can give a point the obstacle moved onto the face it came in through (BoxShape::sampleMoved).
 // A node has at most one contact per obstacle, and may touch several obstacles.
 
-#include <weft/contact/ContactConstraint.h>
 #include <weft/contact/ContactObstacle.h>
 #include <weft/contact/ParallelContactCollector.h>
+#include <weft/record/ContactPoint.h>
 
 #include <vector>
 
@@ -25,7 +25,7 @@ class ObstacleContactDetector {
   // Appends the contacts, sorted by node then obstacle. Parallel over nodes, no allocation once
   // the buffers have grown.
   void detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,
-              std::vector<ContactConstraint>& out);
+              std::vector<ContactPoint>& out);
   double margin() const { return margin_; }
 
  private:

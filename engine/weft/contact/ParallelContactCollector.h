@@ -4,7 +4,7 @@
 // are concatenated in thread order afterwards. The caller sorts the result, so the contact order
 // never depends on the thread count.
 
-#include <weft/contact/ContactConstraint.h>
+#include <weft/record/ContactPoint.h>
 
 #include <omp.h>
 
@@ -17,13 +17,13 @@ class ParallelContactCollector {
   // Calls visit(k, buffer) for k in [0, count), spread over the threads with a static schedule,
   // and appends everything the calls pushed to `out`.
   template <class Visit>
-  void collect(int count, std::vector<ContactConstraint>& out, Visit visit) {
+  void collect(int count, std::vector<ContactPoint>& out, Visit visit) {
     const int threads = omp_get_max_threads();
     if (static_cast<int>(perThread_.size()) < threads) perThread_.resize(threads);
     int used = 1;
 #pragma omp parallel
     {
-      std::vector<ContactConstraint>& local = perThread_[omp_get_thread_num()];
+      std::vector<ContactPoint>& local = perThread_[omp_get_thread_num()];
       local.clear();
 #pragma omp single
       used = omp_get_num_threads();
@@ -35,7 +35,7 @@ class ParallelContactCollector {
   }
 
  private:
-  std::vector<std::vector<ContactConstraint>> perThread_;
+  std::vector<std::vector<ContactPoint>> perThread_;
 };
 
 }  // namespace weft

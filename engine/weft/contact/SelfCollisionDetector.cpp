@@ -93,7 +93,7 @@ bool SelfCollisionDetector::excluded(int a, int b) const {
 }
 
 void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,
-                                   std::vector<ContactConstraint>& out) {
+                                   std::vector<ContactPoint>& out) {
   const int n = static_cast<int>(nodes_.size());
   lower_.resize(n);
   upper_.resize(n);
@@ -125,7 +125,7 @@ void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displa
 
   const int count = static_cast<int>(candidates_.size());
   const std::size_t first = out.size();
-  collector_.collect(count, out, [&](int p, std::vector<ContactConstraint>& local) {
+  collector_.collect(count, out, [&](int p, std::vector<ContactPoint>& local) {
     const int a = nodes_[candidates_[p].first], b = nodes_[candidates_[p].second];
     const double distance = collisionDistance(a, b);
     const Vec3 dx = x.row(a) - x.row(b);
@@ -134,7 +134,7 @@ void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displa
     const double tau = dd2 > 0.0 ? std::clamp(-dx.dot(dd) / dd2, 0.0, 1.0) : 0.0;
     if ((dx + tau * dd).norm() >= (1.0 + kMarginFraction) * distance) return;
     if (excluded(a, b)) return;
-    ContactConstraint c;
+    ContactPoint c;
     c.node = a;
     c.partner = b;
     const double separation = dx.norm();
@@ -148,10 +148,9 @@ void SelfCollisionDetector::detect(const NodeMatrix& x, const NodeMatrix& displa
     c.reference = -((separation - distance) / h) * c.normal;
     local.push_back(c);
   });
-  std::sort(out.begin() + first, out.end(),
-            [](const ContactConstraint& p, const ContactConstraint& q) {
-              return p.node != q.node ? p.node < q.node : p.partner < q.partner;
-            });
+  std::sort(out.begin() + first, out.end(), [](const ContactPoint& p, const ContactPoint& q) {
+    return p.node != q.node ? p.node < q.node : p.partner < q.partner;
+  });
 }
 
 }  // namespace weft

@@ -11,15 +11,15 @@
 // folded), are never excluded however close they start: they are separate layers, and excluding
 // them by their rest distance alone would let them pass through each other. The frame comes from
 // the pair's relative position at the start of the step, n = (x_a - x_b)/|x_a - x_b|, a < b
-// (ContactConstraint.h).
+// (ContactPoint.h).
 //
 // Broad phase: each node's swept box in a SpatialHashGrid, so the cost grows linearly with
 // the node count.
 
-#include <weft/contact/ContactConstraint.h>
 #include <weft/contact/ParallelContactCollector.h>
 #include <weft/contact/SpatialHashGrid.h>
 #include <weft/model/ClothModel.h>
+#include <weft/record/ContactPoint.h>
 
 #include <vector>
 
@@ -32,7 +32,7 @@ class SelfCollisionDetector {
   // Appends the step's pairs, sorted by (a, b) so that the result does not depend on the
   // thread count.
   void detect(const NodeMatrix& x, const NodeMatrix& displacement, double h,
-              std::vector<ContactConstraint>& out);
+              std::vector<ContactPoint>& out);
 
   // The scene's `radius` is the collision distance: node pairs are kept at least this far apart.
   double collisionDistance(int a, int b) const { return 0.5 * (distance_[a] + distance_[b]); }

@@ -74,7 +74,8 @@ void ContactAdjoint::frameOfObstacleContact(const ContactPoint& p, const NodeMat
   // v_n enters the sample point with weight tau h.
   const Mat3 referenceByStart = -(p.normal * p.normal.transpose()) / h_;
   const Mat3& lawVelocity = c.d;  // m_c dL/dw
-  const Mat3 bySample = -lawVelocity * referenceBySample + c.mass * lawNormal * normalBySample;
+  const Mat3 bySample =
+      -lawVelocity * referenceBySample + c.point.effectiveMass * lawNormal * normalBySample;
   c.frameX = h_ * (-lawVelocity * referenceByStart + bySample);
   c.frameV = h_ * (p.pathFraction * h_) * bySample;
 }
@@ -94,7 +95,7 @@ void ContactAdjoint::frameOfPair(const ContactPoint& p, const NodeMatrix& x0, co
   const double gap = -h_ * p.normal.dot(p.reference);
   const Mat3 referenceByDx = -(nn + (gap / separation) * across) / h_;
   const Mat3 normalByDx = across / separation;
-  c.frameX = h_ * (-c.d * referenceByDx + c.mass * lawNormal * normalByDx);
+  c.frameX = h_ * (-c.d * referenceByDx + c.point.effectiveMass * lawNormal * normalByDx);
 }
 
 void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0, double t0,
@@ -120,19 +121,13 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
   for (const ContactPoint& p : contacts.points) {
     if (p.branch != ContactBranch::Stick && p.branch != ContactBranch::Slip) continue;
     Contact c;
-    c.a = p.node;
-    c.b = p.partner;
-    c.obstacle = p.obstacle;
-    c.mass = p.effectiveMass;
-    c.friction = p.friction;
-    c.stick = p.branch == ContactBranch::Stick;
-    c.normal = p.normal;
+    c.point = p;
     c.velocityChange = p.impulse / p.effectiveMass;
     const Vec3 free = p.velocity - c.velocityChange;
     const ContactLawJacobian law =
         differentiateSignoriniCoulomb(p.branch, p.normal, p.friction, free);
-    c.d = c.mass * law.velocity;
-    c.frictionRate = h_ * c.mass * law.friction;
+    c.d = c.point.effectiveMass * law.velocity;
+    c.frictionRate = h_ * c.point.effectiveMass * law.friction;
     if (p.partner < 0)
       frameOfObstacleContact(p, x0, law.normal, c);
     else
@@ -149,23 +144,26 @@ void ContactAdjoint::prepare(const StepContacts& contacts, const NodeMatrix& x0,
   touching_.assign(model_.nodeCount(), 0);
   coupled_ = false;
   for (const Contact& c : contacts_) {
-    coupled_ = coupled_ || ++touching_[c.a] > 1;
-    if (c.b >= 0) coupled_ = coupled_ || ++touching_[c.b] > 1;
+    coupled_ = coupled_ || ++touching_[c.point.node] > 1;
+    if (c.point.partner >= 0) coupled_ = coupled_ || ++touching_[c.point.partner] > 1;
   }
   // A pair whose nodes touch nothing else: y = z_a - z_b and wbar = (d^T y / m_a, -d^T y / m_b),
   // so S keeps (m_a z_a + m_b z_b) / (m_a + m_b) and maps z_a - z_b by I + d^T / m_c.
   for (const Contact& c : contacts_) {
-    if (c.b < 0 || touching_[c.a] > 1 || touching_[c.b] > 1) continue;
-    pinned_.push_back({c.a, c.b,
-                       c.stick ? Mat3(Mat3::Identity()) : Mat3(c.normal * c.normal.transpose()),
-                       Mat3::Identity() + c.d.transpose() / c.mass, c.normal});
+    if (c.point.partner < 0 || touching_[c.point.node] > 1 || touching_[c.point.partner] > 1)
+      continue;
+    pinned_.push_back({c.point.node, c.point.partner,
+                       c.point.branch == ContactBranch::Stick
+                           ? Mat3(Mat3::Identity())
+                           : Mat3(c.point.normal * c.point.normal.transpose()),
+                       Mat3::Identity() + c.d.transpose() / c.point.effectiveMass, c.point.normal});
   }
   if (!coupled_) return;
   std::vector<std::vector<std::pair<int, double>>> sharing(
       model_.nodeCount());  // node -> (contact, sign)
   for (int k = 0; k < count; ++k) {
-    sharing[contacts_[k].a].emplace_back(k, 1.0);
-    if (contacts_[k].b >= 0) sharing[contacts_[k].b].emplace_back(k, -1.0);
+    sharing[contacts_[k].point.node].emplace_back(k, 1.0);
+    if (contacts_[k].point.partner >= 0) sharing[contacts_[k].point.partner].emplace_back(k, -1.0);
   }
   std::vector<Eigen::Triplet<double>> entries;
   for (int k = 0; k < 3 * count; ++k) entries.emplace_back(k, k, 1.0);
@@ -223,8 +221,8 @@ void ContactAdjoint::applyTransposed(const NodeMatrix& z, NodeMatrix& wbar,
   y.resize(count, 3);
   for (int k = 0; k < count; ++k) {
     const Contact& c = contacts_[k];
-    y.row(k) = z.row(c.a);
-    if (c.b >= 0) y.row(k) -= z.row(c.b);
+    y.row(k) = z.row(c.point.node);
+    if (c.point.partner >= 0) y.row(k) -= z.row(c.point.partner);
   }
   if (coupled_) {
     work_.resize(3 * count);
@@ -236,8 +234,9 @@ void ContactAdjoint::applyTransposed(const NodeMatrix& z, NodeMatrix& wbar,
   for (int k = 0; k < count; ++k) {
     const Contact& c = contacts_[k];
     const Vec3 v = c.d.transpose() * y.row(k).transpose();
-    wbar.row(c.a) += v.transpose() / model_.mass[c.a];
-    if (c.b >= 0) wbar.row(c.b) -= v.transpose() / model_.mass[c.b];
+    wbar.row(c.point.node) += v.transpose() / model_.mass[c.point.node];
+    if (c.point.partner >= 0)
+      wbar.row(c.point.partner) -= v.transpose() / model_.mass[c.point.partner];
   }
 }
 
@@ -248,7 +247,7 @@ void ContactAdjoint::appendTransposedBlocks(
   for (int k = 0; k < size(); ++k) {
     const Contact& c = contacts_[k];
     for (int side = 0; side < 2; ++side) {
-      const int node = side == 0 ? c.a : c.b;
+      const int node = side == 0 ? c.point.node : c.point.partner;
       if (node < 0) continue;
       const double sign = side == 0 ? 1.0 : -1.0;
       for (int d = 0; d < 3; ++d) {
@@ -274,11 +273,11 @@ void ContactAdjoint::addStateGradients(const Eigen::MatrixX3d& y, NodeMatrix& dL
     const Contact& c = contacts_[k];
     const Vec3 yk = y.row(k).transpose();
     const Vec3 byStart = c.frameX.transpose() * yk;
-    dLdx0.row(c.a) += byStart.transpose();
-    if (c.b >= 0)
-      dLdx0.row(c.b) -= byStart.transpose();
+    dLdx0.row(c.point.node) += byStart.transpose();
+    if (c.point.partner >= 0)
+      dLdx0.row(c.point.partner) -= byStart.transpose();
     else
-      dLdv0.row(c.a) += (c.frameV.transpose() * yk).transpose();
+      dLdv0.row(c.point.node) += (c.frameV.transpose() * yk).transpose();
   }
 }
 
@@ -293,15 +292,15 @@ void ContactAdjoint::addParameterGradients(const std::vector<SceneParameter>& pa
     double d = 0.0;
     if (p.kind == Kind::ObstacleFriction) {
       for (int c = 0; c < size(); ++c)
-        if (contacts_[c].obstacle == p.index)
+        if (contacts_[c].point.obstacle == p.index)
           d += y.row(c).dot(contacts_[c].frictionRate.transpose());
     } else if (p.kind == Kind::SelfCollisionFriction) {
       // A pair's coefficient is the mean of its two nodes' cloths' (SelfCollisionDetector).
       for (int c = 0; c < size(); ++c) {
         const Contact& ct = contacts_[c];
-        if (ct.b < 0) continue;
-        const double share =
-            0.5 * ((model_.clothOf(ct.a) == p.cloth) + (model_.clothOf(ct.b) == p.cloth));
+        if (ct.point.partner < 0) continue;
+        const double share = 0.5 * ((model_.clothOf(ct.point.node) == p.cloth) +
+                                    (model_.clothOf(ct.point.partner) == p.cloth));
         d += share * y.row(c).dot(ct.frictionRate.transpose());
       }
     } else if (p.kind == Kind::Density) {
@@ -318,11 +317,12 @@ void ContactAdjoint::addParameterGradients(const std::vector<SceneParameter>& pa
       // effective masses all scale with the cloth's density (dm_i / drho = m_i / rho).
       for (int c = 0; c < size(); ++c) {
         const Contact& ct = contacts_[c];
-        if (!inCloth(ct.a) && !(ct.b >= 0 && inCloth(ct.b))) continue;
+        if (!inCloth(ct.point.node) && !(ct.point.partner >= 0 && inCloth(ct.point.partner)))
+          continue;
         Vec3 freeRate = Vec3::Zero();
         double inverseMassRate = 0.0;  // d (1/m_c) / d rho
         for (int side = 0; side < 2; ++side) {
-          const int node = side == 0 ? ct.a : ct.b;
+          const int node = side == 0 ? ct.point.node : ct.point.partner;
           if (node < 0 || !inCloth(node)) continue;
           const double sign = side == 0 ? 1.0 : -1.0;
           const Vec3 v1 = (x1.row(node) - x0.row(node)).transpose() / h_;
@@ -330,9 +330,10 @@ void ContactAdjoint::addParameterGradients(const std::vector<SceneParameter>& pa
           freeRate += sign * (v0.row(node).transpose() + h_ * g - v1) / density;
           inverseMassRate -= 1.0 / (model_.mass[node] * density);
         }
-        const double massRate = -ct.mass * ct.mass * inverseMassRate;  // d m_c / d rho
+        const double massRate =
+            -ct.point.effectiveMass * ct.point.effectiveMass * inverseMassRate;  // d m_c / d rho
         // w_c holds -r_c / m_c = -du: its rate at fixed r_c is du (d m_c / d rho) / m_c.
-        freeRate += ct.velocityChange * massRate / ct.mass;
+        freeRate += ct.velocityChange * massRate / ct.point.effectiveMass;
         const Vec3 sensitivity = h_ * (massRate * ct.velocityChange + ct.d * freeRate);
         d += y.row(c).dot(sensitivity.transpose());
       }

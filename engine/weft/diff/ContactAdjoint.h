@@ -94,13 +94,10 @@ class ContactAdjoint {
                              Eigen::VectorXd& gradient) const;
 
  private:
+  // A recorded contact (its ContactPoint: nodes, obstacle, branch, normal, friction and
+  // effective mass m_c) and the law's derivatives at it.
   struct Contact {
-    int a = -1, b = -1;  // nodes (b = -1 for an obstacle contact)
-    int obstacle = -1;
-    double mass = 0.0;  // effective mass m_c
-    double friction = 0.0;
-    bool stick = false;  // (else slip)
-    Vec3 normal;
+    ContactPoint point;
     Mat3 d;               // m_c dL/dw
     Mat3 frameX;          // d (h r_c) / d x_n of node a (node b of a pair: minus this)
     Mat3 frameV;          // d (h r_c) / d v_n of node a (obstacle contacts)
