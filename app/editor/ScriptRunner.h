@@ -1,7 +1,7 @@
 #pragma once
 // Headless automation: a JSON script of editor actions, run one action per UI frame through
 // the same EditorSession and EditorApp a person uses (so every action is followed by at least
-// one real UI frame). The format is documented in README ("Editor"); in short
+// one real UI frame). The format is documented in docs/editor.md ("Scripted, headless"); in short
 //
 //   { "actions": [ {"open": "scene.json"}, {"set": "time.steps", "value": 10},
 //                  {"select": [0, 16]}, {"pin": true}, {"simulate": 10}, {"scrub": 5},

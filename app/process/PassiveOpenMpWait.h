@@ -5,7 +5,7 @@
 // barrier before they sleep. On a machine whose cores are busy with other work (a CI runner, a
 // build, a second simulation), the spinning worker takes the core the thread with the actual
 // work needs, and every one of a step's many short parallel regions (local step, contact nodes)
-// waits for a scheduler slice. README, "Threads", has the measurements.
+// waits for a scheduler slice. docs/cli.md, "Threads", has the measurements.
 //
 // libgomp reads OMP_WAIT_POLICY once, in its constructor, before main() runs; and glibc sets
 // the environment up after an executable's .preinit_array functions, so a setenv there is lost.

@@ -1,7 +1,7 @@
 // Weft's executables wait for OpenMP work passively unless the user set OMP_WAIT_POLICY
 // (app/process/PassiveOpenMpWait.h: libgomp's spinning default made two-thread runs 16-60x
-// slower on a machine whose cores were busy, README "Threads"). libgomp prints what it read at
-// start-up when OMP_DISPLAY_ENV is VERBOSE, which shows what the runtime actually uses. Its
+// slower on a machine whose cores were busy, docs/cli.md, "Threads"). libgomp prints what it read
+// at start-up when OMP_DISPLAY_ENV is VERBOSE, which shows what the runtime actually uses. Its
 // OMP_WAIT_POLICY line says PASSIVE for an unset policy too; the spin count tells them apart (0
 // passive, 300000 unset, 30000000000 active).
 

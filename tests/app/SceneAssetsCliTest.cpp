@@ -1,7 +1,7 @@
 // The shipped scenes and the contact benchmarks, through the real binary: every
 // assets/scenes/*.json loads and simulates a couple of steps, and `weft bench continuity` and
-// `weft bench contact` (and `weft bench backward`) produce their CSV in quick mode (what the README
-// documents must run).
+// `weft bench contact` (and `weft bench backward`) produce their CSV in quick mode (what
+// docs/cli.md documents must run).
 
 #include "CliSupport.h"
 

@@ -143,8 +143,8 @@ TEST(HardContact, MovingObstaclePushesTheCloth) {
 // side and get the side's normal only through CylinderShape::sampleMoved. Measured: the Newton
 // contact solve keeps every node in the skin (closest 1.0 mm outside); the PD solve, on this
 // stiff cloth pressed into the cylinder's curve, stops at pd_iterations on some steps with nodes
-// up to 3.8 mm inside (its known limitation, README "Contact"). With the nearest-surface rule
-// nodes ended 99 mm inside and the cloth moved 0.11 m instead of 0.35.
+// up to 3.8 mm inside (its known limitation, docs/how-it-works/contact.md). With the
+// nearest-surface rule nodes ended 99 mm inside and the cloth moved 0.11 m instead of 0.35.
 TEST(HardContact, MovingCylinderPushesTheCloth) {
   const double radius = 0.1;
   expectObstaclePushesTheCloth(

@@ -445,7 +445,7 @@ TEST(EditorWorkflow, ParametersAreAddedAndRemovedInTheEditor) {
             nlohmann::json::array({"cloths.0.material.density", "cloths.0.material.stretch"}));
 }
 
-// README's first session (assets/editor/first-session.json), run as committed: import the
+// docs/editor.md's first session (assets/editor/first-session.json), run as committed: import the
 // skirt, pin its waist, drape it on a sphere, set targets at the hem where it hangs with stretch
 // 100 N/m, start again from 400 N/m, add the parameter and step L-BFGS-B eight times. Only the
 // file paths are rewritten (the garment from the source tree, the outputs into a temporary

@@ -109,9 +109,9 @@ TEST(HatTask, SplineGradientsMatchFiniteDifferencesWithTheHatOnTheHead) {
   // along their splines' first tangents; 10 steps of 2 ms with the hat 10x heavier. Slip
   // contacts on the crown from the first step. At the task's own step and density the nodes'
   // h^2 k is ~1000 times their mass and the forward contact solve cannot reach the 1e-8 m/s^2
-  // finite differences need (README "Contact"); here every step converges in ~100 solves.
-  // Measured: relative error below 3e-5 on every component above 1e-3 of the largest, and below
-  // 2e-4 on the smallest (out-of-plane components ~1e-8 of a 3e-3 gradient).
+  // finite differences need (docs/how-it-works/contact.md); here every step converges in ~100
+  // solves. Measured: relative error below 3e-5 on every component above 1e-3 of the largest, and
+  // below 2e-4 on the smallest (out-of-plane components ~1e-8 of a 3e-3 gradient).
   expectHatOnTheHeadGradients("magnitude", 1e-3);
 }
 

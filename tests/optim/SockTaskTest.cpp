@@ -157,7 +157,8 @@ TEST(SockTask, RecordedContactsAreTheStateTheStepWasSolvedWith) {
 TEST(SockTask, SplineGradientsMatchFiniteDifferencesWithTheSockOnTheFoot) {
   // Reduced: the sock starts with its cuff 8 cm along the foot and its top resting on the top of
   // the foot; 10 steps of 2 ms with the sock 10x heavier (at the task's own step and density the
-  // forward contact solve cannot reach 1e-8 m/s^2, README "Contact"), keypoints at steps 5 and
+  // forward contact solve cannot reach 1e-8 m/s^2, docs/how-it-works/contact.md), keypoints at
+  // steps 5 and
   // 10. Slip contacts along the foot's top from the first step. Twelve of the 36 parameters
   // (one end effector's whole spline and three of another's) keep the test short; the contact
   // set is the same under their finite-difference probes (checked for three). Moving the top

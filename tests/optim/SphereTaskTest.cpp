@@ -79,7 +79,7 @@ TEST(SphereTask, FrictionGradientMatchesFiniteDifferencesWhileTheClothSlides) {
   EXPECT_GT(std::abs(report.entries[0].adjoint), 1e-3);  // mu decides how far it slides
   // Measured 6.5e-5 relative (weft gradcheck assets/scenes/sphere_sysid.json --set
   // time.steps=40): what the adjoint leaves out, the frame's dependence on the predicted path that
-  // detection samples (README, "Gradients"), shows at this level once nodes slide.
+  // detection samples (docs/how-it-works/backward.md), shows at this level once nodes slide.
   test::expectGradientAgreement(report, 3e-4, 0.0);
 }
 
@@ -88,7 +88,7 @@ TEST(SphereTask, LbfgsbRecoversTheHiddenFrictionAtAReducedSize) {
   // from the hidden mu, target and search both with the forward solved to 1e-8 m/s^2 (converged
   // on every step at this size), so the loss has its zero there and no solver noise. At full
   // size with the task's 1e-4 m/s^2 the loss is bumpy on a fine scale and L-BFGS-B from 0.5 is
-  // misled by the local slope (README, "The paper's scenes").
+  // misled by the local slope (docs/scenes.md).
   test::TempDir dir;
   const std::vector<std::pair<std::string, std::string>> reduced = {
       {"time.steps", "120"}, {"cloths.0.mesh.grid.resolution", "[12,12]"}};

@@ -275,7 +275,7 @@ TEST(TShirtTask, LbfgsbRecoversTheHiddenValuesAtAReducedSize) {
   // The coarse shirt, 36 steps (0.4 s: 0.6 of a gust; the layers touch from step 24 on), from
   // 8-15% off every hidden value, target and search with the forward solved to 1e-8 m/s^2 (the
   // loss then has its zero at the hidden values). Measured (weft optimize on the same reduced
-  // scene, README "The paper's scenes"): loss 0.27 -> 1.5e-6 at the 38th evaluation, all six
+  // scene, docs/scenes.md): loss 0.27 -> 1.5e-6 at the 38th evaluation, all six
   // within 0.6% there (2.3% at the 37th), then the line search fails at a kink and the run stops
   // at the 52nd; about 30 s of one core. The landscape is bumpy on a fine scale (contact events
   // and buckling, make-tshirt.py): from another start (stretch 260, phase 0.88, frequency 1.62,

@@ -27,7 +27,7 @@ inline constexpr ApplicationTask kApplicationTasks[] = {
     // gradient evaluations of its 250 steps, about 0.25 s of one core a step; quick: 2.
     {"tshirt", "scenes/tshirt.json", 5000, 1000},
     // Sec. 6.1-6.2 (Table 3: L-BFGS-B converged in 2450, 11200 and 17600 steps). The Sock's forward
-    // contact solve does not converge once the sock reaches the foot (README, "Tasks").
+    // contact solve does not converge once the sock reaches the foot (docs/applications.md).
     {"sphere_sysid", "scenes/sphere_sysid.json", 7000, 1400},
     {"hat", "scenes/hat.json", 12000, 1600},
     {"sock", "scenes/sock.json", 17600, 1600},

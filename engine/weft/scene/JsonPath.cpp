@@ -21,23 +21,22 @@ bool parseIndex(const std::string& s, std::size_t& out) {
   return true;
 }
 
+// One step down a path: an object's member or an array's element, or null where there is none.
+template <class J>
+J* child(J& node, const std::string& part) {
+  if (node.is_object()) {
+    auto it = node.find(part);
+    return it == node.end() ? nullptr : &*it;
+  }
+  std::size_t i;
+  if (node.is_array() && parseIndex(part, i) && i < node.size()) return &node[i];
+  return nullptr;
+}
+
 template <class J>
 J* walk(J& doc, const std::vector<std::string>& parts, std::size_t count) {
   J* node = &doc;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::string& p = parts[k];
-    if (node->is_object()) {
-      auto it = node->find(p);
-      if (it == node->end()) return nullptr;
-      node = &*it;
-    } else if (node->is_array()) {
-      std::size_t i;
-      if (!parseIndex(p, i) || i >= node->size()) return nullptr;
-      node = &(*node)[i];
-    } else {
-      return nullptr;
-    }
-  }
+  for (std::size_t k = 0; k < count && node; ++k) node = child(*node, parts[k]);
   return node;
 }
 
@@ -77,18 +76,10 @@ std::string createJsonPathObjects(nlohmann::json& doc, const std::string& path) 
   nlohmann::json* node = &doc;
   std::size_t k = 0;
   for (; k + 1 < parts.size(); ++k) {
-    const std::string& p = parts[k];
-    if (node->is_object()) {
-      auto it = node->find(p);
-      if (it == node->end()) break;
-      node = &*it;
-    } else if (node->is_array()) {
-      std::size_t i;
-      if (!parseIndex(p, i) || i >= node->size()) return "";
-      node = &(*node)[i];
-    } else {
-      return "";
-    }
+    nlohmann::json* next = child(*node, parts[k]);
+    if (!next && node->is_object()) break;  // the first absent object
+    if (!next) return "";
+    node = next;
   }
   if (k + 1 == parts.size() || !node->is_object()) return "";  // every parent exists
   std::size_t unused;
