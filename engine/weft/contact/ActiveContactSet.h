@@ -92,10 +92,11 @@ class ActiveContactSet {
   // own state.
   struct Contact {
     ContactPoint point;
-    double slipLimit = 0.0;            // slip: mu r_N, the friction impulse's size (lagged)
-    int flips = 0;                     // branch switches this step
-    Vec3 hessianSlide = Vec3::Zero();  // slip: u_T and max(|u_T|, eps) where the friction
-    double hessianNorm = 0.0;          // Hessian was prepared
+    double slipLimit = 0.0;  // slip: mu r_N, the friction impulse's size (lagged)
+    int flips = 0;           // branch switches this step
+    // Slip: u_T and max(|u_T|, eps) where the friction Hessian was prepared.
+    Vec3 hessianSlide = Vec3::Zero();
+    double hessianNorm = 0.0;
   };
   struct Row {
     int a, b, contact;
