@@ -7,7 +7,7 @@
 // history as evaluations arrive. The run works on a copy of the scene taken at start: applying
 // its result to the document is the session's job (one undoable edit). No window: unit tested.
 
-#include "GatedObjective.h"
+#include "EvaluationGate.h"
 
 #include <weft/optim/OptimizationRun.h>
 #include <weft/scene/Scene.h>

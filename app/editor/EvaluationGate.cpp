@@ -1,4 +1,4 @@
-#include "GatedObjective.h"
+#include "EvaluationGate.h"
 
 namespace weft::editor {
 
