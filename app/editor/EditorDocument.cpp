@@ -247,11 +247,13 @@ void EditorDocument::revalidate() {
     // The engine's checks of a valid scene (a handle driven into an obstacle), shown with the
     // loader's warnings as the command line prints them.
     for (std::string& w : handlesEnteringObstacles(scene)) scene.warnings.push_back(std::move(w));
+    cloth_ = std::make_shared<const ClothModel>(buildClothModel(scene));
     scene_ = std::make_shared<const Scene>(std::move(scene));
     error_.clear();
   } catch (const std::exception& e) {
     // InputError carries "<file>: <path>: <what>"; anything else is still a message, never a crash.
     scene_.reset();
+    cloth_.reset();
     error_ = e.what();
   }
 }

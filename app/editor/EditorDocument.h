@@ -8,6 +8,7 @@
 // loader's message and disables simulation until the document is valid again. Nothing is
 // clamped or dropped silently.
 
+#include <weft/model/ClothModel.h>
 #include <weft/scene/Scene.h>
 
 #include <nlohmann/json.hpp>
@@ -52,6 +53,8 @@ class EditorDocument {
   // The validated scene, or null when the document does not validate.
   const Scene* scene() const { return scene_.get(); }
   std::shared_ptr<const Scene> sharedScene() const { return scene_; }
+  // The validated scene's cloths as one nodal system (built once per validation), or null.
+  const ClothModel* cloth() const { return cloth_.get(); }
   bool valid() const { return scene_ != nullptr; }
   const std::string& validationError() const { return error_; }
 
@@ -108,6 +111,7 @@ class EditorDocument {
   nlohmann::json sidecar_ = nlohmann::json::object();
   std::string file_;
   std::shared_ptr<const Scene> scene_;
+  std::shared_ptr<const ClothModel> cloth_;
   std::string error_;
   long revision_ = 0;
   // Identity of the current document state: undo/redo restore earlier identities, so the

@@ -61,7 +61,7 @@ const LossValue& LiveLoss::evaluate(const EditorDocument& document, const Simula
       const nlohmann::json& term = scene->task->loss.at("final");
       std::vector<int> vertices;
       for (const FinalTarget& t : targets) vertices.push_back(t.node);
-      const FinalFrameLoss loss(finalTargetMatrix(targets, buildClothModel(*scene).rest.vertices),
+      const FinalFrameLoss loss(finalTargetMatrix(targets, document.cloth()->rest.vertices),
                                 vertices, term.value("weight", 1.0));
       const double v = loss.value(trajectory_);
       value_.terms.emplace_back("final", v);

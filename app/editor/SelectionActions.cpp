@@ -63,7 +63,7 @@ std::string SelectionActions::selectBoundaryLoop(bool add) {
   if (node < 0) return "click a vertex on the border first (its loop is selected)";
   const Scene* scene = document_.scene();
   if (!scene) return "the scene does not validate: " + document_.validationError();
-  const ClothModel model = buildClothModel(*scene);
+  const ClothModel& model = *document_.cloth();
   const int cloth = clothOfNode(model.vertexOffset, node);
   if (cloth < 0) return "vertex " + std::to_string(node) + " is not a cloth vertex";
   const int offset = model.vertexOffset[std::size_t(cloth)];
@@ -100,7 +100,7 @@ std::string SelectionActions::pinSelection() {
   if (selection_.empty()) return "nothing is selected";
   const Scene* scene = document_.scene();
   if (!scene) return "the scene does not validate: " + document_.validationError();
-  const ClothModel model = buildClothModel(*scene);
+  const ClothModel& model = *document_.cloth();
   const std::vector<int> nodes = selection_.nodes();
   return document_.edit(
       "Pin " + std::to_string(nodes.size()) + " vertices",
@@ -111,7 +111,7 @@ std::string SelectionActions::makeHandle() {
   if (selection_.empty()) return "select the vertices the handle holds first";
   const Scene* scene = document_.scene();
   if (!scene) return "the scene does not validate: " + document_.validationError();
-  const ClothModel model = buildClothModel(*scene);
+  const ClothModel& model = *document_.cloth();
   const std::vector<int> nodes = selection_.nodes();
   const int cloth = clothOfNode(model.vertexOffset, nodes.front());
   if (cloth < 0 || clothOfNode(model.vertexOffset, nodes.back()) < 0)

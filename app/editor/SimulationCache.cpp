@@ -26,6 +26,7 @@ void SimulationCache::start(std::shared_ptr<const Scene> scene, int steps) {
     frames_.clear();
     frames_.reserve(static_cast<std::size_t>(std::max(steps, 0)) + 1);
     scene_ = scene;
+    model_.reset();
     error_.clear();
   }
   requested_ = std::max(steps, 0) + 1;
@@ -39,12 +40,13 @@ void SimulationCache::run(std::shared_ptr<const Scene> scene, int steps) {
   useWorkerThreads();
   try {
     Simulator simulator(*scene);
-    const int nodes = simulator.model().nodeCount();
+    const int nodes = simulator.cloth().nodeCount();
     auto first = std::make_shared<CachedFrame>();
     first->positions = simulator.positions();
     first->velocities = simulator.velocities();
     {
       std::lock_guard<std::mutex> lock(mutex_);
+      model_ = simulator.sharedModel();
       frames_.push_back(std::move(first));
     }
     for (int s = 1; s <= steps; ++s) {
@@ -128,6 +130,8 @@ Trajectory SimulationCache::trajectory() const {
     touched = touched || !f->contacts.points.empty();
   }
   if (!touched) t.contacts.clear();  // as a run without contact records it
+  std::lock_guard<std::mutex> lock(mutex_);
+  t.model = model_;
   return t;
 }
 

@@ -63,7 +63,8 @@ class SimulationCache {
   // The frame of state k (0 <= k < frameCount()), or null. Safe while the worker appends.
   std::shared_ptr<const CachedFrame> frame(int k) const;
   // The cached states as the recorded run the engine's losses and backward pass read: positions
-  // and velocities of every state, step statistics and (when any step touched) contacts.
+  // and velocities of every state, step statistics, (when any step touched) contacts and the
+  // model the worker simulated (null before its first frame).
   Trajectory trajectory() const;
   // The scene the cache was computed from (null when empty).
   std::shared_ptr<const Scene> scene() const;
@@ -88,6 +89,7 @@ class SimulationCache {
   mutable std::mutex mutex_;
   std::vector<std::shared_ptr<const CachedFrame>> frames_;
   std::shared_ptr<const Scene> scene_;
+  std::shared_ptr<const Model> model_;  // the worker's, once its simulator is built
   std::string error_;
   std::atomic<Status> status_{Status::Empty};
   std::atomic<int> requested_{0};

@@ -39,7 +39,7 @@ std::string StateGradients::compute() {
     // Per-vertex values show a solve's error more than a parameter's sum does: solve tightly.
     BackwardSettings settings = scene->solver.backward;
     settings.tolerance = std::min(settings.tolerance, 1e-8);
-    return backpropagate(*scene, *trajectory, *loss, ParameterSet(), settings).dLdx;
+    return backpropagate(*trajectory, *loss, ParameterSet(), settings).dLdx;
   });
   return "";
 }

@@ -39,7 +39,7 @@ std::string TaskTargets::writeTargets(const std::string& sceneFile) {
   const std::string name = finalTargetFileAfterSaveAs(owned, document_.file(), sceneFile);
   const std::string directory = std::filesystem::absolute(sceneFile).parent_path().string();
   writeTargetNpy(resolveScenePath(directory, name),
-                 finalTargetMatrix(list, buildClothModel(*scene).rest.vertices));
+                 finalTargetMatrix(list, document_.cloth()->rest.vertices));
   return "";
 }
 
@@ -153,7 +153,7 @@ std::string TaskTargets::loadTargetMesh(const std::string& file) {
   const Scene* scene = document_.scene();
   if (!scene) return "the scene does not validate: " + document_.validationError();
   const std::string path = std::filesystem::absolute(file).string();
-  const ClothModel model = buildClothModel(*scene);
+  const ClothModel& model = *document_.cloth();
   std::string counts;
   for (std::size_t c = 0; c < scene->cloths.size(); ++c) {
     const int n = scene->cloths[c].mesh.vertexCount();
@@ -244,8 +244,7 @@ std::string TaskTargets::withHeldTargets(const std::function<std::string(const S
     ::close(fd);
     temporary = name;
     try {
-      writeTargetNpy(temporary,
-                     finalTargetMatrix(list, buildClothModel(*document_.scene()).rest.vertices));
+      writeTargetNpy(temporary, finalTargetMatrix(list, document_.cloth()->rest.vertices));
     } catch (const std::exception& e) {
       ::unlink(temporary.c_str());
       return e.what();

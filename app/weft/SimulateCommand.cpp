@@ -40,7 +40,7 @@ int simulateCommand(const std::vector<std::string>& args) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   Simulator sim(scene);
-  RunWriter writer(out.path(), scene, sim.model(), steps, sim.contact() != nullptr && steps > 0);
+  RunWriter writer(out.path(), scene, sim.cloth(), steps, sim.contact() != nullptr && steps > 0);
   double writing = 0.0;  // seconds spent writing, left out of the simulation's wall time
   auto timed = [&writing](auto&& write) {
     const auto t = Clock::now();
@@ -70,7 +70,7 @@ int simulateCommand(const std::vector<std::string>& args) {
 
   std::printf(
       "simulate: %s: %d steps, %d vertices, %.3f s (%.2f ms/step, %.1f PD iterations/step) -> %s\n",
-      scene.name.c_str(), steps, sim.model().nodeCount(), run.seconds,
+      scene.name.c_str(), steps, sim.cloth().nodeCount(), run.seconds,
       steps ? 1e3 * run.seconds / steps : 0.0, steps ? double(iterations) / steps : 0.0,
       outDir.c_str());
   return 0;

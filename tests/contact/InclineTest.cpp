@@ -51,14 +51,14 @@ void checkIncline(const InclineCase& c, const char* contactMethod) {
   if (expected <= 0.0) {
     EXPECT_LT((t.positions.back() - x0).cwiseAbs().maxCoeff(), 1e-9) << "moved while stuck";
     EXPECT_LT(v.cwiseAbs().maxCoeff(), 1e-9);
-    EXPECT_EQ(t.steps.back().stick, run.sim->model().nodeCount());
+    EXPECT_EQ(t.steps.back().stick, run.sim->cloth().nodeCount());
   } else {
     // Rigid sliding along +X at v = a t.
     const double measured = v.col(0).mean() / (steps * h);
     EXPECT_NEAR(measured, expected, 0.01 * expected) << "measured " << measured << " m/s^2";
     EXPECT_LT((v.col(0).array() - v.col(0).mean()).abs().maxCoeff(), 1e-6 * v.col(0).mean());
     EXPECT_LT(v.col(2).cwiseAbs().maxCoeff(), 1e-6);
-    EXPECT_EQ(t.steps.back().slip, run.sim->model().nodeCount());
+    EXPECT_EQ(t.steps.back().slip, run.sim->cloth().nodeCount());
     // Distance travelled: implicit Euler x_n = a h^2 n (n + 1) / 2.
     EXPECT_NEAR((t.positions.back().col(0) - x0.col(0)).mean(),
                 expected * h * h * steps * (steps + 1) / 2,

@@ -31,7 +31,7 @@ bool convergedState(const test::ContactRun& run, int n) {
 // The smallest separation of any pair that may collide in state n, relative to its collision
 // distance (1 = exactly touching; 1e9 when no pair is within it).
 double closestPairRatio(const test::ContactRun& run, const SelfCollisionDetector& detector, int n) {
-  const int m = run.sim->model().nodeCount();
+  const int m = run.sim->cloth().nodeCount();
   const NodeMatrix& x = run.trajectory.positions[n];
   double worst = 1e9;
   for (int a = 0; a < m; ++a)
@@ -46,7 +46,7 @@ double closestPairRatio(const test::ContactRun& run, const SelfCollisionDetector
 
 // The same over all states.
 double closestPairRatio(const test::ContactRun& run, int& worstStep) {
-  const SelfCollisionDetector detector(*run.scene, run.sim->model());
+  const SelfCollisionDetector detector(*run.scene, run.sim->cloth());
   double worst = 1e9;
   for (int n = 0; n < static_cast<int>(run.trajectory.positions.size()); ++n) {
     const double ratio = closestPairRatio(run, detector, n);
@@ -194,7 +194,7 @@ TEST(SelfCollision, StackedClothsLandingTogetherStayStacked) {
     int late = 0;
     for (const StepStats& s : t.steps) late += s.lateContacts;
     EXPECT_GT(late, 0) << "the scene no longer makes detection miss the landing pairs";
-    const int m = run.sim->model().nodeCount() / 2;  // lower cloth: nodes 0..m-1, upper: m..2m-1
+    const int m = run.sim->cloth().nodeCount() / 2;  // lower cloth: nodes 0..m-1, upper: m..2m-1
     for (int n = 1; n <= t.stepCount(); ++n) {
       ASSERT_TRUE(t.positions[n].allFinite()) << "state " << n;
       // Every upper node above its lower twin by at least the collision distance, less the
@@ -253,7 +253,7 @@ TEST(SelfCollision, ClothCrumpledIntoACornerKeepsNodesApart) {
     const Trajectory& t = run.trajectory;
     ASSERT_LT(t.positions.front().col(0).minCoeff(), -0.2)
         << "the scene no longer starts across the wall";
-    const SelfCollisionDetector detector(*run.scene, run.sim->model());
+    const SelfCollisionDetector detector(*run.scene, run.sim->cloth());
     double deepest = 0.0, closest = 1e9;  // over all states: past a wall's plane (m), pair ratio
     std::string close;
     for (int n = 1; n <= t.stepCount(); ++n) {

@@ -81,7 +81,7 @@ double directGrowth(const TempDir& dir, nlohmann::json doc, const std::string& n
   BackwardSettings direct = scene.solver.backward;
   direct.method = "direct";
   const GradientResult g =
-      backpropagate(scene, pass.trajectory, TaskLoss(scene), ParameterSet::fromTask(scene), direct);
+      backpropagate(pass.trajectory, TaskLoss(scene), ParameterSet::fromTask(scene), direct);
   EXPECT_TRUE(g.gradient.allFinite()) << name;
   return g.solver.adjointGrowth;
 }

@@ -47,7 +47,7 @@ NodeMatrix randomBlock(int m, unsigned seed) {
 std::unique_ptr<AdjointSystem> systemAtLastState(const nlohmann::json& document) {
   const Scene scene = withTightForwardSolver(test::parse(document), 1e-8);
   const ForwardPass pass = runForwardPass(scene);
-  auto system = std::make_unique<AdjointSystem>(scene);
+  auto system = std::make_unique<AdjointSystem>(pass.trajectory.model);
   system->prepare(pass.trajectory.positions.back());
   return system;
 }
@@ -70,7 +70,8 @@ TEST(AdjointSystem, AssembledMatrixMatchesTheProductAndIsSymmetric) {
 }
 
 // One recorded contact step of a forward run converged to 1e-8, prepared as Backpropagation
-// prepares it (the scene outlives the system and the contact part, which refer to it).
+// prepares it (the trajectory's model outlives the system and the contact part, which refer to
+// it).
 struct ContactStep {
   Scene scene;
   Trajectory trajectory;
@@ -84,8 +85,8 @@ std::unique_ptr<ContactStep> lastContactStep(const nlohmann::json& document) {
   s->trajectory = runForwardPass(s->scene).trajectory;
   const int n = s->trajectory.stepCount() - 1;
   const double h = s->scene.time.dt, t1 = h * (n + 1);
-  s->system = std::make_unique<AdjointSystem>(s->scene);
-  s->contact = std::make_unique<ContactAdjoint>(s->scene, s->system->model());
+  s->system = std::make_unique<AdjointSystem>(s->trajectory.model);
+  s->contact = std::make_unique<ContactAdjoint>(*s->trajectory.model);
   s->contact->prepare(s->trajectory.contacts[n], s->trajectory.positions[n], t1 - h, t1, n + 1);
   s->system->prepare(s->trajectory.positions[n + 1], s->contact.get());
   return s;
@@ -159,7 +160,7 @@ void expectInvertedExactly(AdjointSystem& system, const NodeMatrix& g) {
   ASSERT_TRUE(system.hasContact());
   NodeMatrix z = g, kz;
   system.precondition(z, false);
-  EXPECT_LT((z - system.model().mass.cwiseInverse().asDiagonal() * g).norm(), 1e-12 * z.norm());
+  EXPECT_LT((z - system.cloth().mass.cwiseInverse().asDiagonal() * g).norm(), 1e-12 * z.norm());
   system.multiplyK(z, kz);
   EXPECT_LT((kz - g).norm(), 1e-12 * g.norm());
   system.setContactPreconditioning(false);
@@ -428,17 +429,15 @@ TEST(AdjointSolvers, AutomaticPreconditionerRepeatsBitForBit) {
   const ForwardPass pass = runForwardPass(scene);
   const TaskLoss loss(scene);
   const ParameterSet parameters = ParameterSet::fromTask(scene);
-  const GradientResult a =
-      backpropagate(scene, pass.trajectory, loss, parameters, scene.solver.backward);
-  const GradientResult b =
-      backpropagate(scene, pass.trajectory, loss, parameters, scene.solver.backward);
+  const GradientResult a = backpropagate(pass.trajectory, loss, parameters, scene.solver.backward);
+  const GradientResult b = backpropagate(pass.trajectory, loss, parameters, scene.solver.backward);
   EXPECT_EQ(a.solver.iterations, b.solver.iterations);
   for (int k = 0; k < parameters.size(); ++k)
     EXPECT_EQ(a.gradient[k], b.gradient[k]) << parameters[k].path;
   // It did switch: far fewer iterations than with P alone on this cloth in tension.
   BackwardSettings byP = scene.solver.backward;
   byP.preconditioner = "p";
-  const GradientResult c = backpropagate(scene, pass.trajectory, loss, parameters, byP);
+  const GradientResult c = backpropagate(pass.trajectory, loss, parameters, byP);
   std::printf("iterations over %d steps: auto %lld, P %lld\n", a.solver.solves, a.solver.iterations,
               c.solver.iterations);
   EXPECT_LT(2 * a.solver.iterations, c.solver.iterations);
@@ -495,13 +494,13 @@ TEST(AdjointSolvers, AutomaticPreconditionerCostsAboutTheCheaperChoice) {
     const ForwardPass pass = runForwardPass(scene);
     const TaskLoss loss(scene);
     const ParameterSet parameters = ParameterSet::fromTask(scene);
-    const AdjointSystem costs(scene);
+    const AdjointSystem costs(pass.trajectory.model);
     BackwardSettings settings = scene.solver.backward;
     settings.tolerance = c.tolerance;
     settings.maxIterations = 1000;
     auto cost = [&](const char* preconditioner) {
       settings.preconditioner = preconditioner;
-      const GradientResult r = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+      const GradientResult r = backpropagate(pass.trajectory, loss, parameters, settings);
       EXPECT_EQ(r.solver.fallbacks, 0) << preconditioner;
       const AdjointSolverStats& s = r.solver;
       return double(s.iterations - s.hessianIterations) +
@@ -531,7 +530,7 @@ TEST(AdjointSolvers, EveryMethodGivesTheSameGradient) {
     settings.method = method;
     settings.tolerance = 1e-9;
     settings.maxIterations = 1000;
-    const GradientResult r = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+    const GradientResult r = backpropagate(pass.trajectory, loss, parameters, settings);
     EXPECT_EQ(r.solver.fallbacks, 0) << method;
     EXPECT_EQ(r.solver.solves, scene.time.steps) << method;
     std::printf("%-11s %d steps, %lld iterations (max %d per step), %d fallbacks, %.4f s\n", method,
@@ -587,7 +586,7 @@ TEST(AdjointSolvers, DivergingFixedPointIsDetectedAndFallsBack) {
   ASSERT_EQ(pass.unconvergedSteps, 0);
 
   // The spectral radius of P^{-1} Delta P at the last state exceeds 1.
-  AdjointSystem system(scene);
+  AdjointSystem system(pass.trajectory.model);
   system.prepare(pass.trajectory.positions.back());
   const double rho = fixedPointSpectralRadius(system);
   EXPECT_GT(rho, 1.1);
@@ -599,16 +598,14 @@ TEST(AdjointSolvers, DivergingFixedPointIsDetectedAndFallsBack) {
   settings.tolerance = 1e-10;
   settings.maxIterations = 200;
   settings.method = "direct";
-  const GradientResult reference =
-      backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  const GradientResult reference = backpropagate(pass.trajectory, loss, parameters, settings);
   settings.method = "fixed_point";
-  const GradientResult fixedPoint =
-      backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  const GradientResult fixedPoint = backpropagate(pass.trajectory, loss, parameters, settings);
   EXPECT_GT(fixedPoint.solver.notConverged, 0);
   EXPECT_GT(fixedPoint.solver.diverged, 0);
   EXPECT_EQ(fixedPoint.solver.fallbacks, fixedPoint.solver.notConverged);
   settings.method = "gmres";
-  const GradientResult gmres = backpropagate(scene, pass.trajectory, loss, parameters, settings);
+  const GradientResult gmres = backpropagate(pass.trajectory, loss, parameters, settings);
   std::printf(
       "fixed point: %d of %d steps not converged (%d diverged), %d fallbacks; gmres: %lld "
       "iterations, "
@@ -636,7 +633,7 @@ TEST(AdjointSolvers, DivergingFixedPointIsDetectedAndFallsBack) {
   settings.method = "fixed_point";
   settings.fallback = "none";
   try {
-    backpropagate(scene, pass.trajectory, loss, parameters, settings);
+    backpropagate(pass.trajectory, loss, parameters, settings);
     FAIL() << "expected a NumericalError";
   } catch (const NumericalError& e) {
     EXPECT_EQ(e.module(), "backward");

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 namespace weft {
 namespace {
 
@@ -64,10 +66,28 @@ TEST(Backpropagation, InitialVelocityGradientIsTheSumOfTheNodalOnes) {
   const Scene tight = withTightForwardSolver(scene, 1e-8);
   const ForwardPass pass = runForwardPass(tight);
   const TaskLoss loss(tight);
-  const GradientResult g = backpropagate(tight, pass.trajectory, loss,
-                                         ParameterSet::fromTask(tight), tight.solver.backward);
+  const GradientResult g =
+      backpropagate(pass.trajectory, loss, ParameterSet::fromTask(tight), tight.solver.backward);
   EXPECT_NEAR(g.gradient[0], g.dLdv0.col(2).sum(), 1e-12 * std::abs(g.gradient[0]));
   EXPECT_EQ(g.solver.solves, 10);
+}
+
+// The backward pass differentiates the model the run was simulated with, which the trajectory
+// carries; a trajectory without one (read back from a run folder) is refused, not guessed at.
+TEST(Backpropagation, DifferentiatesTheModelItsTrajectoryCarries) {
+  TempDir dir;
+  const Scene scene = test::windTaskScene(dir, {"wind.strength"}, 6);
+  const ForwardPass pass = runForwardPass(scene);
+  ASSERT_NE(pass.trajectory.model, nullptr);
+  EXPECT_EQ(pass.trajectory.model->scene().name, scene.name);
+  const TaskLoss loss(scene);
+  const GradientResult g =
+      backpropagate(pass.trajectory, loss, ParameterSet::fromTask(scene), scene.solver.backward);
+  EXPECT_NE(g.gradient[0], 0.0);
+  Trajectory readBack = pass.trajectory;
+  readBack.model.reset();
+  EXPECT_THROW(backpropagate(readBack, loss, ParameterSet::fromTask(scene), scene.solver.backward),
+               std::invalid_argument);
 }
 
 // dL/dx_n at an intermediate state against central differences: state n's positions moved
@@ -81,7 +101,7 @@ TEST(Backpropagation, StateGradientMatchesFiniteDifferencesMidRun) {
   BackwardSettings exact = scene.solver.backward;
   exact.method = "direct";  // per-vertex values: the default 1e-4 solve tolerance shows in them
   const GradientResult g =
-      backpropagate(scene, pass.trajectory, loss, ParameterSet::fromTask(scene), exact);
+      backpropagate(pass.trajectory, loss, ParameterSet::fromTask(scene), exact);
   ASSERT_EQ(g.dLdx.size(), pass.trajectory.positions.size());
   EXPECT_EQ(g.dLdx[0], g.dLdx0);
   const int n = 6;

@@ -119,7 +119,7 @@ TEST(ContactGradient, EveryBackwardSolverGivesTheSameContactGradientAndTheFixedP
     SCOPED_TRACE(method);
     settings.method = method;
     const GradientResult g =
-        backpropagate(tight, pass.trajectory, loss, ParameterSet::fromTask(tight), settings);
+        backpropagate(pass.trajectory, loss, ParameterSet::fromTask(tight), settings);
     gradients.push_back(g.gradient);
     if (std::string(method) == "gmres") {
       EXPECT_EQ(g.solver.fallbacks, 0);

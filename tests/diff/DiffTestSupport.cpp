@@ -86,11 +86,11 @@ HistoryGradients gradientsWithAndWithoutHistory(const Scene& scene, BackwardSett
   HistoryGradients g;
   BackwardSettings direct = gmres;
   direct.method = "direct";
-  g.direct = backpropagate(scene, pass.trajectory, loss, parameters, direct);
+  g.direct = backpropagate(pass.trajectory, loss, parameters, direct);
   gmres.history = 8;
-  g.combined = backpropagate(scene, pass.trajectory, loss, parameters, gmres);
+  g.combined = backpropagate(pass.trajectory, loss, parameters, gmres);
   gmres.history = 0;
-  g.lastOnly = backpropagate(scene, pass.trajectory, loss, parameters, gmres);
+  g.lastOnly = backpropagate(pass.trajectory, loss, parameters, gmres);
   return g;
 }
 

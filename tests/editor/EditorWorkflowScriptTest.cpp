@@ -344,8 +344,7 @@ TEST(EditorWorkflow, InspectorShowsTheLossGradient) {
   const ForwardPass pass = runForwardPass(saved);
   BackwardSettings exact = saved.solver.backward;
   exact.method = "direct";
-  const GradientResult g =
-      backpropagate(saved, pass.trajectory, TaskLoss(saved), ParameterSet(), exact);
+  const GradientResult g = backpropagate(pass.trajectory, TaskLoss(saved), ParameterSet(), exact);
   const Vec3 engine = g.dLdx[3].row(24).transpose();
   EXPECT_GT(engine.norm(), 1e-3);
   EXPECT_TRUE(vec(middle["gradient"]).isApprox(engine, 1e-5))

@@ -48,7 +48,7 @@ Settled settle(double stretch, const std::string& method) {
       s.quietSpeed = std::max(s.quietSpeed, test::maxSpeed(sim.velocities()));
   }
   const NodeMatrix& x = sim.positions();
-  const Eigen::VectorXd& mass = sim.model().mass;
+  const Eigen::VectorXd& mass = sim.cloth().mass;
   s.stepResidual = test::massWeightedRms(test::stepResidual(sim, x0, v0, x, sim.time()), mass);
   s.forceBalance = test::massWeightedRms(
       test::externalForces(sim, sim.time()) - test::energyGradient(sim, x), mass);

@@ -30,7 +30,7 @@ double constraintEnergy(const Simulator& sim, const NodeMatrix& x) {
 }
 
 NodeMatrix externalForces(const Simulator& sim, double t) {
-  NodeMatrix f = NodeMatrix::Zero(sim.model().nodeCount(), 3);
+  NodeMatrix f = NodeMatrix::Zero(sim.cloth().nodeCount(), 3);
   for (const auto& force : sim.forces()) force->accumulate(t, f);
   return f;
 }
@@ -44,7 +44,7 @@ double massWeightedRms(const NodeMatrix& forces, const Eigen::VectorXd& mass) {
 NodeMatrix stepResidual(const Simulator& sim, const NodeMatrix& x0, const NodeMatrix& v0,
                         const NodeMatrix& x1, double t1) {
   const double h = sim.dt();
-  const NodeMatrix inertia = sim.model().mass.asDiagonal() * (x1 - x0 - h * v0) / (h * h);
+  const NodeMatrix inertia = sim.cloth().mass.asDiagonal() * (x1 - x0 - h * v0) / (h * h);
   return inertia - externalForces(sim, t1) + energyGradient(sim, x1);
 }
 

@@ -49,7 +49,7 @@ nlohmann::json sceneFor(const StabilityCase& p, const std::string& method) {
 
 // Kinetic + gravitational + elastic (constraints, including the pins' springs) energy.
 double totalEnergy(const Simulator& sim) {
-  const Eigen::VectorXd& m = sim.model().mass;
+  const Eigen::VectorXd& m = sim.cloth().mass;
   const double kinetic = 0.5 * (m.array() * sim.velocities().rowwise().squaredNorm().array()).sum();
   const double gravitational =
       -(m.array() * (sim.positions() * *sim.scene().gravity).array()).sum();
@@ -75,7 +75,7 @@ TEST_P(Stability, StaysFiniteBoundedAndSane) {
     ASSERT_TRUE(sim.positions().allFinite()) << "step " << n;
     ASSERT_TRUE(sim.velocities().allFinite()) << "step " << n;
     const double speed = test::maxSpeed(sim.velocities());
-    const auto [lo, hi] = test::edgeStretchRange(sim.model().rest, sim.positions());
+    const auto [lo, hi] = test::edgeStretchRange(sim.cloth().rest, sim.positions());
     worstSpeed = std::max(worstSpeed, speed);
     lowest = std::min(lowest, lo);
     highest = std::max(highest, hi);
@@ -86,7 +86,7 @@ TEST_P(Stability, StaysFiniteBoundedAndSane) {
   RecordProperty("max_speed", std::to_string(worstSpeed));
   RecordProperty("edge_ratio_range", std::to_string(lowest) + " " + std::to_string(highest));
   // The cloth really moved (a frozen simulation would pass the bounds trivially).
-  EXPECT_GT((sim.positions() - sim.model().rest.vertices).cwiseAbs().maxCoeff(), 0.1);
+  EXPECT_GT((sim.positions() - sim.cloth().rest.vertices).cwiseAbs().maxCoeff(), 0.1);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -107,7 +107,7 @@ TEST_P(ConvergedStability, NeverCreatesEnergy) {
   const Scene scene = test::parse(sceneFor(p, std::get<1>(GetParam())));
   Simulator sim(scene);
   // Energy scale: the work gravity can do over the cloth's size.
-  const double scale = sim.model().mass.sum() * 9.8 * 0.5;
+  const double scale = sim.cloth().mass.sum() * 9.8 * 0.5;
   double previous = totalEnergy(sim);
   int unconverged = 0;
   for (int n = 1; n <= p.steps; ++n) {

@@ -145,7 +145,7 @@ int calibrateFactorCost(const std::vector<BackwardCase>& cases, const std::vecto
       const Scene scene = loadScene(c.file, overrides);
       std::fprintf(stderr, "calibrate: %s %dx%d forward run...\n", c.name.c_str(), n, n);
       const ForwardPass forward = runForwardPass(scene);
-      AdjointSystem system(scene);
+      AdjointSystem system(forward.trajectory.model);
       system.prepare(forward.trajectory.positions.back());
       if (!system.hasDeltaP()) continue;
       auto start = Clock::now();
@@ -340,8 +340,7 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
         settings.fallback = "direct";
         const auto start = std::chrono::steady_clock::now();
         const double cpuStart = processCpuSeconds();
-        const GradientResult g =
-            backpropagate(scene, forward.trajectory, loss, parameters, settings);
+        const GradientResult g = backpropagate(forward.trajectory, loss, parameters, settings);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double cpuSeconds = processCpuSeconds() - cpuStart;

@@ -7,6 +7,8 @@
 #include <weft/contact/PlaneShape.h>
 #include <weft/contact/SphereShape.h>
 
+#include <utility>
+
 namespace weft {
 
 RigidPose poseAt(const HandleTrajectory& motion, double t) {
@@ -36,11 +38,10 @@ std::unique_ptr<ObstacleShape> makeObstacleShape(const Obstacle& o) {
   return nullptr;
 }
 
-ContactObstacle::ContactObstacle(const Obstacle& o)
-    : shape_(makeObstacleShape(o)),
-      motion_(o.motion),
-      friction_(o.friction),
-      thickness_(o.thickness) {}
+ContactObstacle::ContactObstacle(const Obstacle& o) : ContactObstacle(o, makeObstacleShape(o)) {}
+
+ContactObstacle::ContactObstacle(const Obstacle& o, std::shared_ptr<const ObstacleShape> shape)
+    : shape_(std::move(shape)), motion_(o.motion), friction_(o.friction), thickness_(o.thickness) {}
 
 void ContactObstacle::beginStep(double t0, double t1) {
   h_ = t1 - t0;

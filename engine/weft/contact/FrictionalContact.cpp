@@ -51,10 +51,13 @@ int appendViolated(const std::vector<ContactPoint>& found, const NodeMatrix& act
 
 }  // namespace
 
-FrictionalContact::FrictionalContact(const Scene& scene, const ClothModel& model)
+FrictionalContact::FrictionalContact(
+    const Scene& scene, const ClothModel& model,
+    const std::vector<std::shared_ptr<const ObstacleShape>>& shapes)
     : model_(model), layering_(model.nodeCount()), solver_(model.nodeCount()) {
   obstacles_.reserve(scene.obstacles.size());
-  for (const Obstacle& o : scene.obstacles) obstacles_.emplace_back(o);
+  for (std::size_t o = 0; o < scene.obstacles.size(); ++o)
+    obstacles_.emplace_back(scene.obstacles[o], shapes[o]);
   // The margin only decides how early a node joins the contact set (as take-off until it needs
   // a force); a fraction of the edge length covers the motion the prediction misses.
   detector_ =

@@ -29,7 +29,9 @@ namespace weft {
 
 class FrictionalContact {
  public:
-  FrictionalContact(const Scene& scene, const ClothModel& model);
+  // `shapes`: one per scene obstacle, in scene order (Model::obstacleShapes).
+  FrictionalContact(const Scene& scene, const ClothModel& model,
+                    const std::vector<std::shared_ptr<const ObstacleShape>>& shapes);
 
   bool hasObstacles() const { return !obstacles_.empty(); }
   bool hasSelfCollision() const { return selfCollision_ != nullptr; }

@@ -1,28 +1,20 @@
 #include <weft/diff/AdjointSystem.h>
 
 #include <weft/core/Error.h>
-#include <weft/physics/AttachmentConstraint.h>
-#include <weft/physics/BendingConstraint.h>
-#include <weft/physics/StretchConstraint.h>
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace weft {
 
-AdjointSystem::AdjointSystem(const Scene& scene)
-    : model_(buildClothModel(scene)), h_(scene.time.dt) {
-  // The same families, in the same order, as the Simulator builds.
-  auto add = [this](std::unique_ptr<ProjectiveConstraint> c) {
-    if (c->rowCount() > 0) constraints_.push_back(std::move(c));
-  };
-  add(std::make_unique<StretchConstraint>(makeStretchConstraint(scene, model_)));
-  add(std::make_unique<BendingConstraint>(makeBendingConstraint(scene, model_)));
-  add(std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, false)));
-  add(std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, true)));
-
+AdjointSystem::AdjointSystem(std::shared_ptr<const Model> model)
+    : compiled_(std::move(model)),
+      model_(compiled_->cloth()),
+      h_(compiled_->dt()),
+      constraints_(compiled_->instantiateConstraints()) {
   system_ = assembleSystemMatrix(model_.mass, constraints_, h_);
   for (const auto& c : constraints_) {
     anyDerivative_ = anyDerivative_ || c->hasDerivative();

@@ -11,8 +11,8 @@
 // compressed (buckling modes). Delta R (the contact branches) makes K unsymmetric; with
 // R'^T from ContactAdjoint, K z = (P - Delta P)(z + R'^T z) - M R'^T z.
 //
-// The constraints are built here from the scene with the same make* functions as the Simulator
-// (the Simulator is not touched), so P and Delta P are exactly the forward's. Vectors are m x 3
+// The constraints are instances of the model's families, as the Simulator's are, so P and
+// Delta P are exactly the forward's. Vectors are m x 3
 // NodeMatrix blocks; the flat 3m ordering used by the assembled matrix is the NodeMatrix's
 // column-major storage (index = coordinate * m + node).
 
@@ -20,9 +20,9 @@
 #include <weft/diff/ContactAdjoint.h>
 #include <weft/model/ClothModel.h>
 #include <weft/physics/HessianAssembly.h>
+#include <weft/physics/Model.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SparseCholesky.h>
-#include <weft/scene/Scene.h>
 
 #include <Eigen/SparseCore>
 
@@ -33,11 +33,12 @@ namespace weft {
 
 class AdjointSystem {
  public:
-  // Builds the constraints and factorises P. Throws NumericalError if P is not positive definite.
-  explicit AdjointSystem(const Scene& scene);
+  // Instantiates the model's constraints and factorises P; keeps the model. Throws
+  // NumericalError if P is not positive definite.
+  explicit AdjointSystem(std::shared_ptr<const Model> model);
   ~AdjointSystem();
 
-  const ClothModel& model() const { return model_; }
+  const ClothModel& cloth() const { return model_; }
   double dt() const { return h_; }
   int nodeCount() const { return model_.nodeCount(); }
   const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const {
@@ -125,7 +126,8 @@ class AdjointSystem {
   static constexpr double kFactorCostScale = 15.0;
 
  private:
-  ClothModel model_;
+  std::shared_ptr<const Model> compiled_;
+  const ClothModel& model_;
   double h_;
   std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
   Eigen::SparseMatrix<double> system_;

@@ -7,27 +7,33 @@
 
 #include <chrono>
 #include <memory>
+#include <stdexcept>
 
 namespace weft {
 
-GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, const TaskLoss& loss,
+GradientResult backpropagate(const Trajectory& trajectory, const TaskLoss& loss,
                              const ParameterSet& parameters, const BackwardSettings& settings) {
+  if (!trajectory.model)
+    throw std::invalid_argument(
+        "backpropagate: the trajectory has no model (record it with Simulator::run)");
   const auto start = std::chrono::steady_clock::now();
+  const Model& compiled = *trajectory.model;
+  const Scene& scene = compiled.scene();
   GradientResult result;
   result.loss = loss.value(scene, trajectory);
   result.gradient = Eigen::VectorXd::Zero(parameters.size());
 
-  AdjointSystem system(scene);
-  const ClothModel& model = system.model();
-  ParameterPartials partials(scene, model, parameters.parameters());
+  AdjointSystem system(trajectory.model);
+  const ClothModel& model = compiled.cloth();
+  ParameterPartials partials(compiled, parameters.parameters());
   AdjointSolver solver(settings);
-  const double h = scene.time.dt;
+  const double h = compiled.dt();
   const int steps = trajectory.stepCount();
   const int m = model.nodeCount();
 
   // Contact steps (ContactAdjoint.h): the law's Jacobians and frames from the recorded contacts.
   std::unique_ptr<ContactAdjoint> contact;
-  if (!trajectory.contacts.empty()) contact = std::make_unique<ContactAdjoint>(scene, model);
+  if (!trajectory.contacts.empty()) contact = std::make_unique<ContactAdjoint>(compiled);
 
   std::vector<NodeMatrix> dLdx = loss.gradient(trajectory);
   NodeMatrix dLdvNext = NodeMatrix::Zero(m, 3);  // dL/dv_{n+1} through the steps after n+1

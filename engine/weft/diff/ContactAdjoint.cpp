@@ -40,10 +40,11 @@ std::vector<std::vector<int>> coupledGroups(
 
 }  // namespace
 
-ContactAdjoint::ContactAdjoint(const Scene& scene, const ClothModel& model)
-    : scene_(scene), model_(model), h_(scene.time.dt) {
-  obstacles_.reserve(scene.obstacles.size());
-  for (const Obstacle& o : scene.obstacles) obstacles_.emplace_back(o);
+ContactAdjoint::ContactAdjoint(const Model& model)
+    : scene_(model.scene()), model_(model.cloth()), h_(model.dt()) {
+  obstacles_.reserve(scene_.obstacles.size());
+  for (std::size_t o = 0; o < scene_.obstacles.size(); ++o)
+    obstacles_.emplace_back(scene_.obstacles[o], model.obstacleShapes()[o]);
 }
 
 ContactAdjoint::~ContactAdjoint() = default;

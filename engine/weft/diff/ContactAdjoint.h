@@ -30,6 +30,7 @@
 #include <weft/contact/ContactObstacle.h>
 #include <weft/diff/SceneParameter.h>
 #include <weft/model/ClothModel.h>
+#include <weft/physics/Model.h>
 #include <weft/record/StepContacts.h>
 
 #include <Eigen/SparseCore>
@@ -42,7 +43,8 @@ namespace weft {
 
 class ContactAdjoint {
  public:
-  ContactAdjoint(const Scene& scene, const ClothModel& model);
+  // The model's obstacles, posed per step here. The model must outlive the adjoint.
+  explicit ContactAdjoint(const Model& model);
   ~ContactAdjoint();
 
   // Prepares the step from x0 = x_n (time t0) to t1 from its contact record. Throws

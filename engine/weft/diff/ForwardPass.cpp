@@ -4,13 +4,19 @@
 #include <weft/scene/SceneLoader.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace weft {
 
 ForwardPass runForwardPass(const Scene& scene) {
+  return runForwardPass(Model::compile(scene));
+}
+
+ForwardPass runForwardPass(std::shared_ptr<const Model> model) {
   ForwardPass pass;
-  Simulator sim(scene);
-  sim.run(scene.time.steps, pass.trajectory);
+  const int steps = model->stepCount();
+  Simulator sim(std::move(model));
+  sim.run(steps, pass.trajectory);
   for (const StepStats& s : pass.trajectory.steps) {
     if (!s.converged) ++pass.unconvergedSteps;
     pass.maxResidual = std::max(pass.maxResidual, s.residual);

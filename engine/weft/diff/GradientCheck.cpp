@@ -36,7 +36,7 @@ GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parame
   const ForwardPass base = runForwardPass(scene);
   ++report.forwardRuns;
   report.unconvergedSteps += base.unconvergedSteps;
-  const GradientResult adjoint = backpropagate(scene, base.trajectory, loss, parameters, backward);
+  const GradientResult adjoint = backpropagate(base.trajectory, loss, parameters, backward);
   report.loss = adjoint.loss;
   report.backward = adjoint.solver;
 
@@ -50,11 +50,10 @@ GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parame
     for (int s = 0; s < 2; ++s) {
       Eigen::VectorXd shifted = values;
       shifted[k] += s == 0 ? e.step : -e.step;
-      const Scene perturbed = parameters.withValues(scene, shifted);
-      const ForwardPass run = runForwardPass(perturbed);
+      const ForwardPass run = runForwardPass(parameters.compile(scene, shifted));
       ++report.forwardRuns;
       report.unconvergedSteps += run.unconvergedSteps;
-      side[s] = loss.value(perturbed, run.trajectory);
+      side[s] = loss.value(run.trajectory.model->scene(), run.trajectory);
     }
     e.finiteDifference = (side[0] - side[1]) / (2.0 * e.step);
     e.adjoint = adjoint.gradient[k];

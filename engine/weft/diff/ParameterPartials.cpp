@@ -10,13 +10,13 @@
 
 namespace weft {
 
-ParameterPartials::ParameterPartials(const Scene& scene, const ClothModel& model,
+ParameterPartials::ParameterPartials(const Model& model,
                                      const std::vector<SceneParameter>& parameters)
-    : scene_(scene),
-      model_(model),
+    : scene_(model.scene()),
+      model_(model.cloth()),
       parameters_(parameters),
       unit_(parameters.size()),
-      h_(scene.time.dt) {
+      h_(model.dt()) {
   using Kind = SceneParameter::Kind;
   for (std::size_t k = 0; k < parameters_.size(); ++k) {
     const SceneParameter& p = parameters_[k];
@@ -29,7 +29,7 @@ ParameterPartials::ParameterPartials(const Scene& scene, const ClothModel& model
     else
       unit_[k].constraint = std::make_unique<BendingConstraint>(
           buildHinges(model_.rest.vertices, tris, 1.0,
-                      scene.cloths[p.cloth].material.bendModel == Material::BendModel::Oriented),
+                      scene_.cloths[p.cloth].material.bendModel == Material::BendModel::Oriented),
           model_.nodeCount());
     unit_[k].gram = unit_[k].constraint->weightedGram();
   }

@@ -24,6 +24,7 @@
 
 #include <weft/diff/SceneParameter.h>
 #include <weft/model/ClothModel.h>
+#include <weft/physics/Model.h>
 #include <weft/physics/ProjectiveConstraint.h>
 
 #include <Eigen/Core>
@@ -36,8 +37,8 @@ namespace weft {
 
 class ParameterPartials {
  public:
-  ParameterPartials(const Scene& scene, const ClothModel& model,
-                    const std::vector<SceneParameter>& parameters);
+  // The model must outlive the partials.
+  ParameterPartials(const Model& model, const std::vector<SceneParameter>& parameters);
   ~ParameterPartials();
 
   // gradient[k] += -z . dG/dtheta_k for the step from (x0, v0) to x1 ending at time t1.

@@ -34,6 +34,11 @@ Scene ParameterSet::withValues(const Scene& scene, const Eigen::VectorXd& values
   return changed;
 }
 
+std::shared_ptr<const Model> ParameterSet::compile(const Scene& scene,
+                                                   const Eigen::VectorXd& values) const {
+  return Model::compile(withValues(scene, values));
+}
+
 Scene withDocumentValue(const Scene& scene, const std::string& path, const nlohmann::json& value) {
   nlohmann::json doc = scene.document;
   const std::string err = setJsonPath(doc, path, value);

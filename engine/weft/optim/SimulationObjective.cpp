@@ -19,14 +19,14 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& gradient) {
   const auto start = std::chrono::steady_clock::now();
-  const Scene scene = parameters_.withValues(scene_, space_.toValues(z));
-  const ForwardPass forward = runForwardPass(scene);
+  const ForwardPass forward = runForwardPass(parameters_.compile(scene_, space_.toValues(z)));
+  const Model& model = *forward.trajectory.model;
   unconverged_ += forward.unconvergedSteps;
   const double forwardSeconds = secondsSince(start);
   forwardSeconds_ += forwardSeconds;
   ++forwardPasses_;
   const GradientResult r =
-      backpropagate(scene, forward.trajectory, loss_, parameters_, scene.solver.backward);
+      backpropagate(forward.trajectory, loss_, parameters_, model.solver().backward);
   gradient = space_.gradientToCoordinates(z, r.gradient);
   backward_.solves += r.solver.solves;
   backward_.iterations += r.solver.iterations;
@@ -50,10 +50,9 @@ double SimulationObjective::value(const Eigen::VectorXd& z) {
   // The forward pass and the loss of its trajectory, nothing recorded for a backward pass to use:
   // what a gradient-free method pays per evaluation (time.steps simulated steps).
   const auto start = std::chrono::steady_clock::now();
-  const Scene scene = parameters_.withValues(scene_, space_.toValues(z));
-  const ForwardPass forward = runForwardPass(scene);
+  const ForwardPass forward = runForwardPass(parameters_.compile(scene_, space_.toValues(z)));
   unconverged_ += forward.unconvergedSteps;
-  const double loss = loss_.value(scene, forward.trajectory);
+  const double loss = loss_.value(forward.trajectory.model->scene(), forward.trajectory);
   const double seconds = secondsSince(start);
   forwardSeconds_ += seconds;
   ++forwardPasses_;

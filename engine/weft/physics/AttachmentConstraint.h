@@ -6,6 +6,7 @@
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/scene/HandleTrajectory.h>
 
+#include <memory>
 #include <vector>
 
 namespace weft {
@@ -22,6 +23,9 @@ class AttachmentConstraint final : public ProjectiveConstraint {
   };
   AttachmentConstraint(const char* name, std::vector<Row> rows, const NodeMatrix& initial);
   const char* name() const override { return name_; }
+  std::unique_ptr<ProjectiveConstraint> clone() const override {
+    return std::make_unique<AttachmentConstraint>(*this);
+  }
   void beginStep(double time, const NodeMatrix& start) override;
   double project(const NodeMatrix& x, NodeMatrix& weightedProjections) const override;
   const std::vector<Row>& rows() const { return rows_; }

@@ -20,6 +20,7 @@
 
 #include <weft/physics/ProjectiveConstraint.h>
 
+#include <memory>
 #include <vector>
 
 namespace weft {
@@ -40,6 +41,9 @@ class BendingConstraint final : public ProjectiveConstraint {
  public:
   BendingConstraint(std::vector<Hinge> hinges, int nodes);
   const char* name() const override { return "bending"; }
+  std::unique_ptr<ProjectiveConstraint> clone() const override {
+    return std::make_unique<BendingConstraint>(*this);
+  }
   double project(const NodeMatrix& x, NodeMatrix& weightedProjections) const override;
   bool projectsToZero() const override { return allFlat_; }
   double energy(const NodeMatrix& x) const override;

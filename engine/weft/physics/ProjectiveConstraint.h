@@ -30,6 +30,8 @@ class ProjectiveConstraint {
  public:
   virtual ~ProjectiveConstraint() = default;
   virtual const char* name() const = 0;
+  // A copy with its own per-step state (Model::instantiateConstraints).
+  virtual std::unique_ptr<ProjectiveConstraint> clone() const = 0;
 
   int rowCount() const { return static_cast<int>(weights_.size()); }
   const Eigen::VectorXd& weights() const { return weights_; }

@@ -2,18 +2,12 @@
 
 #include <weft/contact/FrictionalContact.h>
 #include <weft/core/Error.h>
-#include <weft/physics/AttachmentConstraint.h>
-#include <weft/physics/BendingConstraint.h>
 #include <weft/physics/ExternalForce.h>
-#include <weft/physics/GravityForce.h>
 #include <weft/physics/ModuleTimer.h>
-#include <weft/physics/NodalForces.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/StepContext.h>
 #include <weft/physics/StepSolver.h>
-#include <weft/physics/StretchConstraint.h>
 #include <weft/physics/SystemMatrix.h>
-#include <weft/physics/WindForce.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -31,60 +25,35 @@ constexpr double kBlowUpSpeed = 1e5;  // m/s
 
 }  // namespace
 
-Simulator::Simulator(const Scene& scene)
-    : scene_(scene),
-      model_(buildClothModel(scene)),
-      h_(scene.time.dt),
+Simulator::Simulator(const Scene& scene) : Simulator(Model::compile(scene)) {}
+
+Simulator::Simulator(std::shared_ptr<const Model> model)
+    : compiled_(std::move(model)),
+      scene_(compiled_->scene()),
+      model_(compiled_->cloth()),
+      h_(compiled_->dt()),
       timer_(std::make_unique<ModuleTimer>()) {
+  // Modules: the solver, then only what the scene names (the model's constraint families with
+  // rows, its forces, contact for obstacles or self-collision).
   solverModule_ = timer_->add("solver");
-  // Constraint modules: only those with at least one instance.
-  auto addConstraint = [this](std::unique_ptr<ProjectiveConstraint> c) {
-    if (c->rowCount() == 0) return;
-    constraintModule_.push_back(timer_->add(c->name()));
-    constraints_.push_back(std::move(c));
-  };
-  addConstraint(std::make_unique<StretchConstraint>(makeStretchConstraint(scene, model_)));
-  addConstraint(std::make_unique<BendingConstraint>(makeBendingConstraint(scene, model_)));
-  addConstraint(
-      std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, false)));
-  addConstraint(
-      std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, model_, true)));
+  constraints_ = compiled_->instantiateConstraints();
+  for (const auto& c : constraints_) constraintModule_.push_back(timer_->add(c->name()));
+  for (const auto& f : compiled_->forces()) forceModule_.push_back(timer_->add(f->name()));
 
-  // Force modules: only the effects the scene names.
-  auto addForce = [this](std::unique_ptr<ExternalForce> f) {
-    forceModule_.push_back(timer_->add(f->name()));
-    forces_.push_back(std::move(f));
-  };
-  if (scene.gravity) addForce(std::make_unique<GravityForce>(*scene.gravity, model_.mass));
-  if (scene.wind) addForce(std::make_unique<WindForce>(*scene.wind, model_.lumpedArea));
-  bool anyNodalForce = false;
-  NodeMatrix nodal = NodeMatrix::Zero(model_.nodeCount(), 3);
-  for (std::size_t c = 0; c < scene.cloths.size(); ++c)
-    for (const PointForce& pf : scene.cloths[c].forces)
-      for (int v : pf.vertices) {
-        nodal.row(model_.vertexOffset[c] + v) += pf.force.transpose();
-        anyNodalForce = true;
-      }
-  if (anyNodalForce) addForce(std::make_unique<NodalForces>(std::move(nodal)));
-
-  // Contact modules: only for scenes with obstacles or self-collision.
-  if (!scene.obstacles.empty() || scene.hasSelfCollision()) {
+  if (compiled_->hasContact()) {
     const auto start = ModuleTimer::Clock::now();
-    contact_ = std::make_unique<FrictionalContact>(scene, model_);
+    contact_ = std::make_unique<FrictionalContact>(scene_, model_, compiled_->obstacleShapes());
     if (contact_->hasObstacles()) contactDetectionModule_ = timer_->add("contact_detection");
     if (contact_->hasSelfCollision()) selfCollisionModule_ = timer_->add("self_collision");
     contactSolveModule_ = timer_->add("contact_solve");
-    // Building the shapes (mesh BVHs) and the self-collision tables counts as detection.
+    // Building the self-collision tables counts as detection.
     timer_->charge(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_,
                    ModuleTimer::secondsSince(start));
   }
 
   const int m = model_.nodeCount();
   x_ = model_.rest.vertices;
-  v_.resize(m, 3);
-  for (std::size_t c = 0; c < scene.cloths.size(); ++c)
-    for (int i = model_.vertexOffset[c]; i < model_.vertexOffset[c + 1]; ++i)
-      v_.row(i) = scene.cloths[c].initialVelocity.transpose();
+  v_ = compiled_->initialVelocities();
   warmStart_.setZero(m, 3);
   force_.setZero(m, 3);
   if (contact_) predicted_.setZero(m, 3);
@@ -92,7 +61,7 @@ Simulator::Simulator(const Scene& scene)
   timer_->timed(solverModule_,
                 [&] { system_ = std::make_unique<SystemMatrix>(model_.mass, constraints_, h_); });
   context_ =
-      std::make_unique<StepContext>(scene, model_, x_, constraints_, constraintModule_, *system_,
+      std::make_unique<StepContext>(*compiled_, x_, constraints_, constraintModule_, *system_,
                                     *timer_, solverModule_, contact_.get(), contactSolveModule_);
   solver_ = makeStepSolver(*context_);
 }
@@ -123,8 +92,9 @@ const StepStats& Simulator::step() {
 
   // External forces at the end of the step (implicit Euler, Eqs. 1-2).
   force_.setZero();
-  for (std::size_t f = 0; f < forces_.size(); ++f)
-    timer_->timed(forceModule_[f], [&] { forces_[f]->accumulate(t1, force_); });
+  const auto& forces = compiled_->forces();
+  for (std::size_t f = 0; f < forces.size(); ++f)
+    timer_->timed(forceModule_[f], [&] { forces[f]->accumulate(t1, force_); });
   for (std::size_t c = 0; c < constraints_.size(); ++c)
     timer_->timed(constraintModule_[c], [&] { constraints_[c]->beginStep(t1, x_); });
 
@@ -217,7 +187,7 @@ void Simulator::restart(int step, const NodeMatrix& x, const NodeMatrix& v) {
 
 void Simulator::diagnoseNonFinite(const NodeMatrix& lastGood) const {
   NodeMatrix f = NodeMatrix::Zero(lastGood.rows(), 3);
-  for (const auto& force : forces_) {
+  for (const auto& force : compiled_->forces()) {
     force->accumulate(time_ + h_, f);
     if (!f.allFinite()) throw NumericalError(step_ + 1, force->name(), "non-finite external force");
   }
@@ -236,6 +206,7 @@ void Simulator::run(int steps, Trajectory& trajectory,
     trajectory.positions.push_back(x_);
     trajectory.velocities.push_back(v_);
     trajectory.moduleNames = timer_->names();
+    trajectory.model = compiled_;
   }
   trajectory.positions.reserve(trajectory.positions.size() + steps);
   trajectory.velocities.reserve(trajectory.velocities.size() + steps);

@@ -6,14 +6,14 @@
 
 namespace weft {
 
-StepContext::StepContext(const Scene& scene, const ClothModel& model, const NodeMatrix& start,
+StepContext::StepContext(const Model& compiled, const NodeMatrix& start,
                          const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints,
                          const std::vector<int>& constraintModule, SystemMatrix& system,
                          ModuleTimer& timer, int solverModule, FrictionalContact* contact,
                          int contactSolveModule)
-    : settings(scene.solver),
-      model(model),
-      h(scene.time.dt),
+    : settings(compiled.solver()),
+      model(compiled.cloth()),
+      h(compiled.dt()),
       start(start),
       constraints(constraints),
       constraintModule(constraintModule),

@@ -8,11 +8,11 @@
 
 #include <weft/core/Types.h>
 #include <weft/model/ClothModel.h>
+#include <weft/physics/Model.h>
 #include <weft/physics/ModuleTimer.h>
 #include <weft/physics/ProjectiveConstraint.h>
 #include <weft/physics/SystemMatrix.h>
 #include <weft/record/StepStats.h>
-#include <weft/scene/Scene.h>
 
 #include <memory>
 #include <utility>
@@ -26,7 +26,7 @@ class FrictionalContact;
 struct StepContext {
   // `start` is the state the steps start from (x_n, kept by the Simulator); `contact` is null
   // without obstacles and self-collision. All must outlive the context.
-  StepContext(const Scene& scene, const ClothModel& model, const NodeMatrix& start,
+  StepContext(const Model& compiled, const NodeMatrix& start,
               const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints,
               const std::vector<int>& constraintModule, SystemMatrix& system, ModuleTimer& timer,
               int solverModule, FrictionalContact* contact, int contactSolveModule);

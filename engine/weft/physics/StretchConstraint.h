@@ -6,6 +6,7 @@
 
 #include <weft/physics/ProjectiveConstraint.h>
 
+#include <memory>
 #include <vector>
 
 namespace weft {
@@ -19,6 +20,9 @@ class StretchConstraint final : public ProjectiveConstraint {
   StretchConstraint(const NodeMatrix& rest, const TriangleIndices& triangles,
                     const std::vector<double>& stiffness);
   const char* name() const override { return "stretch"; }
+  std::unique_ptr<ProjectiveConstraint> clone() const override {
+    return std::make_unique<StretchConstraint>(*this);
+  }
   double project(const NodeMatrix& x, NodeMatrix& weightedProjections) const override;
   int triangleCount() const { return static_cast<int>(nodes_.size()); }
   bool hasDerivative() const override { return true; }

@@ -29,7 +29,10 @@ std::unique_ptr<ObstacleShape> makeObstacleShape(const Obstacle& obstacle);
 
 class ContactObstacle {
  public:
+  // The obstacle with its own shape, or with a shape already built for it (Model's, shared by
+  // the simulator and the backward pass).
   explicit ContactObstacle(const Obstacle& obstacle);
+  ContactObstacle(const Obstacle& obstacle, std::shared_ptr<const ObstacleShape> shape);
 
   // Caches the poses at the step's start and end times.
   void beginStep(double t0, double t1);
@@ -48,7 +51,7 @@ class ContactObstacle {
   const ObstacleShape& shape() const { return *shape_; }
 
  private:
-  std::unique_ptr<ObstacleShape> shape_;
+  std::shared_ptr<const ObstacleShape> shape_;
   std::optional<HandleTrajectory> motion_;
   double friction_, thickness_;
   RigidPose start_, end_;

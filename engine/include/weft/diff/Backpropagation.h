@@ -15,7 +15,6 @@
 #include <weft/diff/ParameterSet.h>
 #include <weft/diff/TaskLoss.h>
 #include <weft/record/Trajectory.h>
-#include <weft/scene/Scene.h>
 
 #include <Eigen/Core>
 
@@ -37,8 +36,10 @@ struct GradientResult {
   double deltaPSeconds = 0.0, deltaRSeconds = 0.0;
 };
 
-// Backpropagates `loss` through `trajectory` (recorded from `scene` by runForwardPass).
-GradientResult backpropagate(const Scene& scene, const Trajectory& trajectory, const TaskLoss& loss,
+// Backpropagates `loss` through `trajectory` (recorded by Simulator::run, e.g. through
+// runForwardPass), with the model it carries: the forward's constraints, obstacles and dt.
+// Throws std::invalid_argument for a trajectory without a model (one read from a run folder).
+GradientResult backpropagate(const Trajectory& trajectory, const TaskLoss& loss,
                              const ParameterSet& parameters, const BackwardSettings& settings);
 
 }  // namespace weft

@@ -2,8 +2,11 @@
 // The forward run a gradient is taken of: the scene simulated for its time.steps, every state
 // recorded (the backward pass rebuilds each step's Delta P from the recorded x_{n+1}).
 
+#include <weft/physics/Model.h>
 #include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
+
+#include <memory>
 
 namespace weft {
 
@@ -14,6 +17,9 @@ struct ForwardPass {
   long long solves = 0;      // solves with P over the run
 };
 
+// The model simulated for its time.steps; the trajectory refers to it.
+ForwardPass runForwardPass(std::shared_ptr<const Model> model);
+// The same for a scene compiled here.
 ForwardPass runForwardPass(const Scene& scene);
 
 // The scene with the forward solver tightened for gradients: Newton-PCG (whose quadratic

@@ -6,9 +6,11 @@
 // would give, and no file is read again.
 
 #include <weft/diff/SceneParameter.h>
+#include <weft/physics/Model.h>
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,8 @@ class ParameterSet {
   Eigen::VectorXd values(const Scene& scene) const;
   // A copy of `scene` with the parameters set to `values` (typed setters; reads no file).
   Scene withValues(const Scene& scene, const Eigen::VectorXd& values) const;
+  // That copy compiled: the model one objective evaluation simulates and differentiates.
+  std::shared_ptr<const Model> compile(const Scene& scene, const Eigen::VectorXd& values) const;
 
  private:
   std::vector<SceneParameter> parameters_;

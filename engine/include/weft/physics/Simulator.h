@@ -10,6 +10,7 @@
 
 #include <weft/core/Types.h>
 #include <weft/model/ClothModel.h>
+#include <weft/physics/Model.h>
 #include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
 #include <weft/record/Trajectory.h>
@@ -35,13 +36,17 @@ class SystemMatrix;
 
 class Simulator {
  public:
-  // Builds the modules the scene names and factorises P. The scene must outlive the simulator.
-  // Throws InputError for scene features this build cannot simulate.
+  // Builds the modules the model's scene names and factorises P; the simulator keeps the model.
+  explicit Simulator(std::shared_ptr<const Model> model);
+  // The same for a scene compiled here (Model::compile). Throws InputError for an obstacle mesh
+  // without triangles.
   explicit Simulator(const Scene& scene);
   ~Simulator();
 
+  const Model& model() const { return *compiled_; }
+  const std::shared_ptr<const Model>& sharedModel() const { return compiled_; }
   const Scene& scene() const { return scene_; }
-  const ClothModel& model() const { return model_; }
+  const ClothModel& cloth() const { return model_; }
   const NodeMatrix& positions() const { return x_; }
   const NodeMatrix& velocities() const { return v_; }
   double time() const { return time_; }
@@ -52,7 +57,7 @@ class Simulator {
   // on a blow-up.
   const StepStats& step();
   // Runs `steps` steps from the current state, recording into `trajectory` (which gets the
-  // current state first if it is empty). `progress` is called after every step.
+  // current state and the model first if it is empty). `progress` is called after every step.
   void run(int steps, Trajectory& trajectory,
            const std::function<void(const StepStats&)>& progress = nullptr);
 
@@ -68,7 +73,7 @@ class Simulator {
   const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const {
     return constraints_;
   }
-  const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return forces_; }
+  const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return compiled_->forces(); }
   // The scene's contact, or null when it has no obstacles and no self-collision.
   const FrictionalContact* contact() const { return contact_.get(); }
   // The contacts of the last step (empty before the first step or without contact).
@@ -80,14 +85,14 @@ class Simulator {
   void detectContacts(double t0, double t1);
   void diagnoseNonFinite(const NodeMatrix& lastGood) const;
 
+  std::shared_ptr<const Model> compiled_;
   const Scene& scene_;
-  ClothModel model_;
+  const ClothModel& model_;
   double h_;
   std::unique_ptr<ModuleTimer> timer_;
   std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
   std::vector<int> constraintModule_;
-  std::vector<std::unique_ptr<ExternalForce>> forces_;
-  std::vector<int> forceModule_;
+  std::vector<int> forceModule_;  // the timing module of each of the model's forces
   int solverModule_ = -1;
   std::unique_ptr<FrictionalContact> contact_;
   int contactDetectionModule_ = -1, selfCollisionModule_ = -1, contactSolveModule_ = -1;

@@ -1,17 +1,24 @@
 #pragma once
-// The recorded forward run: the converged state of every step (what the backward pass needs to
-// rebuild each step's projections and contact branches) and the per-step statistics.
+// The recorded forward run: the model it was simulated with, the converged state of every step
+// (what the backward pass needs to rebuild each step's projections and contact branches) and the
+// per-step statistics.
 
 #include <weft/core/Types.h>
 #include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace weft {
 
+class Model;  // physics/Model.h: the trajectory holds it, the backward pass reads it
+
 struct Trajectory {
+  // The compiled scene the states were simulated with (set by Simulator::run); null for a run
+  // read back from a run folder, which cannot be differentiated.
+  std::shared_ptr<const Model> model;
   std::vector<NodeMatrix> positions;   // states 0..N
   std::vector<NodeMatrix> velocities;  // states 0..N
   std::vector<StepStats> steps;        // steps 1..N
