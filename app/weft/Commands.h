@@ -16,7 +16,7 @@ int gradcheckCommand(const std::vector<std::string>& args);
 int optimizeCommand(const std::vector<std::string>& args);
 // `weft landscape` (LandscapeCommand.cpp): the task loss on a grid over one or two parameters.
 int landscapeCommand(const std::vector<std::string>& args);
-// `weft bench render` (RenderBench.cpp).
+// `weft bench render` (RenderBenchCommand.cpp; the benchmark is bench/weft/bench/RenderBench).
 int renderBenchmark(const std::vector<std::string>& args);
 
 }  // namespace weft::cli

@@ -1,9 +1,4 @@
-// `weft bench render`: how fast the headless renderer draws (frames per second for a 48x48-quad
-// cloth draped on a sphere at 1280x720, per overlay) and how long a 200-frame run takes to
-// render to PNG. Writes render.csv and render.md. Reported, not asserted.
-
-#include "CommandLine.h"
-#include "Commands.h"
+#include <weft/bench/RenderBench.h>
 
 #include <weft/core/Error.h>
 #include <weft/frames/ClothFields.h>
@@ -11,7 +6,6 @@
 #include <weft/frames/RenderJob.h>
 #include <weft/frames/SyntheticDrape.h>
 #include <weft/io/StagedDirectory.h>
-#include <weft/render/HeadlessContext.h>
 #include <weft/render/RenderError.h>
 #include <weft/render/Renderer.h>
 #include <weft/scene/SceneLoader.h>
@@ -25,7 +19,7 @@
 
 namespace fs = std::filesystem;
 
-namespace weft::cli {
+namespace weft::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -54,27 +48,13 @@ struct Row {
 
 }  // namespace
 
-int renderBenchmark(const std::vector<std::string>& args) {
-  CommandLine cl(args, {"--out", "--frames", "--size", "--backend"}, {"--quick"});
-  cl.setContext("bench render");
-  const bool quick = cl.has("--quick");
-  const int runFrames = cl.integer("--frames", quick ? 20 : 200, 1, 100000);
-  int width = 1280, height = 720;
-  if (cl.has("--size")) {
-    const std::string text = cl.value("--size", "");
-    char tail = 0;
-    if (std::sscanf(text.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 16 ||
-        height < 16 || width > 8192 || height > 8192)
-      cl.fail("--size", "expects WxH with each side in [16, 8192], got '" + text + "'");
-  }
-  render::HeadlessBackend backend;
-  const std::string backendName = cl.value("--backend", "auto");
-  if (!render::parseHeadlessBackend(backendName, backend))
-    cl.fail("--backend", "must be auto, osmesa or egl, got '" + backendName + "'");
-  const std::string outDir = cl.value("--out", "out/bench-render");
+RenderBenchSummary runRenderBench(const RenderBenchOptions& options, const std::string& outDir) {
+  const bool quick = options.quick;
+  const int runFrames = options.runFrames;
+  const int width = options.width, height = options.height;
+  const render::HeadlessBackend backend = options.backend;
   StagedDirectory out(outDir);
   std::vector<Row> rows;
-
   // 1. Drawing speed: the draped 48x48 cloth and the sphere, per overlay, at width x height.
   const Scene sphereScene = parseScene(sphereSceneDocument(), "<bench render sphere>", ".");
   const ClothModel sphereModel = buildClothModel(sphereScene);
@@ -86,12 +66,8 @@ int renderBenchmark(const std::vector<std::string>& args) {
   const render::Camera camera = render::namedViewCamera(
       render::NamedView::Auto, render::sceneBounds(base), float(width) / float(height));
 
-  std::unique_ptr<render::RenderContext> context;
-  try {
-    context = render::createHeadlessContext(width, height, backend, &std::cerr);
-  } catch (const render::ContextError& e) {
-    cl.fail("--backend " + backendName, e.what());
-  }
+  std::unique_ptr<render::RenderContext> context =
+      render::createHeadlessContext(width, height, backend, &std::cerr);
   std::string glRenderer;
   {
     render::Renderer renderer(*context);
@@ -161,12 +137,8 @@ int renderBenchmark(const std::vector<std::string>& args) {
   for (int s = 1; s <= runFrames; ++s) job.frames.push_back(s);
   const std::string framesDir = out.path() + "/frames";
   fs::create_directories(framesDir);
-  RenderReport report;
-  try {
-    report = renderFrames(sphereScene, sphereModel, states, ContactRecord{}, job, framesDir);
-  } catch (const render::ContextError& e) {
-    cl.fail("--backend " + backendName, e.what());
-  }
+  const RenderReport report =
+      renderFrames(sphereScene, sphereModel, states, ContactRecord{}, job, framesDir);
   fs::remove_all(framesDir);  // the timing is the result, not the pictures
   rows.push_back({"run_to_png_total", report.frames, report.totalSeconds});
   rows.push_back({"run_to_png_draw", report.frames, report.renderSeconds});
@@ -198,12 +170,15 @@ int renderBenchmark(const std::vector<std::string>& args) {
     if (!csv || !md) throw InputError(outDir, "--out", "cannot write the benchmark tables");
   }
   out.commit();
-  std::printf(
-      "bench render: %dx%d %s: 48x48 cloth on a sphere %.1f frames/s; %d-frame run to PNG %.2f s "
-      "(%.2f drawing, %.2f waiting for PNG) -> %s\n",
-      width, height, report.backend.c_str(), rows[0].frames / rows[0].seconds, report.frames,
-      report.totalSeconds, report.renderSeconds, report.writeSeconds, outDir.c_str());
-  return 0;
+  RenderBenchSummary summary;
+  summary.backend = report.backend;
+  summary.glRenderer = glRenderer;
+  summary.plainFramesPerSecond = rows[0].frames / rows[0].seconds;
+  summary.runFrames = report.frames;
+  summary.runSeconds = report.totalSeconds;
+  summary.drawSeconds = report.renderSeconds;
+  summary.pngWaitSeconds = report.writeSeconds;
+  return summary;
 }
 
-}  // namespace weft::cli
+}  // namespace weft::bench
