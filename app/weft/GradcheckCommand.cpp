@@ -16,6 +16,7 @@
 #include <weft/diff/Backpropagation.h>
 #include <weft/diff/GradientCheck.h>
 #include <weft/diff/ParameterSet.h>
+#include <weft/record/ConvergenceReport.h>
 #include <weft/scene/SceneLoader.h>
 
 #include <nlohmann/json.hpp>
@@ -93,6 +94,7 @@ int gradcheckCommand(const std::vector<std::string>& args) {
   const std::string growth =
       adjointGrowthWarning(b, report.backwardMethod, report.backwardTolerance);
   if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
+  std::fprintf(stderr, "%s", unconvergedGradientWarning(report.unconvergedSteps).c_str());
   return 0;
 }
 

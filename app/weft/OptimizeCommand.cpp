@@ -31,6 +31,7 @@
 #include <weft/diff/Backpropagation.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/optim/OptimizationRun.h>
+#include <weft/record/ConvergenceReport.h>
 #include <weft/scene/SceneLoader.h>
 
 #include <nlohmann/json.hpp>
@@ -206,6 +207,8 @@ int optimizeCommand(const std::vector<std::string>& args) {
     const std::string growth =
         adjointGrowthWarning(b, scene.solver.backward.method, scene.solver.backward.tolerance);
     if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
+    std::fprintf(stderr, "%s",
+                 unconvergedGradientWarning(objective.unconvergedForwardSteps()).c_str());
   }
   std::string plotNote;
   bench::PlotSeries series{"loss", {}, {}};

@@ -7,6 +7,7 @@
 #include <weft/io/StagedDirectory.h>
 #include <weft/output/RunWriter.h>
 #include <weft/physics/Simulator.h>
+#include <weft/record/ConvergenceReport.h>
 #include <weft/scene/SceneLoader.h>
 
 #include <omp.h>
@@ -24,7 +25,7 @@ int applyThreads(const CommandLine& cl) {
 }
 
 int simulateCommand(const std::vector<std::string>& args) {
-  CommandLine cl(args, {"--steps", "--out", "--set", "--threads"}, {"--quiet"});
+  CommandLine cl(args, {"--steps", "--out", "--set", "--threads"}, {"--quiet", "--strict"});
   if (cl.positional().size() != 1) cl.fail("SCENE", "simulate takes exactly one scene file");
   const std::string file = cl.positional()[0];
   cl.setContext(file);
@@ -51,10 +52,12 @@ int simulateCommand(const std::vector<std::string>& args) {
   const bool quiet = cl.has("--quiet");
   const int every = std::max(1, steps / 10);
   long long iterations = 0;
+  ConvergenceReport convergence;
   for (int k = 0; k < steps; ++k) {
     const StepStats& s = sim.step();
     timed([&] { writer.addStep(sim.positions(), s, &sim.lastContacts()); });
     iterations += s.pdIterations;
+    convergence.add(s);
     if (!quiet && (s.step % every == 0))
       std::fprintf(stderr, "\rstep %d/%d  pd %d  residual %.2e", s.step, steps, s.pdIterations,
                    s.residual);
@@ -73,6 +76,15 @@ int simulateCommand(const std::vector<std::string>& args) {
       scene.name.c_str(), steps, sim.cloth().nodeCount(), run.seconds,
       steps ? 1e3 * run.seconds / steps : 0.0, steps ? double(iterations) / steps : 0.0,
       outDir.c_str());
+  std::fprintf(stderr, "%s", convergence.warning(scene.solver).c_str());
+  if (cl.has("--strict") && convergence.unconverged > 0) {
+    char what[256];
+    std::snprintf(what, sizeof what,
+                  "residual %.3g m/s^2 above solver.pd_tolerance after solver.pd_iterations (%d "
+                  "of %d steps unconverged; --strict)",
+                  convergence.worstResidual, convergence.unconverged, steps);
+    throw NumericalError(convergence.worstResidualStep, "solver", what);
+  }
   return 0;
 }
 

@@ -11,7 +11,8 @@ namespace {
 // Verb and its arguments, continuation lines indented under the verb.
 const std::vector<std::pair<std::string, std::string>>& usages() {
   static const std::vector<std::pair<std::string, std::string>> list = {
-      {"simulate", "SCENE [--steps N] [--out DIR] [--set PATH=VALUE ...] [--threads N] [--quiet]"},
+      {"simulate",
+       "SCENE [--steps N] [--out DIR] [--set PATH=VALUE ...] [--threads N] [--strict] [--quiet]"},
       {"render",
        "SCENE|RUNDIR [--frames A:B:S] [--size WxH] [--camera front|side|top|auto]\n"
        "    [--overlay contacts|strain|speed|none] [--wireframe] [--out DIR] [--video FILE.mp4]\n"

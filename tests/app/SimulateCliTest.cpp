@@ -108,7 +108,7 @@ TEST(SimulateCli, WritesStatsCsvWithOneRowPerStep) {
   ASSERT_EQ(lines.size(), 10u) << "header + one row per step";
   const std::vector<std::string> header = test::splitCommas(lines[0]);
   for (const char* column : {"step", "time", "contacts_takeoff", "contacts_stick", "contacts_slip",
-                             "pd_iterations", "residual"})
+                             "pd_iterations", "residual", "converged", "depth"})
     EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
   // Seconds per module: one column for each module the summary lists.
   for (const std::string& module : moduleNames(summary))
@@ -333,6 +333,50 @@ TEST(SimulateCli, NumericalFailureExitsThreeNamingStepAndModule) {
   EXPECT_EQ(r.exitCode, 3) << describe(r);
   EXPECT_THAT(r.err, StartsWith("error: numerical failure: step 1: solver: ")) << r.err;
   EXPECT_FALSE(fs::exists(dir.file("run")));
+}
+
+// No silent caps: steps that stop at solver.pd_iterations above the tolerance are counted in
+// summary.json, flagged in stats.csv and named on stderr; --strict turns them into exit 3, with
+// the run still written for inspection.
+TEST(SimulateCli, UnconvergedStepsAreReportedAndStrictExitsThree) {
+  TempDir dir;
+  nlohmann::json doc = test::hangingClothScene(0.4, 6, 0.01, 8, 800.0, 1e-3);
+  doc["solver"] = {{"method", "pd"}, {"pd_iterations", 2}, {"pd_tolerance", 1e-8}};
+  const std::string scene = test::writeScene(dir.file("scene.json"), doc);
+  const test::ProcessResult r = runWeft({"simulate", scene, "--out", dir.file("run"), "--quiet"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const nlohmann::json summary = readJson(dir.file("run/summary.json"));
+  const int unconverged = summary["pd"]["unconverged_steps"];
+  EXPECT_EQ(unconverged, 8);
+  EXPECT_EQ(summary["pd"]["iteration_limit"], 2);
+  const std::vector<std::string> lines = test::splitLines(readFile(dir.file("run/stats.csv")));
+  const std::vector<std::string> header = test::splitCommas(lines[0]);
+  const auto converged = std::find(header.begin(), header.end(), "converged") - header.begin();
+  int zeros = 0;
+  for (std::size_t k = 1; k < lines.size(); ++k)
+    zeros += test::splitCommas(lines[k])[std::size_t(converged)] == "0";
+  EXPECT_EQ(zeros, unconverged);
+  EXPECT_NE(r.err.find("warning: 8 of 8 steps stopped at the iteration limit "
+                       "(solver.pd_iterations 2)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("at step " + std::to_string(int(summary["pd"]["worst_unconverged_step"]))),
+            std::string::npos)
+      << r.err;
+
+  const test::ProcessResult strict =
+      runWeft({"simulate", scene, "--out", dir.file("strict"), "--quiet", "--strict"});
+  EXPECT_EQ(strict.exitCode, 3) << describe(strict);
+  EXPECT_NE(strict.err.find("error: numerical failure: step "), std::string::npos) << strict.err;
+  EXPECT_NE(strict.err.find(": solver: residual "), std::string::npos) << strict.err;
+  EXPECT_TRUE(fs::exists(dir.file("strict/summary.json")));
+
+  // A converged run says nothing, also with --strict.
+  const test::ProcessResult fine =
+      runWeft({"simulate", kHanging, "--out", dir.file("fine"), "--quiet", "--strict"});
+  EXPECT_EQ(fine.exitCode, 0) << describe(fine);
+  EXPECT_EQ(fine.err.find("warning:"), std::string::npos) << fine.err;
+  EXPECT_EQ(readJson(dir.file("fine/summary.json"))["pd"]["unconverged_steps"], 0);
 }
 
 // The contact solve's own guard: a plane that slides along itself at 1e310 m/s in its first step

@@ -65,6 +65,8 @@ struct RunResult {
   int endTakeoff = 0, endStick = 0, endSlip = 0;
   double pdIterations = 0.0;
   int convergedSteps = 0;
+  double worstResidual = 0.0;  // m/s^2, the largest residual a step ended with
+  double maxDepth = 0.0;       // m, the deepest node inside an obstacle's skin (StepStats::depth)
   // Contact-solve seconds per contact per Gauss-Seidel sweep: the solve's unit cost, apart
   // from how many sweeps the PD iterations asked for.
   double solvePerContactSweep = 0.0;
@@ -98,6 +100,8 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
       r.maxContacts = std::max(r.maxContacts, c);
       iterations += st.pdIterations;
       r.convergedSteps += st.converged;
+      r.worstResidual = std::max(r.worstResidual, st.residual);
+      r.maxDepth = std::max(r.maxDepth, st.depth);
       r.endTakeoff = st.takeoff, r.endStick = st.stick, r.endSlip = st.slip;
       double solve = 0.0;
       for (std::size_t m = 0; m < names.size(); ++m)
@@ -182,7 +186,8 @@ int runContactBench(const ContactBenchOptions& options, const std::string& outDi
   BenchTable table({"scene", "contact", "quads", "vertices", "steps", "ms_per_step", "ms_median_step", "ms_pd", "ms_detection",
                     "ms_self_collision", "ms_contact_solve", "contacts_mean", "contacts_max",
                     "takeoff_end", "stick_end", "slip_end", "us_solve_per_contact",
-                    "ns_per_contact_sweep", "pd_iterations", "converged_steps", "peak_mb",
+                    "ns_per_contact_sweep", "pd_iterations", "converged_steps", "worst_residual",
+                    "max_depth_mm", "peak_mb",
                     "trajectory_mb", "failed_step"});
   // clang-format on
   std::vector<PlotSeries> costPlot, modulePlot;
@@ -224,6 +229,8 @@ int runContactBench(const ContactBenchOptions& options, const std::string& outDi
                    formatNumber(1e9 * r.solvePerContactSweep),
                    formatNumber(r.pdIterations),
                    std::to_string(r.convergedSteps),
+                   formatNumber(r.worstResidual, 3),
+                   formatNumber(1e3 * r.maxDepth, 3),
                    peakResets ? formatNumber(peak) : "n/a",
                    formatNumber(trajectoryMb),
                    std::to_string(r.failedStep)});
@@ -261,7 +268,10 @@ int runContactBench(const ContactBenchOptions& options, const std::string& outDi
       "contacts and "
       "self-collision pairs per step; ns_per_contact_sweep is the contact solve's time per "
       "contact per Gauss-Seidel sweep (its unit cost, apart from how many sweeps the PD "
-      "iterations ask for). peak_mb: peak resident memory of the run (the process's VmHWM, reset "
+      "iterations ask for). converged_steps: steps that reached solver.pd_tolerance, the others "
+      "stopped at solver.pd_iterations; worst_residual: the largest residual a step ended with "
+      "(m/s^2); max_depth_mm: the deepest node inside an obstacle's contact skin at the end of "
+      "any step. peak_mb: peak resident memory of the run (the process's VmHWM, reset "
       "before it; it includes the program itself), stepping without a recorded trajectory; "
       "trajectory_mb: what recording positions and velocities of every state would add. " +
       formatNumber(seconds, 3) + " s in all. Machine: " + machineDescription() + ".";

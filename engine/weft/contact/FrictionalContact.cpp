@@ -66,6 +66,21 @@ FrictionalContact::FrictionalContact(
     selfCollision_ = std::make_unique<SelfCollisionDetector>(scene, model);
 }
 
+double FrictionalContact::deepestPenetration(const NodeMatrix& x) const {
+  double deepest = 0.0;
+  const int m = static_cast<int>(x.rows());
+#pragma omp parallel for reduction(max : deepest) schedule(static)
+  for (int i = 0; i < m; ++i) {
+    const Vec3 p = x.row(i).transpose();
+    for (const ContactObstacle& o : obstacles_) {
+      SurfaceSample s;
+      // A node outside the skin needs no exact distance: reach just past the skin.
+      if (o.sample(p, o.thickness(), s)) deepest = std::max(deepest, o.thickness() - s.distance);
+    }
+  }
+  return deepest;
+}
+
 void FrictionalContact::beginStep(double t0, double t1) {
   h_ = t1 - t0;
   for (ContactObstacle& o : obstacles_) o.beginStep(t0, t1);

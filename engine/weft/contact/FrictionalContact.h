@@ -73,6 +73,9 @@ class FrictionalContact {
   ContactSolver& perNodeSolver() { return solver_; }
 
   void record(StepContacts& out) const { solver_.record(out); }
+  // The deepest node of x (the step's end state) inside any obstacle's contact skin, against the
+  // end-of-step poses: max over nodes and obstacles of skin - signed distance, 0 if none (m).
+  double deepestPenetration(const NodeMatrix& x) const;
   int obstacleContactCount() const { return static_cast<int>(obstacleContacts_.size()); }
   int pairCount() const { return static_cast<int>(pairs_.size()); }
 

@@ -3,6 +3,7 @@
 #include <weft/core/Error.h>
 #include <weft/io/Npy.h>
 #include <weft/io/ObjWriter.h>
+#include <weft/record/ConvergenceReport.h>
 
 #include <sys/resource.h>
 
@@ -99,7 +100,9 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
   long long takeoff = 0, stick = 0, slip = 0, iterations = 0;
   int converged = 0, maxIterations = 0;
   double maxResidual = 0.0;
+  ConvergenceReport convergence;
   for (const StepStats& s : stepStats) {
+    convergence.add(s);
     takeoff += s.takeoff, stick += s.stick, slip += s.slip;
     iterations += s.pdIterations;
     maxIterations = std::max(maxIterations, s.pdIterations);
@@ -119,13 +122,21 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
   j["threads"] = run.threads;
   j["peak_memory_mb"] = peakMemoryMegabytes();
   j["modules"] = modules;
-  j["contacts"] = {{"takeoff", takeoff}, {"stick", stick}, {"slip", slip}};
+  j["contacts"] = {{"takeoff", takeoff},
+                   {"stick", stick},
+                   {"slip", slip},
+                   {"max_depth", convergence.maxDepth},
+                   {"max_depth_step", convergence.maxDepthStep}};
   j["pd"] = {
       {"iterations_total", iterations},
       {"iterations_mean", steps > 0 ? double(iterations) / steps : 0.0},
       {"iterations_max", maxIterations},
       {"converged_steps", converged},
+      {"unconverged_steps", convergence.unconverged},
       {"max_residual", maxResidual},
+      {"worst_unconverged_residual", convergence.worstResidual},
+      {"worst_unconverged_step", convergence.worstResidualStep},
+      {"iteration_limit", scene.solver.pdIterations},
       {"tolerance", scene.solver.pdTolerance},
       {"acceleration", scene.solver.acceleration == Acceleration::Anderson ? "anderson" : "none"}};
   return j;
@@ -145,14 +156,15 @@ void RunWriter::finish(const RunSummary& run) {
     std::fprintf(
         f.get(),
         "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged,"
-        "contact_sweeps,contact_sweep_change,late_contacts,area_ratio");
+        "contact_sweeps,contact_sweep_change,late_contacts,area_ratio,depth");
     for (const std::string& name : run.moduleNames)
       std::fprintf(f.get(), ",seconds_%s", name.c_str());
     std::fprintf(f.get(), "\n");
     for (const StepStats& s : steps_) {
-      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d,%.9f", s.step, s.time,
+      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d,%.9f,%.6e", s.step, s.time,
                    s.takeoff, s.stick, s.slip, s.pdIterations, s.residual, s.converged ? 1 : 0,
-                   s.contactSweeps, s.contactSweepChange, s.lateContacts, areaRatio_.at(s.step));
+                   s.contactSweeps, s.contactSweepChange, s.lateContacts, areaRatio_.at(s.step),
+                   s.depth);
       for (double sec : s.moduleSeconds) std::fprintf(f.get(), ",%.6e", sec);
       std::fprintf(f.get(), "\n");
     }

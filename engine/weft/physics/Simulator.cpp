@@ -141,10 +141,12 @@ const StepStats& Simulator::step() {
   } else {
     solver_->solve(ctx);
   }
-  stats.moduleSeconds = timer_->stepSeconds();
-
   // The last global solution is the step's result (one PD iteration past the checked iterate).
   if (!ctx.global.allFinite()) diagnoseNonFinite(x_);
+  if (contact_ && contact_->hasObstacles())
+    timer_->timed(contactDetectionModule_,
+                  [&] { stats.depth = contact_->deepestPenetration(ctx.global); });
+  stats.moduleSeconds = timer_->stepSeconds();
   v_ = (ctx.global - x_) / h_;
   x_ = ctx.global;
   warmStart_ = x_ - ctx.y;

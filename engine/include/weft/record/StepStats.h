@@ -20,6 +20,9 @@ struct StepStats {
   // Contacts added after the solve because the path it took met them and the predicted path
   // did not (FrictionalContact::addMissedContacts); the step was then solved again.
   int lateContacts = 0;
+  // The deepest node inside any obstacle's contact skin at the end of the step (m; 0 when none
+  // is inside, and without obstacles): skin minus the node's signed distance to the surface.
+  double depth = 0.0;
   std::vector<double> moduleSeconds;  // aligned with Simulator::moduleNames()
 };
 
