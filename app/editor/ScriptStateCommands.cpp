@@ -83,6 +83,7 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
   float rect[4] = {0, 0, 0, 0};
   if (const std::string title = app.modalDialog(rect); !title.empty())
     dialog = {{"title", title}, {"rect", {rect[0], rect[1], rect[2], rect[3]}}};
+  const ConvergenceReport convergence = session.cache().convergence();
   return {{"file", doc.file()},
           {"dirty", doc.dirty()},
           {"valid", doc.valid()},
@@ -90,6 +91,8 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"cache_frames", session.cache().frameCount()},
           {"cache_status", SimulationCache::statusName(session.cache().status())},
           {"cache_stale", session.timeline().cacheStale()},
+          {"cache_unconverged_steps", convergence.unconverged},
+          {"cache_max_depth", convergence.maxDepth},
           {"frame", session.playback().frame()},
           {"selected", session.selection().nodes()},
           {"can_undo", doc.canUndo()},

@@ -27,6 +27,7 @@ void SimulationCache::start(std::shared_ptr<const Scene> scene, int steps) {
     frames_.reserve(static_cast<std::size_t>(std::max(steps, 0)) + 1);
     scene_ = scene;
     model_.reset();
+    convergence_ = ConvergenceReport();
     error_.clear();
   }
   requested_ = std::max(steps, 0) + 1;
@@ -64,6 +65,7 @@ void SimulationCache::run(std::shared_ptr<const Scene> scene, int steps) {
         frame->contacts = simulator.lastContacts();
       }
       std::lock_guard<std::mutex> lock(mutex_);
+      convergence_.add(frame->stats);
       frames_.push_back(std::move(frame));
     }
     status_ = Status::Done;
@@ -133,6 +135,11 @@ Trajectory SimulationCache::trajectory() const {
   std::lock_guard<std::mutex> lock(mutex_);
   t.model = model_;
   return t;
+}
+
+ConvergenceReport SimulationCache::convergence() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return convergence_;
 }
 
 std::shared_ptr<const Scene> SimulationCache::scene() const {

@@ -6,6 +6,7 @@
 // No GL and no window: unit tested on its own.
 
 #include <weft/core/Types.h>
+#include <weft/record/ConvergenceReport.h>
 #include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
 #include <weft/record/Trajectory.h>
@@ -66,6 +67,9 @@ class SimulationCache {
   // and velocities of every state, step statistics, (when any step touched) contacts and the
   // model the worker simulated (null before its first frame).
   Trajectory trajectory() const;
+  // How well the cached steps were solved so far: steps stopped at the iteration limit, the
+  // worst residual, the deepest node inside an obstacle (the timeline shows it).
+  ConvergenceReport convergence() const;
   // The scene the cache was computed from (null when empty).
   std::shared_ptr<const Scene> scene() const;
   // True when there are frames and they were computed from a document other than `document`:
@@ -90,6 +94,7 @@ class SimulationCache {
   std::vector<std::shared_ptr<const CachedFrame>> frames_;
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<const Model> model_;  // the worker's, once its simulator is built
+  ConvergenceReport convergence_;
   std::string error_;
   std::atomic<Status> status_{Status::Empty};
   std::atomic<int> requested_{0};

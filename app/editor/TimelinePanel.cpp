@@ -51,6 +51,25 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
     ImGui::TextColored(
         kWarningColour,
         "The scene changed since this simulation: the frames are stale. Simulate again.");
+  } else {
+    // The run's verdict: a step that stopped at the iteration limit is never shown as a result
+    // without saying so (the same report as `weft simulate`'s).
+    const ConvergenceReport run = cache.convergence();
+    if (run.steps == 0)
+      ImGui::TextDisabled("solver: no steps simulated");
+    else if (run.unconverged == 0 && run.maxDepth <= ConvergenceReport::kDepthTolerance)
+      ImGui::TextColored(kOkColour, "solver: all %d steps converged", run.steps);
+    else if (run.unconverged == 0)
+      ImGui::TextColored(kWarningColour,
+                         "solver: all %d steps converged; deepest %.2f mm into an obstacle's skin "
+                         "(state %d)",
+                         run.steps, 1e3 * run.maxDepth, run.maxDepthStep);
+    else
+      ImGui::TextColored(kWarningColour,
+                         "solver: %d of %d steps stopped at the iteration limit (worst residual "
+                         "%.3g m/s^2, state %d); deepest %.2f mm into an obstacle's skin",
+                         run.unconverged, run.steps, run.worstResidual, run.worstResidualStep,
+                         1e3 * run.maxDepth);
   }
 
   Playback& playback = session_.playback();
@@ -81,6 +100,15 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
     ImGui::Text("contacts: take-off %d, stick %d, slip %d   PD iterations %d, residual %.3g m/s^2",
                 f->stats.takeoff, f->stats.stick, f->stats.slip, f->stats.pdIterations,
                 f->stats.residual);
+    // This step's verdict, on the same line so that the panel keeps its height.
+    ImGui::SameLine();
+    if (f->state > 0 && !f->stats.converged)
+      ImGui::TextColored(kWarningColour, "  stopped at the iteration limit");
+    else if (f->stats.depth > ConvergenceReport::kDepthTolerance)
+      ImGui::TextColored(kWarningColour, "  a node %.2f mm into an obstacle's skin",
+                         1e3 * f->stats.depth);
+    else
+      ImGui::TextUnformatted("");
   } else {
     ImGui::Text("t = %.4f s", session_.timeline().time());
     ImGui::TextDisabled(available == 0

@@ -42,6 +42,32 @@ TEST(SimulationCache, RunFillsOneFramePerState) {
   EXPECT_EQ(cache.frame(7), nullptr);
 }
 
+// The cache keeps the run's convergence report as its frames arrive: the timeline and the
+// script state show it, so a capped solve is never shown as a result without saying so.
+TEST(SimulationCache, CountsTheStepsThatStoppedAtTheIterationLimit) {
+  nlohmann::json capped = test::hangingClothScene(1.0, 4, 0.01, 5, 200.0);
+  capped["solver"] = {{"method", "pd"}, {"pd_iterations", 2}, {"pd_tolerance", 1e-10}};
+  EditorDocument doc(capped);
+  ASSERT_TRUE(doc.valid()) << doc.validationError();
+  SimulationCache cache;
+  cache.start(doc.sharedScene(), 5);
+  cache.wait();
+  ASSERT_EQ(cache.status(), SimulationCache::Status::Done) << cache.error();
+  ConvergenceReport report = cache.convergence();
+  EXPECT_EQ(report.steps, 5);
+  EXPECT_EQ(report.unconverged, 5);
+  EXPECT_GT(report.worstResidual, 1e-10);
+  int framesUnconverged = 0;
+  for (int k = 1; k <= 5; ++k) framesUnconverged += !cache.frame(k)->stats.converged;
+  EXPECT_EQ(framesUnconverged, 5);
+
+  cache.start(hanging(4, 5), 5);  // a new run starts a new report
+  cache.wait();
+  report = cache.convergence();
+  EXPECT_EQ(report.steps, 5);
+  EXPECT_EQ(report.unconverged, 0);
+}
+
 TEST(SimulationCache, CancelStopsEarlyAndKeepsTheFramesSoFar) {
   SimulationCache cache;
   cache.start(hanging(24, 100000), 100000);
