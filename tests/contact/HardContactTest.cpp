@@ -169,7 +169,7 @@ TEST(HardContact, NodeTheWallMovesOverGetsTheWallsNormal) {
        {{{"time", 0.0}, {"offset", {0, 0, 0}}}, {{"time", 0.4}, {"offset", {0.4, 0, 0}}}}}};
   const Scene scene = test::parse(doc);
   std::vector<ContactObstacle> obstacles;
-  for (const Obstacle& o : scene.obstacles) obstacles.emplace_back(o);
+  for (const Obstacle& o : scene.obstacles) obstacles.emplace_back(o, makeObstacleShape(o));
   for (ContactObstacle& o : obstacles) o.beginStep(0.05, 0.06);
   NodeMatrix x(2, 3);
   x.row(0) = Vec3(-0.149, kSkin, 0.1).transpose();  // the node the wall reaches

@@ -38,8 +38,6 @@ std::unique_ptr<ObstacleShape> makeObstacleShape(const Obstacle& o) {
   return nullptr;
 }
 
-ContactObstacle::ContactObstacle(const Obstacle& o) : ContactObstacle(o, makeObstacleShape(o)) {}
-
 ContactObstacle::ContactObstacle(const Obstacle& o, std::shared_ptr<const ObstacleShape> shape)
     : shape_(std::move(shape)), motion_(o.motion), friction_(o.friction), thickness_(o.thickness) {}
 

@@ -98,7 +98,7 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
   for (std::size_t i = 0; i < run.moduleNames.size(); ++i)
     modules[run.moduleNames[i]] = run.moduleSeconds[i];
   long long takeoff = 0, stick = 0, slip = 0, iterations = 0;
-  int converged = 0, maxIterations = 0;
+  int maxIterations = 0;
   double maxResidual = 0.0;
   ConvergenceReport convergence;
   for (const StepStats& s : stepStats) {
@@ -106,7 +106,6 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
     takeoff += s.takeoff, stick += s.stick, slip += s.slip;
     iterations += s.pdIterations;
     maxIterations = std::max(maxIterations, s.pdIterations);
-    converged += s.converged ? 1 : 0;
     maxResidual = std::max(maxResidual, s.residual);
   }
   const int steps = static_cast<int>(stepStats.size());
@@ -131,7 +130,7 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
       {"iterations_total", iterations},
       {"iterations_mean", steps > 0 ? double(iterations) / steps : 0.0},
       {"iterations_max", maxIterations},
-      {"converged_steps", converged},
+      {"converged_steps", convergence.steps - convergence.unconverged},
       {"unconverged_steps", convergence.unconverged},
       {"max_residual", maxResidual},
       {"worst_unconverged_residual", convergence.worstResidual},

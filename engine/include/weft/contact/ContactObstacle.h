@@ -29,9 +29,8 @@ std::unique_ptr<ObstacleShape> makeObstacleShape(const Obstacle& obstacle);
 
 class ContactObstacle {
  public:
-  // The obstacle with its own shape, or with a shape already built for it (Model's, shared by
-  // the simulator and the backward pass).
-  explicit ContactObstacle(const Obstacle& obstacle);
+  // The obstacle with the shape built for it (makeObstacleShape; Model's, shared by the
+  // simulator and the backward pass).
   ContactObstacle(const Obstacle& obstacle, std::shared_ptr<const ObstacleShape> shape);
 
   // Caches the poses at the step's start and end times.
