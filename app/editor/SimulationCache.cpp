@@ -57,6 +57,7 @@ void SimulationCache::run(std::shared_ptr<const Scene> scene, int steps) {
       }
       auto frame = std::make_shared<CachedFrame>();
       frame->stats = simulator.step();
+      frame->substeps = simulator.lastSubsteps();
       frame->state = s;
       frame->positions = simulator.positions();
       frame->velocities = simulator.velocities();
@@ -129,6 +130,7 @@ Trajectory SimulationCache::trajectory() const {
     if (k == 0) continue;
     t.steps.push_back(f->stats);
     t.contacts.push_back(f->contacts);
+    t.substeps.push_back(f->substeps);
     touched = touched || !f->contacts.points.empty();
   }
   if (!touched) t.contacts.clear();  // as a run without contact records it

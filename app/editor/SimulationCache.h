@@ -35,6 +35,9 @@ struct CachedFrame {
   // Every contact of that step as the solver left it (branch, normal, impulse, velocity), for
   // the vertex inspector and the force arrows. Empty for state 0 and scenes without contact.
   StepContacts contacts;
+  // The pieces of the step when adaptive time stepping split it (the backward pass runs
+  // through them); empty when it was solved whole.
+  std::vector<Substep> substeps;
 };
 
 class SimulationCache {

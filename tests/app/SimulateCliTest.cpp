@@ -337,11 +337,12 @@ TEST(SimulateCli, NumericalFailureExitsThreeNamingStepAndModule) {
 
 // No silent caps: steps that stop at solver.pd_iterations above the tolerance are counted in
 // summary.json, flagged in stats.csv and named on stderr; --strict turns them into exit 3, with
-// the run still written for inspection.
+// the run still written for inspection. (Adaptive time stepping off: it would split them.)
 TEST(SimulateCli, UnconvergedStepsAreReportedAndStrictExitsThree) {
   TempDir dir;
   nlohmann::json doc = test::hangingClothScene(0.4, 6, 0.01, 8, 800.0, 1e-3);
-  doc["solver"] = {{"method", "pd"}, {"pd_iterations", 2}, {"pd_tolerance", 1e-8}};
+  doc["solver"] = {
+      {"method", "pd"}, {"pd_iterations", 2}, {"pd_tolerance", 1e-8}, {"max_halvings", 0}};
   const std::string scene = test::writeScene(dir.file("scene.json"), doc);
   const test::ProcessResult r = runWeft({"simulate", scene, "--out", dir.file("run"), "--quiet"});
   ASSERT_EQ(r.exitCode, 0) << describe(r);

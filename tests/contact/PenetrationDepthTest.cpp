@@ -42,7 +42,7 @@ TEST(PenetrationDepth, EveryStepReportsItsEndState) {
   doc["cloths"][0]["mesh"]["transform"] = {{"translate", {0.0, 0.31, 0.0}}};
   doc["cloths"][0]["initial_velocity"] = {0.0, -3.0, 0.0};
   doc["obstacles"] = {{{"sphere", {{"center", {0.0, 0.0, 0.0}}, {"radius", 0.3}}}}};
-  doc["solver"] = {{"method", "pd"}, {"contact", "pd"}, {"pd_iterations", 1}};
+  doc["solver"] = {{"method", "pd"}, {"contact", "pd"}, {"pd_iterations", 1}, {"max_halvings", 0}};
   Simulator sim(test::parse(doc));
   double deepest = 0.0;
   for (int n = 0; n < 12; ++n) {

@@ -260,6 +260,9 @@ nlohmann::json pressedCornerScene() {
   doc["gravity"] = {2.0, -9.8, 0.0};
   doc["cloths"][0]["initial_velocity"] = {0.05, 0.0, 0.0};
   doc["solver"]["contact"] = "newton";
+  // Whole steps: these tests are about the coupled contacts' adjoint on the contact states the
+  // scene's steps produce; split steps record their last piece's (see the note of issue 36).
+  doc["solver"]["max_halvings"] = 0;
   return doc;
 }
 
@@ -338,6 +341,67 @@ TEST(ContactGradient, NodesStickingToOneObstacleAndSlippingOnAnother) {
     test::expectGradientAgreement(
         checkGradient(scene, ParameterSet::fromTask(scene), options(method)));
   }
+}
+
+}  // namespace
+}  // namespace weft
+
+namespace weft {
+namespace {
+
+// Adaptive time stepping (SolverSettings::maxHalvings): the backward pass runs through a split
+// step's pieces, each with its own dt, P and contacts. A cloth sliding over a sphere with a
+// budget of 14 Newton solves per step at 1e-9 m/s^2 splits every step into 2-4 pieces; the
+// gradient is compared with central differences of runs split the same way.
+TEST(ContactGradient, GradientsFollowTheStepsAdaptiveTimeSteppingSplit) {
+  TempDir dir;
+  nlohmann::json doc = sphereScene(0.1, 0.3);
+  doc["solver"] = {{"method", "newton"},
+                   {"contact", "newton"},
+                   {"pd_iterations", 14},
+                   {"pd_tolerance", 1e-9},
+                   {"max_halvings", 4}};
+  doc["gravity"][0] = 0.5;
+  const Scene scene =
+      withTask(dir, doc, {{"obstacles.0.friction", 0.12}},
+               {"obstacles.0.friction", "cloths.0.material.density", "cloths.0.initial_velocity.0",
+                "gravity.0", "cloths.0.material.stretch"});
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  const TaskLoss loss(scene);
+  auto pattern = [](const Trajectory& t) {
+    std::vector<int> pieces;
+    for (const auto& p : t.substeps) pieces.push_back(static_cast<int>(p.size()));
+    return pieces;
+  };
+  const ForwardPass base = runForwardPass(scene);
+  EXPECT_EQ(base.unconvergedSteps, 0);
+  int split = 0;
+  for (const auto& p : base.trajectory.substeps) split += p.size() > 1;
+  EXPECT_GE(split, 10);
+  BackwardSettings backward = scene.solver.backward;
+  backward.tolerance = 1e-10;
+  const GradientResult adjoint = backpropagate(base.trajectory, loss, parameters, backward);
+
+  GradientCheckReport report;
+  const Eigen::VectorXd values = parameters.values(scene);
+  for (int k = 0; k < parameters.size(); ++k) {
+    GradientCheckEntry e;
+    e.param = parameters[k].path;
+    e.step = 1e-4 * std::abs(values[k]);
+    double side[2];
+    for (int s = 0; s < 2; ++s) {
+      Eigen::VectorXd shifted = values;
+      shifted[k] += s == 0 ? e.step : -e.step;
+      const ForwardPass run = runForwardPass(parameters.compile(scene, shifted));
+      report.unconvergedSteps += run.unconvergedSteps;
+      ASSERT_EQ(pattern(run.trajectory), pattern(base.trajectory)) << e.param;
+      side[s] = loss.value(run.trajectory.model->scene(), run.trajectory);
+    }
+    e.finiteDifference = (side[0] - side[1]) / (2.0 * e.step);
+    e.adjoint = adjoint.gradient[k];
+    report.entries.push_back(e);
+  }
+  test::expectGradientAgreement(report);
 }
 
 }  // namespace

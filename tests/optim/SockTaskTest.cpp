@@ -136,14 +136,20 @@ TEST(SockTask, RecordedContactsAreTheStateTheStepWasSolvedWith) {
   int continued = 0, checked = 0;
   for (int n = 0; n < 70; ++n) {
     const StepStats& stats = simulator.step();
-    const NodeMatrix v = (simulator.positions() - x0) / scene.time.dt;
+    // The step's velocity, or its last piece's when adaptive time stepping split it (the
+    // recorded contacts are that piece's): the simulator's velocity either way.
+    const NodeMatrix& v = simulator.velocities();
     x0 = simulator.positions();
     if (!stats.converged) continue;
     continued += stats.contactSweeps > 100;  // (the Newton solve's steps take a few)
     for (const ContactPoint& p : simulator.lastContacts().points) {
       Vec3 velocity = v.row(p.node).transpose();
       if (p.partner >= 0) velocity -= v.row(p.partner).transpose();
-      EXPECT_LT((p.velocity + p.reference - velocity).norm(), 1e-5)
+      // Up to the solve's tolerance: pd_tolerance bounds the residual's RMS, not each node's, and
+      // one node of a converged step was 1.05e-5 m/s off once the default split the steps before
+      // it (the defects this catches were 0.15 m/s and more). A piece's velocity is its position
+      // change over dt / 2^halvings: the solve's position error counts 2^halvings times more.
+      EXPECT_LT((p.velocity + p.reference - velocity).norm(), 2e-5 * (1 << stats.halvings))
           << "step " << stats.step << ", node " << p.node << ", " << branchName(p.branch);
       ++checked;
     }

@@ -41,8 +41,13 @@ nlohmann::json sceneFor(const StabilityCase& p, const std::string& method) {
   nlohmann::json doc = test::gridScene(0.5, p.quads, p.dt, 0, p.stretch, p.bend, 0.1);
   doc["gravity"] = {0, -9.8, 0};
   doc["cloths"][0]["attachments"] = {{{"vertices", {0, p.quads}}, {"kind", "fixed"}}};
-  doc["solver"] = {
-      {"method", method}, {"pd_iterations", p.pdIterations}, {"pd_tolerance", p.tolerance}};
+  // Whole steps: these cases are about how each solver survives steps it cannot converge (the
+  // very stiff cloth at 1/30 s converges none of its 150 steps, whole or split down to dt / 16,
+  // where the split pieces reached 100.7 m/s against the bound's 100; issue 36's note).
+  doc["solver"] = {{"method", method},
+                   {"pd_iterations", p.pdIterations},
+                   {"pd_tolerance", p.tolerance},
+                   {"max_halvings", 0}};
   if (p.wind) doc["wind"] = {{"direction", {0.3, 0.0, 1.0}}, {"strength", 2.0}, {"frequency", 1.5}};
   return doc;
 }

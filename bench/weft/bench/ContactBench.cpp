@@ -16,6 +16,7 @@
 #include "BenchTable.h"
 
 #include <weft/core/Error.h>
+#include <weft/core/ProcessCpuTime.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/physics/Simulator.h>
 #include <weft/scene/SceneLoader.h>
@@ -67,6 +68,8 @@ struct RunResult {
   int convergedSteps = 0;
   double worstResidual = 0.0;  // m/s^2, the largest residual a step ended with
   double maxDepth = 0.0;       // m, the deepest node inside an obstacle's skin (StepStats::depth)
+  int splitSteps = 0;          // steps adaptive time stepping split (StepStats::substeps > 1)
+  double cpuSeconds = 0.0;     // the run's process CPU time, all threads
   // Contact-solve seconds per contact per Gauss-Seidel sweep: the solve's unit cost, apart
   // from how many sweeps the PD iterations asked for.
   double solvePerContactSweep = 0.0;
@@ -79,7 +82,12 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
   const std::string res = "[" + std::to_string(quads) + "," + std::to_string(quads) + "]";
   std::vector<SceneOverride> overrides = {{"cloths.0.mesh.grid.resolution", res},
                                           {"time.steps", std::to_string(steps)}};
-  if (contact != "scene") overrides.push_back({"solver.contact", "\"" + contact + "\""});
+  const std::string whole = "-whole";
+  const bool isWhole = contact.size() > whole.size() &&
+                       contact.compare(contact.size() - whole.size(), whole.size(), whole) == 0;
+  const std::string solve = isWhole ? contact.substr(0, contact.size() - whole.size()) : contact;
+  if (solve != "scene") overrides.push_back({"solver.contact", "\"" + solve + "\""});
+  if (isWhole) overrides.push_back({"solver.max_halvings", "0"});
   Scene scene = loadScene(file, overrides);
   RunResult r;
   r.vertices = scene.vertexCount();
@@ -89,6 +97,7 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
   double contactSweeps = 0.0, solveSeconds = 0.0;
   std::vector<double> stepSeconds;
   const auto start = std::chrono::steady_clock::now();
+  const double cpuStart = processCpuSeconds();
   try {
     for (int s = 0; s < steps; ++s) {
       const auto stepStart = std::chrono::steady_clock::now();
@@ -102,6 +111,7 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
       r.convergedSteps += st.converged;
       r.worstResidual = std::max(r.worstResidual, st.residual);
       r.maxDepth = std::max(r.maxDepth, st.depth);
+      r.splitSteps += st.substeps > 1;
       r.endTakeoff = st.takeoff, r.endStick = st.stick, r.endSlip = st.slip;
       double solve = 0.0;
       for (std::size_t m = 0; m < names.size(); ++m)
@@ -118,6 +128,7 @@ RunResult runScene(const std::string& file, int quads, int steps, const std::str
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.cpuSeconds = processCpuSeconds() - cpuStart;
   const double n = std::max(1, r.steps);
   r.secondsPerStep = seconds / n;
   r.medianStepSeconds = median(stepSeconds);
@@ -187,7 +198,7 @@ int runContactBench(const ContactBenchOptions& options, const std::string& outDi
                     "ms_self_collision", "ms_contact_solve", "contacts_mean", "contacts_max",
                     "takeoff_end", "stick_end", "slip_end", "us_solve_per_contact",
                     "ns_per_contact_sweep", "pd_iterations", "converged_steps", "worst_residual",
-                    "max_depth_mm", "peak_mb",
+                    "max_depth_mm", "split_steps", "cpu_s", "peak_mb",
                     "trajectory_mb", "failed_step"});
   // clang-format on
   std::vector<PlotSeries> costPlot, modulePlot;
@@ -231,6 +242,8 @@ int runContactBench(const ContactBenchOptions& options, const std::string& outDi
                    std::to_string(r.convergedSteps),
                    formatNumber(r.worstResidual, 3),
                    formatNumber(1e3 * r.maxDepth, 3),
+                   std::to_string(r.splitSteps),
+                   formatNumber(r.cpuSeconds, 3),
                    peakResets ? formatNumber(peak) : "n/a",
                    formatNumber(trajectoryMb),
                    std::to_string(r.failedStep)});
@@ -257,8 +270,9 @@ int runContactBench(const ContactBenchOptions& options, const std::string& outDi
       "Scenes assets/scenes/{sphere,slope,crumple}.json with the cloth grid overridden to n x n "
       "quads, each run for the listed steps from the scene's start, " +
       std::to_string(threads) +
-      " thread(s). contact: the contact solve (solver.contact; scene = the scene file's own: "
-      "newton for slope, pd for sphere and crumple). ms_per_step is the mean over the run's steps, "
+      " thread(s). contact: the contact solve (solver.contact; scene = the scene file's own, "
+      "newton for all three; -whole: adaptive time stepping off, solver.max_halvings 0). "
+      "ms_per_step is the mean over the run's steps, "
       "ms_median_step the median step (without the one-off work the mean spreads over the run: "
       "the first factorisations, the landing). The other ms_* are milliseconds per step by module: "
       "ms_pd is the PD solve with the "
@@ -271,7 +285,9 @@ int runContactBench(const ContactBenchOptions& options, const std::string& outDi
       "iterations ask for). converged_steps: steps that reached solver.pd_tolerance, the others "
       "stopped at solver.pd_iterations; worst_residual: the largest residual a step ended with "
       "(m/s^2); max_depth_mm: the deepest node inside an obstacle's contact skin at the end of "
-      "any step. peak_mb: peak resident memory of the run (the process's VmHWM, reset "
+      "any step; split_steps: steps adaptive time stepping solved in pieces (solver.max_halvings); "
+      "cpu_s: the run's CPU seconds. peak_mb: peak resident memory of the run (the process's "
+      "VmHWM, reset "
       "before it; it includes the program itself), stepping without a recorded trajectory; "
       "trajectory_mb: what recording positions and velocities of every state would add. " +
       formatNumber(seconds, 3) + " s in all. Machine: " + machineDescription() + ".";

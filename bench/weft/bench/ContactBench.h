@@ -9,8 +9,10 @@ namespace weft::bench {
 
 // The scenes the benchmark knows, by the names --scenes takes.
 inline const std::vector<std::string> kContactBenchScenes = {"sphere", "slope", "crumple"};
-// The contact solves --contact takes ("scene": each scene's own solver.contact).
-inline const std::vector<std::string> kContactSolves = {"scene", "pd", "newton", "active_set"};
+// The contact solves --contact takes ("scene": each scene's own solver.contact); "-whole": with
+// adaptive time stepping off (solver.max_halvings 0), every step solved whole, as before it.
+inline const std::vector<std::string> kContactSolves = {
+    "scene", "pd", "newton", "active_set", "pd-whole", "newton-whole", "active_set-whole"};
 
 struct ContactBenchOptions {
   bool quick = false;

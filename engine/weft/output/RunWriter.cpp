@@ -98,7 +98,7 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
   for (std::size_t i = 0; i < run.moduleNames.size(); ++i)
     modules[run.moduleNames[i]] = run.moduleSeconds[i];
   long long takeoff = 0, stick = 0, slip = 0, iterations = 0;
-  int maxIterations = 0;
+  int maxIterations = 0, splitSteps = 0, deepestHalvings = 0;
   double maxResidual = 0.0;
   ConvergenceReport convergence;
   for (const StepStats& s : stepStats) {
@@ -107,6 +107,8 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
     iterations += s.pdIterations;
     maxIterations = std::max(maxIterations, s.pdIterations);
     maxResidual = std::max(maxResidual, s.residual);
+    splitSteps += s.substeps > 1;
+    deepestHalvings = std::max(deepestHalvings, s.halvings);
   }
   const int steps = static_cast<int>(stepStats.size());
   nlohmann::json j;
@@ -137,6 +139,9 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
       {"worst_unconverged_step", convergence.worstResidualStep},
       {"iteration_limit", scene.solver.pdIterations},
       {"tolerance", scene.solver.pdTolerance},
+      {"split_steps", splitSteps},
+      {"deepest_halvings", deepestHalvings},
+      {"max_halvings", scene.solver.maxHalvings},
       {"acceleration", scene.solver.acceleration == Acceleration::Anderson ? "anderson" : "none"}};
   return j;
 }
@@ -155,15 +160,15 @@ void RunWriter::finish(const RunSummary& run) {
     std::fprintf(
         f.get(),
         "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged,"
-        "contact_sweeps,contact_sweep_change,late_contacts,area_ratio,depth");
+        "contact_sweeps,contact_sweep_change,late_contacts,area_ratio,depth,substeps");
     for (const std::string& name : run.moduleNames)
       std::fprintf(f.get(), ",seconds_%s", name.c_str());
     std::fprintf(f.get(), "\n");
     for (const StepStats& s : steps_) {
-      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d,%.9f,%.6e", s.step, s.time,
+      std::fprintf(f.get(), "%d,%.9g,%d,%d,%d,%d,%.6e,%d,%d,%.6e,%d,%.9f,%.6e,%d", s.step, s.time,
                    s.takeoff, s.stick, s.slip, s.pdIterations, s.residual, s.converged ? 1 : 0,
                    s.contactSweeps, s.contactSweepChange, s.lateContacts, areaRatio_.at(s.step),
-                   s.depth);
+                   s.depth, s.substeps);
       for (double sec : s.moduleSeconds) std::fprintf(f.get(), ",%.6e", sec);
       std::fprintf(f.get(), "\n");
     }

@@ -1,5 +1,5 @@
 #pragma once
-// solver.contact = "pd" (the default for contact scenes): DiffCloth's velocity-form PD with the
+// solver.contact = "pd" (the paper's method): DiffCloth's velocity-form PD with the
 // per-node Signorini-Coulomb solve inside every global step (Sec. 3.2, Eqs. 10-12, notes
 // Sec. 2.1; ContactSolver.h). solver.acceleration applies: "anderson" (default) mixes the
 // iterates with a residual-based safeguard, "none" runs plain PD. It stops on the same residual

@@ -8,7 +8,9 @@
 #include <weft/physics/StepContext.h>
 #include <weft/physics/StepSolver.h>
 #include <weft/physics/SystemMatrix.h>
+#include <weft/record/ConvergenceReport.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -26,6 +28,14 @@ constexpr double kBlowUpSpeed = 1e5;  // m/s
 }  // namespace
 
 Simulator::Simulator(const Scene& scene) : Simulator(Model::compile(scene)) {}
+
+struct Simulator::Level {
+  std::shared_ptr<const Model> model;    // the scene at this level's dt
+  std::unique_ptr<SystemMatrix> system;  // P and its factor
+  std::unique_ptr<StepContext> context;  // what the solves share
+  std::unique_ptr<StepSolver> solver;
+  NodeMatrix start, startVelocity;  // the state the last attempt started from
+};
 
 Simulator::Simulator(std::shared_ptr<const Model> model)
     : compiled_(std::move(model)),
@@ -57,16 +67,35 @@ Simulator::Simulator(std::shared_ptr<const Model> model)
   warmStart_.setZero(m, 3);
   force_.setZero(m, 3);
   if (contact_) predicted_.setZero(m, 3);
-
-  timer_->timed(solverModule_,
-                [&] { system_ = std::make_unique<SystemMatrix>(model_.mass, constraints_, h_); });
-  context_ =
-      std::make_unique<StepContext>(*compiled_, x_, constraints_, constraintModule_, *system_,
-                                    *timer_, solverModule_, contact_.get(), contactSolveModule_);
-  solver_ = makeStepSolver(*context_);
+  warmStartStep_ = h_;
+  level(0);
 }
 
 Simulator::~Simulator() = default;
+
+Simulator::Level& Simulator::level(int halvings) {
+  while (static_cast<int>(levels_.size()) <= halvings) {
+    const int k = static_cast<int>(levels_.size());
+    auto level = std::make_unique<Level>();
+    if (k == 0) {
+      level->model = compiled_;
+    } else {
+      Scene finer = scene_;
+      finer.time.dt = h_ / static_cast<double>(1 << k);
+      level->model = Model::compile(std::move(finer));
+    }
+    const double h = level->model->dt();
+    timer_->timed(solverModule_, [&] {
+      level->system = std::make_unique<SystemMatrix>(model_.mass, constraints_, h);
+    });
+    level->context = std::make_unique<StepContext>(
+        *level->model, x_, constraints_, constraintModule_, *level->system, *timer_, solverModule_,
+        contact_.get(), contactSolveModule_);
+    level->solver = makeStepSolver(*level->context);
+    levels_.push_back(std::move(level));
+  }
+  return *levels_[static_cast<std::size_t>(halvings)];
+}
 
 const std::vector<std::string>& Simulator::moduleNames() const {
   return timer_->names();
@@ -75,20 +104,99 @@ const std::vector<double>& Simulator::moduleSeconds() const {
   return timer_->seconds();
 }
 const Eigen::SparseMatrix<double>& Simulator::systemMatrix() const {
-  return system_->matrix();
+  return levels_.front()->system->matrix();
 }
 
+namespace {
+
+// A step (or piece) adaptive time stepping keeps (Simulator::step).
+bool solved(const StepStats& s) {
+  return s.converged && s.depth <= ConvergenceReport::kDepthTolerance;
+}
+
+}  // namespace
+
 const StepStats& Simulator::step() {
-  const double h2 = h_ * h_;
+  timer_->beginStep();
+  lastSubsteps_.clear();
+  StepStats& total = stepStats_;
   const double t1 = time_ + h_;
+  total = attempt(level(0), time_);
+  // Adaptive time stepping (SolverSettings::maxHalvings): a step that did not converge, or left
+  // a node deeper than ConvergenceReport::kDepthTolerance inside an obstacle's skin (the
+  // contact frames are frozen at the step's start, DiffCloth Eq. 9, and a curved or folded
+  // obstacle leaves an O(h^2) error), is solved again as two halves, each split further while
+  // it fails so, down to dt / 2^maxHalvings; the pieces' states and contacts are kept for the
+  // backward pass.
+  if (!solved(total) && scene_.solver.maxHalvings > 0) {
+    const int spent = total.pdIterations, sweeps = total.contactSweeps, late = total.lateContacts;
+    total = StepStats{};
+    total.step = step_ + 1;
+    total.time = t1;
+    total.converged = true;
+    total.substeps = 0;
+    subdivide(1, time_, total);
+    total.pdIterations += spent;
+    total.contactSweeps += sweeps;
+    total.lateContacts += late;
+  } else {
+    accept(level(0));
+  }
+  time_ = t1;  // (the pieces' ends add up to it up to rounding)
+  ++step_;
+  total.moduleSeconds = timer_->stepSeconds();
+  return total;
+}
+
+void Simulator::subdivide(int halvings, double t0, StepStats& total) {
+  Level& fine = level(halvings);
+  const double h = fine.model->dt();
+  for (int half = 0; half < 2; ++half) {
+    const double start = t0 + half * h;
+    const StepStats s = attempt(fine, start);
+    total.pdIterations += s.pdIterations;
+    total.contactSweeps += s.contactSweeps;
+    total.lateContacts += s.lateContacts;
+    if (!solved(s) && halvings < scene_.solver.maxHalvings) {
+      subdivide(halvings + 1, start, total);
+      continue;
+    }
+    accept(fine);
+    Substep piece;
+    piece.model = fine.model;
+    piece.halvings = halvings;
+    piece.time = s.time;
+    piece.x0 = fine.start;
+    piece.v0 = fine.startVelocity;
+    piece.x1 = x_;
+    piece.contacts = lastContacts_;
+    lastSubsteps_.push_back(std::move(piece));
+    ++total.substeps;
+    total.halvings = std::max(total.halvings, halvings);
+    total.converged = total.converged && s.converged;
+    total.residual = std::max(total.residual, s.residual);
+    total.depth = std::max(total.depth, s.depth);
+    total.takeoff = s.takeoff;
+    total.stick = s.stick;
+    total.slip = s.slip;
+    total.contactSweepChange = s.contactSweepChange;
+  }
+}
+
+const StepStats& Simulator::attempt(Level& level, double t0) {
+  const double h = level.model->dt();
+  const double h2 = h * h;
+  const double t1 = t0 + h;
   const SolverSettings& solver = scene_.solver;
-  StepContext& ctx = *context_;
+  StepContext& ctx = *level.context;
+  StepSolver& stepSolver = *level.solver;
   StepStats& stats = ctx.stats;
   stats = StepStats{};
   stats.step = step_ + 1;
   stats.time = t1;
-  timer_->beginStep();
   ctx.solveLimit = solver.pdIterations;
+  level.start = x_;
+  level.startVelocity = v_;
 
   // External forces at the end of the step (implicit Euler, Eqs. 1-2).
   force_.setZero();
@@ -100,20 +208,22 @@ const StepStats& Simulator::step() {
 
   timer_->timed(solverModule_, [&] {
     // y = x_n + h v_n + h^2 M^{-1} f_ext (Eq. 3)
-    ctx.y = x_ + h_ * v_ + h2 * (ctx.inverseMass.asDiagonal() * force_);
+    ctx.y = x_ + h * v_ + h2 * (ctx.inverseMass.asDiagonal() * force_);
     ctx.massY = model_.mass.asDiagonal() * ctx.y;
     // Warm start: the displacement the internal forces caused last step (x_n - y_{n-1}) changes
-    // slowly, and carries the slow, bending-like modes that PD is slowest to converge.
-    ctx.iterate = ctx.y + warmStart_;
+    // slowly, and carries the slow, bending-like modes that PD is slowest to converge. It scales
+    // with h^2 (warmStartStep_ is the h it was made with).
+    const double scale = (h / warmStartStep_) * (h / warmStartStep_);
+    ctx.iterate = ctx.y + scale * warmStart_;
   });
 
   if (contact_) {
-    detectContacts(time_, t1);
-    solver_->solve(ctx);
+    detectContacts(level, t0, t1);
+    stepSolver.solve(ctx);
     // Detection saw the predicted path only (DiffCloth Eq. 9's frames from x_n, v_n); where the
     // path the solve took strays from it, contacts it meets that the set lacks are added and the
     // step is solved again from its result, each pass with a fresh iteration budget.
-    for (int pass = 0; pass < kMissedContactPasses && solver_->resolvesMissedContacts(); ++pass) {
+    for (int pass = 0; pass < kMissedContactPasses && stepSolver.resolvesMissedContacts(); ++pass) {
       int added = 0;
       timer_->timed(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_,
                     [&] {
@@ -122,13 +232,13 @@ const StepStats& Simulator::step() {
                     });
       if (added == 0) break;
       stats.lateContacts += added;
-      timer_->timed(contactSolveModule_, [&] { solver_->prepareContacts(ctx); });
+      timer_->timed(contactSolveModule_, [&] { stepSolver.prepareContacts(ctx); });
       timer_->timed(solverModule_, [&] { ctx.iterate = ctx.global; });
       ctx.solveLimit = stats.pdIterations + solver.pdIterations;
-      solver_->solve(ctx);
+      stepSolver.solve(ctx);
     }
     timer_->timed(contactSolveModule_, [&] {
-      solver_->record(ctx, lastContacts_);
+      stepSolver.record(ctx, lastContacts_);
       countBranches(lastContacts_, stats);
       lastContacts_.sweeps = stats.contactSweeps;
     });
@@ -139,27 +249,31 @@ const StepStats& Simulator::step() {
             step_ + 1, "contact_solve",
             "non-finite contact impulse or velocity at node " + std::to_string(p.node));
   } else {
-    solver_->solve(ctx);
+    stepSolver.solve(ctx);
   }
   // The last global solution is the step's result (one PD iteration past the checked iterate).
-  if (!ctx.global.allFinite()) diagnoseNonFinite(x_);
+  if (!ctx.global.allFinite()) diagnoseNonFinite(x_, t1);
   if (contact_ && contact_->hasObstacles())
     timer_->timed(contactDetectionModule_,
                   [&] { stats.depth = contact_->deepestPenetration(ctx.global); });
-  stats.moduleSeconds = timer_->stepSeconds();
-  v_ = (ctx.global - x_) / h_;
-  x_ = ctx.global;
-  warmStart_ = x_ - ctx.y;
-  time_ = t1;
-  ++step_;
-  const double maxSpeed = std::sqrt(v_.rowwise().squaredNorm().maxCoeff());
-  if (!(maxSpeed < kBlowUpSpeed))
-    throw NumericalError(step_, "solver",
-                         "velocity " + std::to_string(maxSpeed) + " m/s: the integration blew up");
   return stats;
 }
 
-void Simulator::detectContacts(double t0, double t1) {
+void Simulator::accept(Level& level) {
+  StepContext& ctx = *level.context;
+  const double h = level.model->dt();
+  v_ = (ctx.global - x_) / h;
+  x_ = ctx.global;
+  warmStart_ = x_ - ctx.y;
+  warmStartStep_ = h;
+  time_ = ctx.stats.time;
+  const double maxSpeed = std::sqrt(v_.rowwise().squaredNorm().maxCoeff());
+  if (!(maxSpeed < kBlowUpSpeed))
+    throw NumericalError(ctx.stats.step, "solver",
+                         "velocity " + std::to_string(maxSpeed) + " m/s: the integration blew up");
+}
+
+void Simulator::detectContacts(Level& level, double t0, double t1) {
   // The contact set and frames are found once per step from x_n and the predicted motion (the
   // warm-started first iterate), and stay frozen during the iterations: the explicit J_n(x_n,
   // v_n) of DiffCloth Eq. 9; after the solve, step() adds contacts the path taken violated and
@@ -167,13 +281,13 @@ void Simulator::detectContacts(double t0, double t1) {
   const int first = contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_;
   timer_->timed(first, [&] {
     contact_->beginStep(t0, t1);
-    predicted_ = context_->iterate - x_;
+    predicted_ = level.context->iterate - x_;
   });
   if (contact_->hasObstacles())
     timer_->timed(contactDetectionModule_, [&] { contact_->detectObstacles(x_, predicted_); });
   if (contact_->hasSelfCollision())
     timer_->timed(selfCollisionModule_, [&] { contact_->detectSelfCollisions(x_, predicted_); });
-  timer_->timed(contactSolveModule_, [&] { solver_->prepareContacts(*context_); });
+  timer_->timed(contactSolveModule_, [&] { level.solver->prepareContacts(*level.context); });
 }
 
 void Simulator::restart(int step, const NodeMatrix& x, const NodeMatrix& v) {
@@ -185,12 +299,13 @@ void Simulator::restart(int step, const NodeMatrix& x, const NodeMatrix& v) {
   step_ = step;
   time_ = step * h_;
   warmStart_.setZero();
+  warmStartStep_ = h_;
 }
 
-void Simulator::diagnoseNonFinite(const NodeMatrix& lastGood) const {
+void Simulator::diagnoseNonFinite(const NodeMatrix& lastGood, double t1) const {
   NodeMatrix f = NodeMatrix::Zero(lastGood.rows(), 3);
   for (const auto& force : compiled_->forces()) {
-    force->accumulate(time_ + h_, f);
+    force->accumulate(t1, f);
     if (!f.allFinite()) throw NumericalError(step_ + 1, force->name(), "non-finite external force");
   }
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
@@ -219,6 +334,7 @@ void Simulator::run(int steps, Trajectory& trajectory,
     trajectory.velocities.push_back(v_);
     trajectory.steps.push_back(st);
     if (contact_) trajectory.contacts.push_back(lastContacts_);
+    trajectory.substeps.push_back(lastSubsteps_);
     if (progress) progress(st);
   }
 }

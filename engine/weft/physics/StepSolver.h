@@ -7,8 +7,8 @@
 //
 // Without contact (solver.method): NewtonPcgSolve ("newton", the default) or
 // ProjectiveDynamicsSolve ("pd", Anderson-accelerated unless solver.acceleration is "none").
-// With contact (solver.contact): PdContactSolve ("pd", the default), ContactNewtonSolve
-// ("newton") or ActiveSetSolve ("active_set"). See each class for its method.
+// With contact (solver.contact): ContactNewtonSolve ("newton", the default), PdContactSolve
+// ("pd") or ActiveSetSolve ("active_set"). See each class for its method.
 
 #include <weft/physics/StepContext.h>
 #include <weft/record/StepContacts.h>

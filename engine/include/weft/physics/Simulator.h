@@ -13,6 +13,7 @@
 #include <weft/physics/Model.h>
 #include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
+#include <weft/record/Substep.h>
 #include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
 
@@ -76,14 +77,30 @@ class Simulator {
   const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return compiled_->forces(); }
   // The scene's contact, or null when it has no obstacles and no self-collision.
   const FrictionalContact* contact() const { return contact_.get(); }
-  // The contacts of the last step (empty before the first step or without contact).
+  // The contacts of the last step (empty before the first step or without contact); of its last
+  // piece when it was split.
   const StepContacts& lastContacts() const { return lastContacts_; }
+  // The pieces of the last step when adaptive time stepping split it (empty when solved whole).
+  const std::vector<Substep>& lastSubsteps() const { return lastSubsteps_; }
   // The one-coordinate system matrix M + h^2 sum_i w_i A_i^T A_i (P = this (x) I_3).
   const Eigen::SparseMatrix<double>& systemMatrix() const;
 
  private:
-  void detectContacts(double t0, double t1);
-  void diagnoseNonFinite(const NodeMatrix& lastGood) const;
+  // The solve at h = dt / 2^halvings (level 0: the scene's dt): the model compiled at that h,
+  // its P, the solves' shared state and the step solver. Finer levels are built when a step
+  // first needs them.
+  struct Level;
+  Level& level(int halvings);
+  // Solves [t0, t0 + h] at `level` from the current state into the level's StepContext::global;
+  // nothing advances. Returns the attempt's stats.
+  const StepStats& attempt(Level& level, double t0);
+  // Advances the state to the level's last attempt.
+  void accept(Level& level);
+  // Solves [t0, t0 + 2 h] of `halvings` - 1 as two pieces at `halvings`, each split further
+  // while it does not converge and maxHalvings allows; accumulates into `total`.
+  void subdivide(int halvings, double t0, StepStats& total);
+  void detectContacts(Level& level, double t0, double t1);
+  void diagnoseNonFinite(const NodeMatrix& lastGood, double t1) const;
 
   std::shared_ptr<const Model> compiled_;
   const Scene& scene_;
@@ -97,17 +114,18 @@ class Simulator {
   std::unique_ptr<FrictionalContact> contact_;
   int contactDetectionModule_ = -1, selfCollisionModule_ = -1, contactSolveModule_ = -1;
   StepContacts lastContacts_;
+  std::vector<Substep> lastSubsteps_;
+  StepStats stepStats_;  // the last step's, over its pieces
 
   NodeMatrix x_, v_;
   double time_ = 0.0;
   int step_ = 0;
-  NodeMatrix warmStart_;  // x_n - y_{n-1}
+  NodeMatrix warmStart_;        // x_n - y_{n-1}
+  double warmStartStep_ = 0.0;  // the h warmStart_ was made with
   NodeMatrix force_;
   NodeMatrix predicted_;  // the displacement detection predicted (contact scenes only)
 
-  std::unique_ptr<SystemMatrix> system_;  // P and its factor
-  std::unique_ptr<StepContext> context_;  // what the solves share
-  std::unique_ptr<StepSolver> solver_;
+  std::vector<std::unique_ptr<Level>> levels_;  // by halvings
 };
 
 }  // namespace weft

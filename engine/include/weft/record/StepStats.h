@@ -23,6 +23,12 @@ struct StepStats {
   // The deepest node inside any obstacle's contact skin at the end of the step (m; 0 when none
   // is inside, and without obstacles): skin minus the node's signed distance to the surface.
   double depth = 0.0;
+  // Adaptive time stepping (SolverSettings::maxHalvings): how many pieces the step was solved in
+  // (1: whole) and the finest one's halvings (its dt is the scene's / 2^halvings). pdIterations,
+  // contactSweeps and lateContacts then sum over every attempt, the rejected ones included;
+  // residual, converged and depth are the worst accepted piece's.
+  int substeps = 1;
+  int halvings = 0;
   std::vector<double> moduleSeconds;  // aligned with Simulator::moduleNames()
 };
 

@@ -6,6 +6,7 @@
 #include <weft/core/Types.h>
 #include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
+#include <weft/record/Substep.h>
 
 #include <memory>
 #include <string>
@@ -25,6 +26,9 @@ struct Trajectory {
   // Steps 1..N: every contact with its branch, frame, impulse and velocity. Empty when the
   // scene has no obstacles and no self-collision.
   std::vector<StepContacts> contacts;
+  // Steps 1..N: the pieces of a step adaptive time stepping split (Substep.h), in order; empty
+  // for a step solved whole. The step's state and contacts above are its last piece's.
+  std::vector<std::vector<Substep>> substeps;
   std::vector<std::string> moduleNames;
 
   int stepCount() const { return static_cast<int>(steps.size()); }

@@ -42,21 +42,25 @@ enum class Acceleration { None, Anderson };
 // "newton": Newton with CG preconditioned by the prefactorised P (the default);
 // "pd": local-global PD iterations (with Anderson acceleration unless turned off).
 enum class SolverMethod { Newton, ProjectiveDynamics };
-// Contact scenes (solver.contact): "pd" (default), DiffCloth's per-node Signorini-Coulomb solve
-// inside PD iterations (ContactSolver.h), whatever `method` says; "active_set" (experimental),
-// Newton-PCG with the contacts as an active set of constraints (ActiveContactSet.h); "newton",
-// semismooth Newton on the fixed point of the PD contact iteration (same law, same solution).
+// Contact scenes (solver.contact): "newton" (default), semismooth Newton on the fixed point of
+// the PD contact iteration (same law, same solution); "pd", DiffCloth's per-node
+// Signorini-Coulomb solve inside PD iterations (ContactSolver.h), whatever `method` says;
+// "active_set" (experimental), Newton-PCG with the contacts as an active set of constraints
+// (ActiveContactSet.h).
 enum class ContactMethod { ProjectiveDynamics, ActiveSet, Newton };
 
 struct SolverSettings {
   SolverMethod method = SolverMethod::Newton;
-  ContactMethod contact = ContactMethod::ProjectiveDynamics;
+  ContactMethod contact = ContactMethod::Newton;
   int pdIterations = 100;  // at most this many solves with P per step
   // Converged when the mass-weighted RMS imbalance of the implicit-Euler equations
   // (DiffCloth Eq. 3 gradient divided by nodal mass) falls below this, in m/s^2.
   double pdTolerance = 1e-4;
   Acceleration acceleration = Acceleration::Anderson;
   int andersonWindow = 5;
+  // Adaptive time stepping: a step that does not converge is solved again as two halves, each
+  // split further while it does not converge, down to dt / 2^maxHalvings (0: never split).
+  int maxHalvings = 4;
   BackwardSettings backward;
 };
 
