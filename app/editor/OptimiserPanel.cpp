@@ -5,6 +5,7 @@
 
 #include <weft/diff/SceneParameter.h>
 #include <weft/optim/ParameterSpace.h>
+#include <weft/record/ConvergenceReport.h>
 #include <weft/scene/JsonPath.h>
 
 #include <imgui.h>
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace weft::editor {
@@ -180,6 +182,14 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
   if (!run.error().empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
     ImGui::TextWrapped("%s", run.error().c_str());
+    ImGui::PopStyleColor();
+  }
+  if (const int unconverged = run.unconvergedForwardSteps(); unconverged > 0) {
+    // The CLI's warning (weft optimize, gradcheck), without its "warning: " prefix.
+    std::string warning = unconvergedGradientWarning(unconverged);
+    warning = warning.substr(std::string("warning: ").size());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.65f, 0.20f, 1.0f));
+    ImGui::TextWrapped("%s", warning.c_str());
     ImGui::PopStyleColor();
   }
   if (samples.empty()) return;

@@ -58,6 +58,7 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
   {
     std::lock_guard<std::mutex> lock(mutex_);
     samples_.clear();
+    unconverged_ = 0;
     error_.clear();
     stopReason_.clear();
   }
@@ -76,8 +77,11 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
       s.steps = e.steps;
       s.loss = e.loss;
       s.values.assign(v.data(), v.data() + v.size());
+      // (The objective is the worker's: read here, on the worker, after its evaluation.)
+      const int unconverged = run_->objective().unconvergedForwardSteps();
       std::lock_guard<std::mutex> lock(mutex_);
       samples_.push_back(std::move(s));
+      unconverged_ = unconverged;
     };
     try {
       const OptimizationOutcome outcome = run_->run(settings_, callbacks);
@@ -156,6 +160,11 @@ std::string OptimizerRun::error() const {
 std::string OptimizerRun::stopReason() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return stopReason_;
+}
+
+int OptimizerRun::unconvergedForwardSteps() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return unconverged_;
 }
 
 std::vector<OptimizerRun::Sample> OptimizerRun::samples() const {

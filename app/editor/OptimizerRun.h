@@ -78,6 +78,9 @@ class OptimizerRun {
   std::vector<Sample> samples() const;
   int evaluations() const;
   std::optional<Sample> best() const;  // the lowest loss so far
+  // Forward steps of the run's evaluations so far that stopped at solver.pd_iterations above
+  // solver.pd_tolerance: their gradients are those of unconverged steps (the panel warns).
+  int unconvergedForwardSteps() const;
 
  private:
   void join();
@@ -94,6 +97,7 @@ class OptimizerRun {
 
   mutable std::mutex mutex_;
   std::vector<Sample> samples_;
+  int unconverged_ = 0;
   std::string error_, stopReason_;
   std::atomic<Status> status_{Status::Idle};
 };

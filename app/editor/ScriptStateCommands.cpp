@@ -57,6 +57,7 @@ nlohmann::json optimizerState(const EditorSession& session) {
           {"best_loss", best ? nlohmann::json(best->loss) : nlohmann::json(nullptr)},
           {"best_values", best ? nlohmann::json(best->values) : nlohmann::json(nullptr)},
           {"stop_reason", run.stopReason()},
+          {"unconverged_forward_steps", run.unconvergedForwardSteps()},
           {"error", run.error()}};
 }
 

@@ -3,8 +3,8 @@
 // node of a converged step may end deeper than 0.1 mm inside an obstacle's skin; each scene also
 // asserts what it is about physically. After issue 36: a cloth on a spinning sphere, a cloth
 // pulled across a table edge at 0.5, 2 and 8 m/s (C-IPC's table-cloth pull), a cloth thrown
-// into a corner at 20 m/s, and a cloth squeezed between a floor and a slab to less than twice
-// the skin.
+// into a corner at 20 m/s, three cloths stacked and dropped on a floor, and a cloth squeezed
+// between a floor and a slab to less than twice the skin.
 
 #include "ContactTestSupport.h"
 
@@ -161,6 +161,47 @@ TEST(HardScenes, ClothThrownIntoACornerAtTwentyMetresPerSecond) {
               outwards);
   EXPECT_LT(rms, 2.0);
   EXPECT_LT(outwards, 2.0);
+}
+
+TEST(HardScenes, ThreeStackedClothsDroppedOnAFloor) {
+  // Three 0.2 m cloths, 2 cm apart, falling together from 5 cm onto a floor: the bottom one
+  // lands first and the others come down on it. Node-node contact (self_collision, radius
+  // 8 mm) between the layers; the grids are aligned, so every node has its twin in the next
+  // layer. The stack must keep its order with each layer at least the collision distance (less
+  // the quarter the frozen frames allow, SelfCollisionTest's tolerance) above the one below, and
+  // come to rest on the floor.
+  constexpr double kRadius = 0.008;
+  constexpr int kLayers = 3;
+  nlohmann::json doc = test::clothScene(0.2, 8, Vec3(0, 0.05, 0), 0.005, 300.0, 1e-4, 0.2);
+  doc["solver"] = nlohmann::json::object();
+  doc["cloths"][0]["self_collision"] = {{"radius", kRadius}, {"friction", 0.3}};
+  for (int layer = 1; layer < kLayers; ++layer) {
+    nlohmann::json cloth = doc["cloths"][0];
+    cloth["mesh"]["transform"]["translate"] = {0.0, 0.05 + 0.02 * layer, 0.0};
+    doc["cloths"].push_back(cloth);
+  }
+  test::addObstacle(doc, "plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}, 0.4);
+  const test::ContactRun run = test::runScene(doc, 120);
+  expectSolved(run, "three stacked cloths");
+  const Trajectory& t = run.trajectory;
+  const int m = run.sim->cloth().nodeCount() / kLayers;  // layer k: nodes k m .. (k + 1) m - 1
+  double closest = 1e9;
+  for (int n = 1; n <= t.stepCount(); ++n)
+    for (int layer = 1; layer < kLayers; ++layer) {
+      const double above = (t.positions[n].col(1).segment(layer * m, m) -
+                            t.positions[n].col(1).segment((layer - 1) * m, m))
+                               .minCoeff();
+      closest = std::min(closest, above);
+      ASSERT_GT(above, 0.75 * kRadius) << "state " << n << ", layer " << layer;
+    }
+  // At rest: the bottom layer within its 1 mm skin of the floor, nothing moving, the stack
+  // about one collision distance per layer high.
+  const NodeMatrix& x = t.positions.back();
+  std::printf("three stacked cloths: closest layers %.2f mm apart, top layer at %.2f mm\n",
+              1e3 * closest, 1e3 * x.col(1).tail(m).maxCoeff());
+  EXPECT_LT(x.col(1).head(m).maxCoeff(), 2e-3);
+  EXPECT_LT(x.col(1).tail(m).maxCoeff(), 2e-3 + (kLayers - 1) * 1.5 * kRadius);
+  EXPECT_LT(test::maxSpeedOf(t.velocities.back()), 0.05);
 }
 
 TEST(HardScenes, ClothSqueezedToLessThanTwiceTheSkin) {

@@ -73,6 +73,25 @@ TEST(OptimizerRun, StepsOneEvaluationAtATimeAndLowersTheLoss) {
   EXPECT_LT(run.best()->loss, 1e-6 * samples[0].loss);
   EXPECT_NEAR(run.best()->values[0], 250.0, 1.0);
   EXPECT_NEAR(run.best()->values[1], 2.0, 0.01);
+  EXPECT_EQ(run.unconvergedForwardSteps(), 0) << "the scene's steps converge";
+}
+
+TEST(OptimizerRun, CountsTheUnconvergedForwardStepsItDifferentiates) {
+  // One solver iteration per step cannot reach wind_sysid's 1e-6 tolerance: every forward step
+  // of the evaluation stops at the limit, and the run says so (the panel shows the warning).
+  Scene scene = windSysid();
+  scene.solver.pdIterations = 1;
+  OptimizerRun run;
+  OptimizerRun::Setup setup;
+  setup.parameters = {"wind.strength"};
+  ASSERT_EQ(run.start(scene, setup, true), "");
+  run.step(1);
+  for (int i = 0; i < 60000 && run.evaluations() < 1; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  settle(run);
+  ASSERT_EQ(run.evaluations(), 1);
+  EXPECT_EQ(run.unconvergedForwardSteps(), scene.time.steps);
+  run.cancel();
 }
 
 TEST(OptimizerRun, CancelStopsAPausedRunAndKeepsItsSamples) {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace weft {
 namespace {
@@ -117,6 +118,35 @@ TEST(AdaptiveTimeStepping, SplitStepsAgreeWithTheSameSceneRunAtTheFinerStep) {
     ++compared;
   }
   EXPECT_GE(compared, 4);
+}
+
+TEST(AdaptiveTimeStepping, RememberedHalvingsStartWhereTheLastStepNeeded) {
+  // solver.remember_halvings: where every whole step fails (the tight budget), the first step
+  // fails whole and the next ones start split, so the whole-step attempts the plain run makes
+  // on every step (and pays a budget for) are skipped, and every step still converges.
+  nlohmann::json doc = tightBudgetScene(4);
+  Simulator plain(test::parse(doc));
+  Trajectory a;
+  plain.run(15, a);
+  doc["solver"]["remember_halvings"] = true;
+  Simulator remembering(test::parse(doc));
+  Trajectory b;
+  remembering.run(15, b);
+  long long plainSolves = 0, rememberingSolves = 0;
+  for (int n = 0; n < 15; ++n) {
+    SCOPED_TRACE(n);
+    EXPECT_TRUE(a.steps[n].converged);
+    EXPECT_TRUE(b.steps[n].converged);
+    plainSolves += a.steps[n].pdIterations;
+    rememberingSolves += b.steps[n].pdIterations;
+    // From step 2 on, a step costs at least the failed whole attempt's budget (12 solves) less
+    // with the memory (StepStats::pdIterations counts every attempt's solves).
+    if (n >= 1) EXPECT_LE(b.steps[n].pdIterations + 12, a.steps[n].pdIterations);
+  }
+  std::printf("tight budget, 15 steps: %lld solves plain, %lld remembering the halvings\n",
+              plainSolves, rememberingSolves);
+  // Both converged runs are the same motion up to the split pattern's O(h) difference.
+  EXPECT_LT((a.positions.back() - b.positions.back()).cwiseAbs().maxCoeff(), 1e-3);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
   it, and the task scenes must not drift from the code that documents their choices).
 - evaluation-sets.py, compare-gradients.py and compare-runs.py compute what they print, and
   refuse bad input with `error: <file>: <what>` and exit status 2.
+- contact-scenes.py tabulates what each scene's summary.json says, and refuses a missing scene.
 - embed-applications.py puts a bench output into a document and replaces it there, keeping the
   rest.
 
@@ -167,6 +168,29 @@ class CompareGradients(unittest.TestCase):
         r = script("compare-gradients.py", a, c)
         self.assertEqual(r.returncode, 2)
         self.assertTrue(r.stderr.startswith(f"error: {c}: initial_parameters: missing"), r.stderr)
+
+
+class ContactScenes(unittest.TestCase):
+    """contact-scenes.py on the first steps of the Hat (a handle moving a hat over a head)."""
+
+    def test_table_of_a_short_run(self):
+        scene = os.path.join(SOURCE, "assets", "scenes", "hat.json")
+        r = script("contact-scenes.py", "--weft", WEFT, "--steps", "5", scene, scene)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = r.stdout.splitlines()
+        self.assertEqual(len(lines), 4)  # header, rule, one row per scene
+        cells = [c.strip() for c in lines[2].strip("|").split("|")]
+        self.assertEqual(cells[0], "hat")
+        self.assertEqual(cells[1], "5")
+        self.assertEqual(cells[2], "5/5")
+        self.assertGreater(float(cells[6]), 0.0)  # CPU seconds of the run
+        self.assertEqual(lines[2].split("|")[:6], lines[3].split("|")[:6])  # deterministic
+
+    def test_missing_scene_is_exit_2(self):
+        missing = os.path.join(SOURCE, "no-such-scene.json")
+        r = script("contact-scenes.py", "--weft", WEFT, missing)
+        self.assertEqual(r.returncode, 2)
+        self.assertTrue(r.stderr.startswith(f"error: {missing}: no such scene file"), r.stderr)
 
 
 class CompareRuns(unittest.TestCase):

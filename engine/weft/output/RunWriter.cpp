@@ -142,6 +142,7 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
       {"split_steps", splitSteps},
       {"deepest_halvings", deepestHalvings},
       {"max_halvings", scene.solver.maxHalvings},
+      {"remember_halvings", scene.solver.rememberHalvings},
       {"acceleration", scene.solver.acceleration == Acceleration::Anderson ? "anderson" : "none"}};
   return j;
 }

@@ -34,6 +34,15 @@ constexpr int kGmresRestart = 100;
 constexpr double kMinStep = 1e-3;
 constexpr double kRelaxedGrowth = 100.0;
 constexpr int kRelaxedSteps = 3;
+// An attempt adaptive time stepping would split (StepContext::splittable) gives up after this
+// many Newton iterations in a row that kept every branch and still did not halve a residual
+// more than kCreepingAbove times the tolerance: the line search is creeping along a kink of G (a
+// collapsing element, a node at a branch boundary), where the rest of the budget rarely
+// converges and the halves do. (Near the tolerance the creep is rounding, which halves do not
+// cure and the PD continuation does.)
+constexpr int kCreepingIterations = 2;
+constexpr double kCreepingRatio = 0.5;
+constexpr double kCreepingAbove = 100.0;
 // Diagnostics: WEFT_CONTACT_TRACE=a-b (or =a) prints each Newton contact iteration of steps a..b
 // to stderr (residual, GMRES iterations, step length, branch changes).
 // Read once, by a static initialiser, which is thread-safe: simulators may run on several
@@ -75,7 +84,9 @@ void ContactNewtonSolve::solve(StepContext& ctx) {
     return;
   }
   solveNewton(ctx);
-  if (!ctx.stats.converged && std::isfinite(ctx.stats.residual) &&
+  // A stalled attempt that adaptive time stepping will split is given up: the halves converge
+  // for less than the PD iteration's continuation costs.
+  if (!ctx.stats.converged && !ctx.splittable && std::isfinite(ctx.stats.residual) &&
       ctx.stats.pdIterations < ctx.solveLimit)
     finishWithPerNodeIterations(ctx);
 }
@@ -140,7 +151,7 @@ void ContactNewtonSolve::solveNewton(StepContext& ctx) {
   bool factored = stiffnessFactored_ && keepStiffnessFactor_;
   stiffnessFactored_ = factored;  // (applyPreconditioner uses P until K+ is factorised)
   double forcing = 0.1, previous = 0.0;
-  int lastIterations = 0, relaxed = 0, iteration = 0;
+  int lastIterations = 0, relaxed = 0, iteration = 0, creeping = 0;
   bool clamped = false;  // the Jacobian's K: exact (P - Delta P) until a line search fails, then K+
   // K+ at the iterate, leaving the derivatives J's K uses prepared (the clamped ones already are).
   auto refactorStiffness = [&] {
@@ -229,6 +240,10 @@ void ContactNewtonSolve::solveNewton(StepContext& ctx) {
       continue;
     }
     if (!accepted) break;  // stalled: the best iterate is the result
+    creeping = changed == 0 && trial > kCreepingRatio * measure &&
+                       trial > kCreepingAbove * solver.pdTolerance
+                   ? creeping + 1
+                   : 0;
     ctx.iterate.swap(ctx.accelerated);
     residual.swap(trialResidual);
     measure = trial;
@@ -236,6 +251,7 @@ void ContactNewtonSolve::solveNewton(StepContext& ctx) {
       bestMeasure = measure;
       best = ctx.iterate;
     }
+    if (ctx.splittable && creeping >= kCreepingIterations) break;
   }
   if (!(measure <= bestMeasure)) {
     ctx.iterate = best;

@@ -30,6 +30,7 @@ constexpr double kBlowUpSpeed = 1e5;  // m/s
 Simulator::Simulator(const Scene& scene) : Simulator(Model::compile(scene)) {}
 
 struct Simulator::Level {
+  int halvings = 0;                      // dt / 2^halvings
   std::shared_ptr<const Model> model;    // the scene at this level's dt
   std::unique_ptr<SystemMatrix> system;  // P and its factor
   std::unique_ptr<StepContext> context;  // what the solves share
@@ -77,6 +78,7 @@ Simulator::Level& Simulator::level(int halvings) {
   while (static_cast<int>(levels_.size()) <= halvings) {
     const int k = static_cast<int>(levels_.size());
     auto level = std::make_unique<Level>();
+    level->halvings = k;
     if (k == 0) {
       level->model = compiled_;
     } else {
@@ -121,44 +123,74 @@ const StepStats& Simulator::step() {
   lastSubsteps_.clear();
   StepStats& total = stepStats_;
   const double t1 = time_ + h_;
-  total = attempt(level(0), time_);
   // Adaptive time stepping (SolverSettings::maxHalvings): a step that did not converge, or left
   // a node deeper than ConvergenceReport::kDepthTolerance inside an obstacle's skin (the
   // contact frames are frozen at the step's start, DiffCloth Eq. 9, and a curved or folded
   // obstacle leaves an O(h^2) error), is solved again as two halves, each split further while
   // it fails so, down to dt / 2^maxHalvings; the pieces' states and contacts are kept for the
-  // backward pass.
-  if (!solved(total) && scene_.solver.maxHalvings > 0) {
+  // backward pass. With SolverSettings::rememberHalvings, as in a step-size controller, a step
+  // starts at the level the last one needed (chooseNextStart): a failed attempt is expensive.
+  const int first = std::min(nextStart_, scene_.solver.maxHalvings);
+  bool failedFirst = false;
+  if (first == 0) {
+    total = attempt(level(0), time_);
+    failedFirst = !solved(total);
+  }
+  if (first > 0 || (failedFirst && scene_.solver.maxHalvings > 0)) {
     const int spent = total.pdIterations, sweeps = total.contactSweeps, late = total.lateContacts;
     total = StepStats{};
     total.step = step_ + 1;
     total.time = t1;
     total.converged = true;
     total.substeps = 0;
-    subdivide(1, time_, total);
-    total.pdIterations += spent;
-    total.contactSweeps += sweeps;
-    total.lateContacts += late;
+    if (first == 0) {  // (the failed whole attempt's work counts)
+      total.pdIterations = spent;
+      total.contactSweeps = sweeps;
+      total.lateContacts = late;
+    }
+    subdivide(1, std::max(first, 1), time_, total, failedFirst);
   } else {
     accept(level(0));
   }
+  chooseNextStart(first, failedFirst);
   time_ = t1;  // (the pieces' ends add up to it up to rounding)
   ++step_;
   total.moduleSeconds = timer_->stepSeconds();
   return total;
 }
 
-void Simulator::subdivide(int halvings, double t0, StepStats& total) {
+void Simulator::chooseNextStart(int first, bool failedFirst) {
+  // With SolverSettings::rememberHalvings: one level finer after a failure at the first level;
+  // one coarser after kCleanSteps steps in a row solved where they started (the contact set of
+  // an impact settles within a few steps; growing after every success would pay for a failed
+  // attempt every other step). Without, every step starts whole.
+  constexpr int kCleanSteps = 2;
+  if (!scene_.solver.rememberHalvings) return;
+  if (failedFirst) {
+    nextStart_ = std::min(first + 1, scene_.solver.maxHalvings);
+    cleanSteps_ = 0;
+  } else if (first > 0 && ++cleanSteps_ >= kCleanSteps) {
+    nextStart_ = first - 1;
+    cleanSteps_ = 0;
+  }
+}
+
+void Simulator::subdivide(int halvings, int first, double t0, StepStats& total, bool& failedFirst) {
   Level& fine = level(halvings);
   const double h = fine.model->dt();
   for (int half = 0; half < 2; ++half) {
     const double start = t0 + half * h;
+    if (halvings < first) {
+      subdivide(halvings + 1, first, start, total, failedFirst);
+      continue;
+    }
     const StepStats s = attempt(fine, start);
     total.pdIterations += s.pdIterations;
     total.contactSweeps += s.contactSweeps;
     total.lateContacts += s.lateContacts;
+    if (!solved(s) && halvings == first) failedFirst = true;
     if (!solved(s) && halvings < scene_.solver.maxHalvings) {
-      subdivide(halvings + 1, start, total);
+      subdivide(halvings + 1, first, start, total, failedFirst);
       continue;
     }
     accept(fine);
@@ -195,6 +227,7 @@ const StepStats& Simulator::attempt(Level& level, double t0) {
   stats.step = step_ + 1;
   stats.time = t1;
   ctx.solveLimit = solver.pdIterations;
+  ctx.splittable = level.halvings < solver.maxHalvings;
   level.start = x_;
   level.startVelocity = v_;
 
@@ -223,7 +256,10 @@ const StepStats& Simulator::attempt(Level& level, double t0) {
     // Detection saw the predicted path only (DiffCloth Eq. 9's frames from x_n, v_n); where the
     // path the solve took strays from it, contacts it meets that the set lacks are added and the
     // step is solved again from its result, each pass with a fresh iteration budget.
-    for (int pass = 0; pass < kMissedContactPasses && stepSolver.resolvesMissedContacts(); ++pass) {
+    // An unconverged attempt that will be split is not worth the passes: it is thrown away.
+    for (int pass = 0; pass < kMissedContactPasses && stepSolver.resolvesMissedContacts() &&
+                       (stats.converged || !ctx.splittable);
+         ++pass) {
       int added = 0;
       timer_->timed(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_,
                     [&] {
@@ -300,6 +336,8 @@ void Simulator::restart(int step, const NodeMatrix& x, const NodeMatrix& v) {
   time_ = step * h_;
   warmStart_.setZero();
   warmStartStep_ = h_;
+  nextStart_ = 0;
+  cleanSteps_ = 0;
 }
 
 void Simulator::diagnoseNonFinite(const NodeMatrix& lastGood, double t1) const {

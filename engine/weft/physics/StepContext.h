@@ -49,7 +49,11 @@ struct StepContext {
 
   // The step.
   StepStats stats;
-  int solveLimit = 0;   // the current solve stops when stats.pdIterations reaches it
+  int solveLimit = 0;  // the current solve stops when stats.pdIterations reaches it
+  // A failed attempt will be thrown away and solved again as two halves (adaptive time
+  // stepping, Simulator::step): a solve that stalls gives up instead of spending the rest of its
+  // budget on a fallback.
+  bool splittable = false;
   NodeMatrix y, massY;  // y = x_n + h v_n + h^2 M^-1 f_ext (Eq. 3) and M y
   NodeMatrix iterate;   // the solve's current iterate
   NodeMatrix global;    // the last global solution: the step's result once the solve returns

@@ -293,7 +293,7 @@ Wind readWind(const JsonReader& r, const std::vector<Cloth>& cloths) {
 
 void readSolver(const JsonReader& r, SolverSettings& s) {
   r.allowOnly({"method", "contact", "pd_iterations", "pd_tolerance", "acceleration",
-               "anderson_window", "max_halvings", "backward"});
+               "anderson_window", "max_halvings", "remember_halvings", "backward"});
   if (auto v = r.optional("method"))
     s.method = v->choice({"newton", "pd"}) == "pd" ? SolverMethod::ProjectiveDynamics
                                                    : SolverMethod::Newton;
@@ -310,6 +310,7 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
         v->choice({"anderson", "none"}) == "none" ? Acceleration::None : Acceleration::Anderson;
   if (auto v = r.optional("anderson_window")) s.andersonWindow = v->integer(1, 50);
   if (auto v = r.optional("max_halvings")) s.maxHalvings = v->integer(0, 10);
+  if (auto v = r.optional("remember_halvings")) s.rememberHalvings = v->boolean();
   if (auto b = r.optional("backward")) {
     b->allowOnly(
         {"method", "tolerance", "max_iterations", "fallback", "preconditioner", "history"});

@@ -96,9 +96,12 @@ class Simulator {
   const StepStats& attempt(Level& level, double t0);
   // Advances the state to the level's last attempt.
   void accept(Level& level);
-  // Solves [t0, t0 + 2 h] of `halvings` - 1 as two pieces at `halvings`, each split further
-  // while it does not converge and maxHalvings allows; accumulates into `total`.
-  void subdivide(int halvings, double t0, StepStats& total);
+  // Solves [t0, t0 + 2 h] of `halvings` - 1 as two pieces at `halvings` (first split down to
+  // `first` without an attempt), each split further while it does not converge and maxHalvings
+  // allows; accumulates into `total`. Sets `failedFirst` when a piece at `first` failed.
+  void subdivide(int halvings, int first, double t0, StepStats& total, bool& failedFirst);
+  // The level the next step starts at (step()).
+  void chooseNextStart(int first, bool failedFirst);
   void detectContacts(Level& level, double t0, double t1);
   void diagnoseNonFinite(const NodeMatrix& lastGood, double t1) const;
 
@@ -126,6 +129,8 @@ class Simulator {
   NodeMatrix predicted_;  // the displacement detection predicted (contact scenes only)
 
   std::vector<std::unique_ptr<Level>> levels_;  // by halvings
+  int nextStart_ = 0;   // the halvings the next step's first attempts are made at
+  int cleanSteps_ = 0;  // steps in a row solved at their first level (chooseNextStart)
 };
 
 }  // namespace weft

@@ -60,7 +60,12 @@ struct SolverSettings {
   int andersonWindow = 5;
   // Adaptive time stepping: a step that does not converge is solved again as two halves, each
   // split further while it does not converge, down to dt / 2^maxHalvings (0: never split).
-  int maxHalvings = 4;
+  int maxHalvings = 6;
+  // A step-size controller on top: each step starts at the halvings the last one needed (one
+  // finer after a failure, one coarser after two clean steps). Faster where hard steps come in
+  // runs (an impact), but the discretisation then depends on the run's history, and a loss over
+  // the run jumps further where a parameter change moves a split: off by default.
+  bool rememberHalvings = false;
   BackwardSettings backward;
 };
 
