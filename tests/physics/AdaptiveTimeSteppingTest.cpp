@@ -141,7 +141,9 @@ TEST(AdaptiveTimeStepping, RememberedHalvingsStartWhereTheLastStepNeeded) {
     rememberingSolves += b.steps[n].pdIterations;
     // From step 2 on, a step costs at least the failed whole attempt's budget (12 solves) less
     // with the memory (StepStats::pdIterations counts every attempt's solves).
-    if (n >= 1) EXPECT_LE(b.steps[n].pdIterations + 12, a.steps[n].pdIterations);
+    if (n >= 1) {
+      EXPECT_LE(b.steps[n].pdIterations + 12, a.steps[n].pdIterations);
+    }
   }
   std::printf("tight budget, 15 steps: %lld solves plain, %lld remembering the halvings\n",
               plainSolves, rememberingSolves);

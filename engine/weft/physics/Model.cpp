@@ -15,48 +15,64 @@
 namespace weft {
 
 std::shared_ptr<const Model> Model::compile(Scene scene) {
-  return std::shared_ptr<const Model>(new Model(std::move(scene)));
+  std::shared_ptr<const Parts> parts = compileParts(scene);
+  return std::shared_ptr<const Model>(new Model(std::move(scene), std::move(parts)));
 }
 
-Model::Model(Scene scene) : scene_(std::move(scene)), cloth_(buildClothModel(scene_)) {
-  auto addConstraint = [this](std::unique_ptr<ProjectiveConstraint> c) {
-    if (c->rowCount() > 0) constraints_.push_back(std::move(c));
-  };
-  addConstraint(std::make_unique<StretchConstraint>(makeStretchConstraint(scene_, cloth_)));
-  addConstraint(std::make_unique<BendingConstraint>(makeBendingConstraint(scene_, cloth_)));
-  addConstraint(
-      std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene_, cloth_, false)));
-  addConstraint(
-      std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene_, cloth_, true)));
+std::shared_ptr<const Model> Model::withTimeStep(double dt) const {
+  Scene scene = scene_;
+  scene.time.dt = dt;
+  return std::shared_ptr<const Model>(new Model(std::move(scene), parts_));
+}
 
-  if (scene_.gravity)
-    forces_.push_back(std::make_unique<GravityForce>(*scene_.gravity, cloth_.mass));
-  if (scene_.wind) forces_.push_back(std::make_unique<WindForce>(*scene_.wind, cloth_.lumpedArea));
+Model::Model(Scene scene, std::shared_ptr<const Parts> parts)
+    : scene_(std::move(scene)), parts_(std::move(parts)) {}
+
+std::shared_ptr<const Model::Parts> Model::compileParts(const Scene& scene) {
+  auto parts = std::make_shared<Parts>();
+  ClothModel& cloth = parts->cloth;
+  cloth = buildClothModel(scene);
+  auto addConstraint = [&](std::unique_ptr<ProjectiveConstraint> c) {
+    if (c->rowCount() > 0) parts->constraints.push_back(std::move(c));
+  };
+  addConstraint(std::make_unique<StretchConstraint>(makeStretchConstraint(scene, cloth)));
+  addConstraint(std::make_unique<BendingConstraint>(makeBendingConstraint(scene, cloth)));
+  addConstraint(
+      std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, cloth, false)));
+  addConstraint(
+      std::make_unique<AttachmentConstraint>(makeAttachmentConstraint(scene, cloth, true)));
+
+  auto& forces = parts->forces;
+  if (scene.gravity) forces.push_back(std::make_unique<GravityForce>(*scene.gravity, cloth.mass));
+  if (scene.wind) forces.push_back(std::make_unique<WindForce>(*scene.wind, cloth.lumpedArea));
   bool anyNodalForce = false;
-  NodeMatrix nodal = NodeMatrix::Zero(cloth_.nodeCount(), 3);
-  for (std::size_t c = 0; c < scene_.cloths.size(); ++c)
-    for (const PointForce& pf : scene_.cloths[c].forces)
+  NodeMatrix nodal = NodeMatrix::Zero(cloth.nodeCount(), 3);
+  for (std::size_t c = 0; c < scene.cloths.size(); ++c)
+    for (const PointForce& pf : scene.cloths[c].forces)
       for (int v : pf.vertices) {
-        nodal.row(cloth_.vertexOffset[c] + v) += pf.force.transpose();
+        nodal.row(cloth.vertexOffset[c] + v) += pf.force.transpose();
         anyNodalForce = true;
       }
-  if (anyNodalForce) forces_.push_back(std::make_unique<NodalForces>(std::move(nodal)));
+  if (anyNodalForce) forces.push_back(std::make_unique<NodalForces>(std::move(nodal)));
 
-  obstacleShapes_.reserve(scene_.obstacles.size());
-  for (const Obstacle& o : scene_.obstacles) obstacleShapes_.push_back(makeObstacleShape(o));
+  parts->obstacleShapes.reserve(scene.obstacles.size());
+  for (const Obstacle& o : scene.obstacles) parts->obstacleShapes.push_back(makeObstacleShape(o));
 
-  initialVelocities_.resize(cloth_.nodeCount(), 3);
-  for (std::size_t c = 0; c < scene_.cloths.size(); ++c)
-    for (int i = cloth_.vertexOffset[c]; i < cloth_.vertexOffset[c + 1]; ++i)
-      initialVelocities_.row(i) = scene_.cloths[c].initialVelocity.transpose();
+  NodeMatrix& velocities = parts->initialVelocities;
+  velocities.resize(cloth.nodeCount(), 3);
+  for (std::size_t c = 0; c < scene.cloths.size(); ++c)
+    for (int i = cloth.vertexOffset[c]; i < cloth.vertexOffset[c + 1]; ++i)
+      velocities.row(i) = scene.cloths[c].initialVelocity.transpose();
+  return parts;
 }
 
+Model::Parts::~Parts() = default;
 Model::~Model() = default;
 
 std::vector<std::unique_ptr<ProjectiveConstraint>> Model::instantiateConstraints() const {
   std::vector<std::unique_ptr<ProjectiveConstraint>> copies;
-  copies.reserve(constraints_.size());
-  for (const auto& c : constraints_) copies.push_back(c->clone());
+  copies.reserve(parts_->constraints.size());
+  for (const auto& c : parts_->constraints) copies.push_back(c->clone());
   return copies;
 }
 

@@ -79,13 +79,7 @@ Simulator::Level& Simulator::level(int halvings) {
     const int k = static_cast<int>(levels_.size());
     auto level = std::make_unique<Level>();
     level->halvings = k;
-    if (k == 0) {
-      level->model = compiled_;
-    } else {
-      Scene finer = scene_;
-      finer.time.dt = h_ / static_cast<double>(1 << k);
-      level->model = Model::compile(std::move(finer));
-    }
+    level->model = k == 0 ? compiled_ : compiled_->withTimeStep(h_ / static_cast<double>(1 << k));
     const double h = level->model->dt();
     timer_->timed(solverModule_, [&] {
       level->system = std::make_unique<SystemMatrix>(model_.mass, constraints_, h);

@@ -29,13 +29,16 @@ class Model {
   // Compiles `scene` (a validated scene from the scene loader; the model keeps its own copy).
   // Throws InputError for an obstacle mesh without triangles.
   static std::shared_ptr<const Model> compile(Scene scene);
+  // This model at another time step (adaptive time stepping's finer levels): every compiled part
+  // is shared, nothing is rebuilt; only the scene's time.dt differs.
+  std::shared_ptr<const Model> withTimeStep(double dt) const;
   ~Model();
   Model(const Model&) = delete;
   Model& operator=(const Model&) = delete;
 
   const Scene& scene() const { return scene_; }
-  const ClothModel& cloth() const { return cloth_; }
-  int nodeCount() const { return cloth_.nodeCount(); }
+  const ClothModel& cloth() const { return parts_->cloth; }
+  int nodeCount() const { return parts_->cloth.nodeCount(); }
   double dt() const { return scene_.time.dt; }
   int stepCount() const { return scene_.time.steps; }
   const SolverSettings& solver() const { return scene_.solver; }
@@ -43,30 +46,36 @@ class Model {
   // The constraint families with at least one row, in the order stretch, bending, attachments,
   // handles: the order of P's terms and of the module report.
   const std::vector<std::unique_ptr<ProjectiveConstraint>>& constraints() const {
-    return constraints_;
+    return parts_->constraints;
   }
   // Working copies of constraints() for one solver (same data, own per-step state).
   std::vector<std::unique_ptr<ProjectiveConstraint>> instantiateConstraints() const;
   // The external forces the scene names (gravity, wind, forces on nodes), in that order.
-  const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return forces_; }
+  const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return parts_->forces; }
   // One shape per scene obstacle, in scene order (a mesh obstacle's BVH is built here).
   const std::vector<std::shared_ptr<const ObstacleShape>>& obstacleShapes() const {
-    return obstacleShapes_;
+    return parts_->obstacleShapes;
   }
   // Obstacles or self-collision: the scene needs the contact modules.
   bool hasContact() const { return !scene_.obstacles.empty() || scene_.hasSelfCollision(); }
   // Every node's velocity at t = 0 (its cloth's initial_velocity).
-  const NodeMatrix& initialVelocities() const { return initialVelocities_; }
+  const NodeMatrix& initialVelocities() const { return parts_->initialVelocities; }
 
  private:
-  explicit Model(Scene scene);
+  // What the scene compiles to, independent of its time step.
+  struct Parts {
+    ClothModel cloth;
+    std::vector<std::unique_ptr<ProjectiveConstraint>> constraints;
+    std::vector<std::unique_ptr<ExternalForce>> forces;
+    std::vector<std::shared_ptr<const ObstacleShape>> obstacleShapes;
+    NodeMatrix initialVelocities;
+    ~Parts();
+  };
+  Model(Scene scene, std::shared_ptr<const Parts> parts);
+  static std::shared_ptr<const Parts> compileParts(const Scene& scene);
 
   Scene scene_;
-  ClothModel cloth_;
-  std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
-  std::vector<std::unique_ptr<ExternalForce>> forces_;
-  std::vector<std::shared_ptr<const ObstacleShape>> obstacleShapes_;
-  NodeMatrix initialVelocities_;
+  std::shared_ptr<const Parts> parts_;
 };
 
 }  // namespace weft
