@@ -13,6 +13,7 @@
 #include <weft/bench/ContinuityBench.h>
 #include <weft/bench/ForwardBench.h>
 #include <weft/bench/PaperMeshScenes.h>
+#include <weft/bench/SoakBench.h>
 #include <weft/core/Error.h>
 
 #include <algorithm>
@@ -203,11 +204,12 @@ int benchCommand(const std::vector<std::string>& arguments) {
                           arguments[i + 1] != "applications";
     args.push_back("--paper-meshes=" + (hasValue ? arguments[++i] : std::string()));
   }
-  CommandLine cl(args,
-                 {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks",
-                  "--methods", "--seeds", "--budget", "--jobs", "--contact", "--paper-meshes",
-                  "--subdivisions", "--resolution", "--first-step", "--min-curvature-step"},
-                 {"--quick", "--resume", "--calibrate"});
+  CommandLine cl(
+      args,
+      {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks", "--methods",
+       "--seeds", "--budget", "--jobs", "--contact", "--paper-meshes", "--subdivisions",
+       "--resolution", "--first-step", "--min-curvature-step", "--steps", "--evaluations"},
+      {"--quick", "--resume", "--calibrate"});
   if (cl.positional().size() != 1)
     cl.fail("NAME", "bench takes one benchmark name (" + bench::benchNameList() + ")");
   const std::string name = cl.positional()[0];
@@ -215,6 +217,8 @@ int benchCommand(const std::vector<std::string>& arguments) {
   for (const char* option : {"--subdivisions", "--resolution"})
     if (cl.has(option) && name != "continuity")
       cl.fail(option, "applies to the continuity benchmark only");
+  for (const char* option : {"--steps", "--evaluations"})
+    if (cl.has(option) && name != "soak") cl.fail(option, "applies to the soak benchmark only");
   if (cl.has("--calibrate") && name != "backward")
     cl.fail("--calibrate", "applies to the backward benchmark only");
   if (name == "applications") {
@@ -239,6 +243,18 @@ int benchCommand(const std::vector<std::string>& arguments) {
   }
   if (cl.has("--contact") && name != "continuity")
     cl.fail("--contact", "applies to the contact and continuity benchmarks only");
+  if (name == "soak") {
+    if (cl.has("--resolutions"))
+      cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
+    for (const char* option : {"--scene", "--scenes"})
+      if (cl.has(option)) cl.fail(option, "bench soak runs its own two scenes");
+    bench::SoakBenchOptions o;
+    o.quick = quick;
+    o.threads = threads;
+    o.steps = cl.integer("--steps", 0, 1, 100000000);
+    o.evaluations = cl.integer("--evaluations", 0, 1, 1000000);
+    return bench::runSoakBench(o, out);
+  }
   if (name == "forward") {
     bench::ForwardBenchOptions o;
     o.quick = quick;

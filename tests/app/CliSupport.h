@@ -100,4 +100,11 @@ inline std::vector<std::string> splitCommas(const std::string& line) {
   return fields;
 }
 
+// Header and data rows of a CSV a benchmark wrote.
+inline std::vector<std::vector<std::string>> readCsv(const std::string& path) {
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& line : splitLines(readFile(path))) rows.push_back(splitCommas(line));
+  return rows;
+}
+
 }  // namespace weft::test

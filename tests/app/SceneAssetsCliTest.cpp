@@ -21,6 +21,7 @@ namespace weft {
 namespace {
 
 using test::describe;
+using test::readCsv;
 using test::readFile;
 using test::runWeft;
 using test::splitCommas;
@@ -122,13 +123,6 @@ INSTANTIATE_TEST_SUITE_P(SceneAssets, ContactSceneAsset, ::testing::ValuesIn(con
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            return fs::path(info.param).stem().string();
                          });
-
-// Header and data rows of a CSV a benchmark wrote.
-std::vector<std::vector<std::string>> readCsv(const std::string& path) {
-  std::vector<std::vector<std::string>> rows;
-  for (const std::string& line : splitLines(readFile(path))) rows.push_back(splitCommas(line));
-  return rows;
-}
 
 // DiffCloth's Bowl (Fig. 5): a napkin falling into a bowl. Their point is the area ratio (the
 // napkin's area over its rest area): Liang et al.'s contact handling moves nodes out of the

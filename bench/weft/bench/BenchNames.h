@@ -6,8 +6,8 @@
 
 namespace weft::bench {
 
-inline constexpr const char* kBenchNames[] = {"forward", "backward",     "continuity",
-                                              "contact", "applications", "render"};
+inline constexpr const char* kBenchNames[] = {"forward",      "backward", "continuity", "contact",
+                                              "applications", "render",   "soak"};
 
 // "forward, backward, ..., render".
 inline std::string benchNameList() {

@@ -14,6 +14,7 @@
 
 #include "BenchAssets.h"
 #include "BenchTable.h"
+#include "ProcessMemory.h"
 
 #include <weft/core/Error.h>
 #include <weft/core/ProcessCpuTime.h>
@@ -32,27 +33,6 @@
 
 namespace weft::bench {
 namespace {
-
-// Resets the kernel's peak-RSS mark of this process; false where that is not supported.
-bool resetPeakMemory() {
-  std::ofstream f("/proc/self/clear_refs");
-  f << "5";
-  f.flush();
-  return static_cast<bool>(f);
-}
-
-// VmHWM (peak resident set since the last reset) in MB, or 0 when unavailable.
-double peakMemoryMb() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("VmHWM:", 0) == 0) {
-      std::istringstream s(line.substr(6));
-      double kb = 0.0;
-      s >> kb;
-      return kb / 1024.0;
-    }
-  return 0.0;
-}
 
 struct RunResult {
   int vertices = 0, steps = 0, failedStep = 0;
