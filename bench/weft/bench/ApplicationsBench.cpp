@@ -54,6 +54,7 @@
 #include "PaperTables.h"
 #include "SpeedupAim.h"
 #include "StoredParameters.h"
+#include "StoredRun.h"
 
 #include <weft/core/Error.h>
 #include <weft/core/ProcessCpuTime.h>
@@ -99,28 +100,6 @@ constexpr double kConvergedFraction = 0.01;
 // Seconds of a run between two of its progress lines on stderr.
 constexpr double kProgressSeconds = 300.0;
 
-struct Run {
-  int method = 0;
-  int seed = 0;
-  LossCurve curve;
-  double seconds = 0.0;
-  std::string stop;
-  std::vector<std::vector<std::string>> rows;  // its rows of applications.csv
-  bool resumed = false;
-  // Tasks with handles and obstacles: the deepest handle target inside an obstacle at the run's
-  // best evaluation (m, 0 when none enters; HandleObstacleCheck.h).
-  double handleDepth = 0.0;
-};
-
-// The evaluation (1-based, as logged) with the run's lowest loss, the first of equals.
-int bestEvaluation(const Run& run) {
-  const auto best = std::min_element(run.curve.loss.begin(), run.curve.loss.end());
-  return std::stoi(run.rows[static_cast<std::size_t>(best - run.curve.loss.begin())][3]);
-}
-
-const std::vector<std::string> kRunColumns = {"task",  "method", "seed", "evaluation",
-                                              "steps", "wall_s", "loss"};
-
 // DiffCloth Table 4 and Table 3's "Iter. Conv. %" for one task: one gradient evaluation (forward
 // pass, then backward pass) at the scene's own parameter values, timed apart.
 struct PassTiming {
@@ -138,13 +117,13 @@ struct TaskResult {
   const ApplicationTask* task = nullptr;
   int parameters = 0;
   long long budget = 0;
-  std::vector<Run> runs;
+  std::vector<ApplicationRun> runs;
   std::optional<paper::PaperScene> paperScene;  // --paper-meshes, for tasks that have one
   int garmentVertices = 0;
   PassTiming timing;
   std::vector<StartingPoint> starts;  // seed s at s - 1 (StartingPoint.h)
   int seeds = 0;                      // seeds 1..seeds (--seeds)
-  bool handles = false;               // handles and obstacles: Run::handleDepth is measured
+  bool handles = false;  // handles and obstacles: ApplicationRun::handleDepth is measured
 };
 
 PassTiming timePasses(const Scene& scene, const ParameterSet& parameters) {
@@ -200,21 +179,9 @@ long long convergenceSteps(const LossCurve& envelope, double initial) {
 
 namespace fs = std::filesystem;
 
-std::string joinCsv(const std::vector<std::string>& fields) {
-  std::string line;
-  for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + fields[i];
-  return line + "\n";
-}
-
 std::string runFileName(const ApplicationTask& task, int method, int seed) {
   return std::string(task.name) + "_" + kApplicationMethods[method].name + "_" +
          std::to_string(seed) + ".csv";
-}
-
-void writeRunFile(const std::string& path, const Run& run) {
-  std::string text = joinCsv(kRunColumns);
-  for (const auto& row : run.rows) text += joinCsv(row);
-  writeFileAtomically(path, text);
 }
 
 // The parameter values of every evaluation of a run (issue 7: "every run records ... the
@@ -224,55 +191,14 @@ void writeParameterFile(const std::string& path, const ParameterSpace& space,
                         const OptimizationLog& log) {
   std::vector<std::string> header{"evaluation"};
   for (const SceneParameter& p : space.parameters()) header.push_back(p.path);
-  std::string text = joinCsv(header);
+  std::string text = joinCsvLine(header);
   for (const LogEntry& e : log.entries()) {
     std::vector<std::string> row{std::to_string(e.evaluation)};
     const Eigen::VectorXd values = space.toValues(e.x);
     for (int i = 0; i < values.size(); ++i) row.push_back(formatNumber(values[i], 17));
-    text += joinCsv(row);
+    text += joinCsvLine(row);
   }
   writeFileAtomically(path, text);
-}
-
-// A stored run, checked line by line against the run it must be.
-Run readRunFile(const std::string& path, const ApplicationTask& task, int method, int seed) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "<file>", "cannot read the stored run");
-  Run run;
-  run.method = method;
-  run.seed = seed;
-  run.resumed = true;
-  run.stop = "resumed";
-  std::string line;
-  if (!std::getline(in, line) || joinCsv(kRunColumns) != line + "\n")
-    throw InputError(path, "line 1", "expected the header " + joinCsv(kRunColumns).substr(0, 44));
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    const std::vector<std::string> f = splitCsvLine(line);
-    const std::string where = "line " + std::to_string(number);
-    if (f.size() != kRunColumns.size())
-      throw InputError(path, where, "expected " + std::to_string(kRunColumns.size()) + " fields");
-    if (f[0] != task.name || f[1] != kApplicationMethods[method].name ||
-        f[2] != std::to_string(seed))
-      throw InputError(path, where,
-                       "a row of another run (" + f[0] + ", " + f[1] + ", seed " + f[2] + ")");
-    char* end = nullptr;
-    const long long steps = std::strtoll(f[4].c_str(), &end, 10);
-    if (f[4].empty() || *end)
-      throw InputError(path, where, "steps is not an integer: '" + f[4] + "'");
-    const double wall = std::strtod(f[5].c_str(), &end);
-    if (f[5].empty() || *end)
-      throw InputError(path, where, "wall_s is not a number: '" + f[5] + "'");
-    const double loss = std::strtod(f[6].c_str(), &end);
-    if (f[6].empty() || *end) throw InputError(path, where, "loss is not a number: '" + f[6] + "'");
-    if (!run.curve.steps.empty() && steps < run.curve.steps.back())
-      throw InputError(path, where, "steps decrease");
-    run.curve.steps.push_back(steps);
-    run.curve.loss.push_back(loss);
-    run.seconds = wall;
-    run.rows.push_back(f);
-  }
-  return run;
 }
 
 // What a stored run depends on besides its task, method and seed.
@@ -407,7 +333,7 @@ struct TaskScene {
 struct Job {
   std::size_t task;
   int seed, method;
-  Run run;
+  ApplicationRun run;
 };
 
 // One invocation's state, shared by the steps below.
@@ -495,7 +421,7 @@ std::vector<Job> readStoredRuns(Comparison& c) {
       for (int m = 0; m < kApplicationMethodCount; ++m) {
         const std::string runFile = c.store + "/" + runFileName(*task, m, seed);
         if (fs::exists(runFile)) {
-          Run run = readRunFile(runFile, *task, m, seed);
+          ApplicationRun run = readRunFile(runFile, *task, m, seed);
           ++c.resumedRuns;
           if (!run.curve.steps.empty()) result.runs.push_back(std::move(run));
           continue;
@@ -523,7 +449,7 @@ void refuseRunsOfAnotherApp(const Comparison& c, const std::vector<Job>& jobs) {
                          "continue, or use another --out");
   }
   for (const TaskResult& r : c.results)
-    for (const Run& run : r.runs)
+    for (const ApplicationRun& run : r.runs)
       if (run.curve.steps.back() > r.budget)
         throw InputError(c.store + "/" + runFileName(*r.task, run.method, run.seed), "steps",
                          "the stored run used " + std::to_string(run.curve.steps.back()) +
@@ -560,7 +486,7 @@ void makeRun(Comparison& c, Job& job) {
                  task->name, kApplicationMethods[m].name, job.seed, e.evaluation, e.steps, budget,
                  formatNumber(best, 4).c_str(), e.seconds);
   };
-  Run& run = job.run;
+  ApplicationRun& run = job.run;
   run.method = m;
   run.seed = job.seed;
   try {
@@ -624,9 +550,10 @@ void makeRuns(Comparison& c, std::vector<Job>& jobs) {
 void measureTasks(Comparison& c) {
   for (std::size_t t = 0; t < c.results.size(); ++t) {
     TaskResult& result = c.results[t];
-    std::stable_sort(result.runs.begin(), result.runs.end(), [](const Run& a, const Run& b) {
-      return a.seed != b.seed ? a.seed < b.seed : a.method < b.method;
-    });
+    std::stable_sort(result.runs.begin(), result.runs.end(),
+                     [](const ApplicationRun& a, const ApplicationRun& b) {
+                       return a.seed != b.seed ? a.seed < b.seed : a.method < b.method;
+                     });
     // Table 4: not stored with the runs, so measured again by every invocation (one gradient
     // evaluation, small next to the runs themselves), one task at a time after all runs.
     const TaskScene& ts = loadTaskScene(c, t);
@@ -639,7 +566,7 @@ void measureTasks(Comparison& c) {
     // its loss (the Sock, docs/applications.md).
     result.handles = hasHandlesAndObstacles(*ts.scene);
     if (result.handles)
-      for (Run& run : result.runs) {
+      for (ApplicationRun& run : result.runs) {
         const std::string file =
             c.store + "/parameters/" + runFileName(*result.task, run.method, run.seed);
         const Eigen::VectorXd values =
@@ -693,10 +620,11 @@ struct TaskCurves {
   long long lbfgsbConverged = 0;
 
   explicit TaskCurves(const TaskResult& result) : r(result) {
-    for (const Run& run : r.runs) minInitial = std::min(minInitial, run.curve.loss.front());
+    for (const ApplicationRun& run : r.runs)
+      minInitial = std::min(minInitial, run.curve.loss.front());
     for (int m = 0; m < kApplicationMethodCount; ++m) {
       std::vector<LossCurve> curves;
-      for (const Run& run : r.runs)
+      for (const ApplicationRun& run : r.runs)
         if (run.method == m) curves.push_back(run.curve);
       envelope[m] = minimumEnvelope(curves);
     }
@@ -773,7 +701,7 @@ void addPassRow(const TaskCurves& k, BenchTable& passes) {
   const PassTiming& t = r.timing;
   double lbfgsbSeconds = 0.0, runSeconds = 0.0;
   std::size_t lbfgsbEvaluations = 0;
-  for (const Run& run : r.runs) {
+  for (const ApplicationRun& run : r.runs) {
     runSeconds += run.seconds;
     if (run.method == 0) lbfgsbSeconds += run.seconds, lbfgsbEvaluations += run.curve.steps.size();
   }
@@ -852,11 +780,11 @@ void addAimRow(const TaskCurves& k, BenchTable& aims) {
 // best point puts a handle target inside one.
 void addSeedRows(const TaskResult& r, BenchTable& perSeed, BenchTable& handles) {
   for (int seed = 1; seed <= r.seeds; ++seed) {
-    const Run* bySeed[kApplicationMethodCount] = {nullptr, nullptr, nullptr};
-    for (const Run& run : r.runs)
+    const ApplicationRun* bySeed[kApplicationMethodCount] = {nullptr, nullptr, nullptr};
+    for (const ApplicationRun& run : r.runs)
       if (run.seed == seed) bySeed[run.method] = &run;
     if (!bySeed[0] && !bySeed[1] && !bySeed[2]) continue;
-    const Run* any = bySeed[0] ? bySeed[0] : bySeed[1] ? bySeed[1] : bySeed[2];
+    const ApplicationRun* any = bySeed[0] ? bySeed[0] : bySeed[1] ? bySeed[1] : bySeed[2];
     const double initial = any->curve.loss.front();
     std::vector<std::string> row = {r.task->name, std::to_string(seed), formatNumber(initial, 4)};
     std::vector<std::string> finals, percents, conv, walls;
@@ -909,7 +837,7 @@ Tables tabulate(const Comparison& c, StagedDirectory& out) {
   for (const TaskResult& r : c.results)
     for (int seed = 1; seed <= r.seeds; ++seed)
       for (int m = 0; m < kApplicationMethodCount; ++m)
-        for (const Run& run : r.runs)
+        for (const ApplicationRun& run : r.runs)
           if (run.seed == seed && run.method == m)
             for (const auto& row : run.rows) tables.csv.add(row);
   for (const TaskResult& r : c.results) {
@@ -1012,7 +940,7 @@ void writeReport(const Comparison& c, const Tables& tables, const std::string& m
       taskList += (taskList.empty() ? "" : ",") + std::string(r.task->name);
     double runSeconds = 0.0;
     for (const TaskResult& r : c.results)
-      for (const Run& run : r.runs) runSeconds += run.seconds;
+      for (const ApplicationRun& run : r.runs) runSeconds += run.seconds;
     const std::string setup =
         "Machine: " + machineDescription() + ", " + std::to_string(c.options.threads) +
         " thread(s) per run, " +
