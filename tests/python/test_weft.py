@@ -143,6 +143,18 @@ class SimulateTest(unittest.TestCase):
             self.assertBitEqual(sim.positions, run.positions[k])
             self.assertBitEqual(sim.velocities, run.velocities[k])
 
+    def test_warnings_are_the_clis(self):
+        with tempfile.TemporaryDirectory() as out:
+            code, _, err = run_cli("simulate", WIND, "--steps", "2", "--quiet", "--out", out + "/r",
+                                   "--set", "solver.pd_iterations=1")
+        self.assertEqual(code, 0, err)
+        cli = [line[len("warning: "):] for line in err.splitlines() if line.startswith("warning: ")]
+        self.assertEqual(len(cli), 1, err)  # the steps left unconverged
+        with self.assertWarns(weft.WeftWarning) as caught:
+            run = weft.simulate(WIND, steps=2, set={"solver.pd_iterations": 1})
+        self.assertEqual(run.warnings, cli)
+        self.assertEqual(str(caught.warning), cli[0])
+
     def test_zero_steps(self):
         run = weft.simulate(WIND, steps=0)
         self.assertEqual(run.positions.shape, (1, 625, 3))
