@@ -18,11 +18,14 @@ The engine's warnings (repaired meshes, unconverged steps) are issued as WeftWar
 
 import json
 import os
+import threading as _threading
 import warnings as _warnings
 
 import numpy as _np
 
 from . import _weft
+
+__version__ = _weft.__version__
 
 InputError = _weft.InputError
 NumericalError = _weft.NumericalError
@@ -203,32 +206,42 @@ class Simulator:
             stats = sim.step()
         sim.positions       # [vertices, 3] copy of the current state
 
-    The states are those of weft.simulate (and `weft simulate`) step for step.
+    The states are those of weft.simulate (and `weft simulate`) step for step. A step runs
+    without the GIL; calls on one Simulator from several threads take turns.
     """
 
     def __init__(self, scene, set=None):
         file, document, overrides = _source(scene, set)
         self._sim = _weft.Simulator(file, document, overrides)
+        self._lock = _threading.Lock()
 
     def step(self):
         """Advances one step; returns its statistics (the fields of Run.stats) as a dict."""
-        return self._sim.step()
+        with self._lock:
+            return self._sim.step()
 
     @property
     def positions(self):
-        return self._sim.positions
+        """The current positions, a [vertices, 3] copy."""
+        with self._lock:
+            return self._sim.positions
 
     @property
     def velocities(self):
-        return self._sim.velocities
+        """The current velocities, a [vertices, 3] copy."""
+        with self._lock:
+            return self._sim.velocities
 
     @property
     def step_index(self):
-        return self._sim.step_index
+        """The index of the current state (0 before the first step)."""
+        with self._lock:
+            return self._sim.step_index
 
     @property
     def time(self):
-        return self._sim.time
+        with self._lock:
+            return self._sim.time
 
     @property
     def dt(self):

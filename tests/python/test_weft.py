@@ -155,6 +155,23 @@ class SimulateTest(unittest.TestCase):
         self.assertEqual(run.warnings, cli)
         self.assertEqual(str(caught.warning), cli[0])
 
+    def test_simulator_steps_from_several_threads_take_turns(self):
+        import threading
+        run = weft.simulate(WIND, steps=4)
+        sim = weft.Simulator(WIND)
+        threads = [threading.Thread(target=sim.step) for _ in range(4)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        self.assertEqual(sim.step_index, 4)
+        self.assertBitEqual(sim.positions, run.positions[4])
+
+    def test_version_is_the_clis(self):
+        code, out, _ = run_cli("--version")
+        self.assertEqual(code, 0)
+        self.assertEqual(out.split()[1].rstrip(","), weft.__version__)
+
     def test_zero_steps(self):
         run = weft.simulate(WIND, steps=0)
         self.assertEqual(run.positions.shape, (1, 625, 3))
