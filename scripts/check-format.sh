@@ -2,7 +2,7 @@
 # Checks that every C++ source and header of Weft is as clang-format (with the repository's
 # .clang-format) writes it; lists the files that are not. Run by ctest (Format.SourcesFollowClangFormat).
 # Exit 0: all formatted; 1: some are not; 77: clang-format is not installed (the test is skipped).
-# Fix with: find engine bench app tests -name '*.cpp' -o -name '*.h' | xargs clang-format -i
+# Fix with: find engine bench app tests python -name '*.cpp' -o -name '*.h' | xargs clang-format -i
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v clang-format >/dev/null 2>&1; then
@@ -10,7 +10,7 @@ if ! command -v clang-format >/dev/null 2>&1; then
   exit 77
 fi
 # One clang-format run over every file; its --dry-run warnings name the files that differ.
-report=$(find engine bench app tests \( -name '*.cpp' -o -name '*.h' \) -print0 | sort -z |
+report=$(find engine bench app tests python \( -name '*.cpp' -o -name '*.h' \) -print0 | sort -z |
   xargs -0 clang-format --style=file --dry-run 2>&1 || true)
 unformatted=$(printf '%s\n' "$report" | sed -n 's/^\([^:]*\):[0-9]*:[0-9]*: warning: code should be clang-formatted.*/\1/p' | sort -u)
 if [ -n "$unformatted" ]; then

@@ -9,6 +9,7 @@ WEFT_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libimgui-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev
   gnuplot-nox xvfb clang-format python3
+  python3-dev pybind11-dev python3-numpy python3-torch
 )
 
 weft_missing_packages() {

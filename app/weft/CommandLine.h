@@ -21,6 +21,7 @@ class CommandLine {
   double number(const std::string& option, double fallback) const;
   // The file errors are reported against (the scene, when known).
   void setContext(std::string file) { context_ = std::move(file); }
+  const std::string& context() const { return context_; }
   [[noreturn]] void fail(const std::string& option, const std::string& what) const;
 
  private:

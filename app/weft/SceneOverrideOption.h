@@ -9,7 +9,8 @@
 
 namespace weft::cli {
 
-// Every --set of the command line as a scene override; a value without '=' is a usage error.
+// Every --set of the command line as a scene override (parseSceneOverride: a value without '='
+// is a usage error).
 std::vector<SceneOverride> parseOverrides(const CommandLine& cl);
 
 }  // namespace weft::cli

@@ -42,6 +42,21 @@ TEST(Backpropagation, MatchesCentralFiniteDifferencesForEveryParameterKind) {
   test::expectAdjointMatchesFiniteDifferences(scene);
 }
 
+TEST(Backpropagation, GradcheckReportsTheTightAdjointGradient) {
+  TempDir dir;
+  const Scene scene = test::windTaskScene(dir, {"wind.strength", "cloths.0.material.stretch"}, 8);
+  const ParameterSet parameters = ParameterSet::fromTask(scene);
+  const GradientCheckOptions options;
+  const TightAdjointGradient tight = tightAdjointGradient(scene, parameters, options);
+  EXPECT_EQ(tight.scene.solver.pdTolerance, options.forwardTolerance);
+  EXPECT_EQ(tight.backward.tolerance, options.backwardTolerance);
+  // The adjoint column of gradcheck (and weft.gradient in Python) is this gradient, bit for bit.
+  const GradientCheckReport report = checkGradient(scene, parameters, options);
+  EXPECT_EQ(report.loss, tight.result.loss);
+  ASSERT_EQ(report.entries.size(), 2u);
+  for (int k = 0; k < 2; ++k) EXPECT_EQ(report.entries[k].adjoint, tight.result.gradient[k]);
+}
+
 TEST(Backpropagation, FinalFrameLossOnChosenVertices) {
   TempDir dir;
   nlohmann::json doc = test::windClothScene(6, 20);

@@ -224,6 +224,43 @@ TEST(SceneLoader, BadOverridesNameTheOption) {
   expectInputError([&] { loadScene(file, {{"time.dt", "-1"}}); }, "time.dt", "must be > 0");
 }
 
+TEST(SceneLoader, DocumentWithOverridesIsTheFileWithOverrides) {
+  TempDir dir;
+  nlohmann::json doc = test::hangingClothScene(1.0, 2, 0.01, 10, 100.0);
+  doc["wind"] = {{"direction", {1, 0, 0}}, {"strength", 1.0}};
+  const std::string file = test::writeScene(dir.file("scene.json"), doc);
+  const std::vector<SceneOverride> overrides = {{"time.dt", "0.005"}, {"wind.phase", "0.25"}};
+  const Scene fromFile = loadScene(file, overrides);
+  const Scene fromDocument = loadSceneDocument(doc, "<dict>", ".", overrides);
+  EXPECT_EQ(fromDocument.document, fromFile.document);
+  EXPECT_EQ(fromDocument.file, "<dict>");
+  EXPECT_EQ(fromDocument.time.dt, 0.005);
+  EXPECT_EQ(fromDocument.wind->phase, 0.25);
+  // Errors name the document as the file, and the option that wrote an unknown key.
+  try {
+    loadSceneDocument(doc, "<dict>", ".", {{"cloths.0.material.stiffness", "1"}});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "<dict>");
+    EXPECT_EQ(e.path(), "--set cloths.0.material.stiffness");
+  }
+}
+
+TEST(SceneLoader, OverrideTextSplitsAtTheFirstEquals) {
+  const SceneOverride o = parseSceneOverride("task.loss.hemline.height=a=b", "scene.json");
+  EXPECT_EQ(o.path, "task.loss.hemline.height");
+  EXPECT_EQ(o.value, "a=b");
+  EXPECT_EQ(parseSceneOverride("gravity=", "scene.json").value, "");
+  for (const std::string bad : {"gravity", "=1", ""}) {
+    try {
+      parseSceneOverride(bad, "scene.json");
+      ADD_FAILURE() << "no error for '" << bad << "'";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "scene.json: --set: expects PATH=VALUE, got '" + bad + "'");
+    }
+  }
+}
+
 TEST(SceneLoader, ErrorsNameTheJsonPath) {
   const nlohmann::json good = test::hangingClothScene(1.0, 2, 0.01, 10, 100.0);
   auto with = [&](const std::string& pointer, const nlohmann::json& value) {

@@ -21,22 +21,33 @@ double GradientCheckReport::maxRelativeError() const {
   return worst;
 }
 
+TightAdjointGradient tightAdjointGradient(const Scene& input, const ParameterSet& parameters,
+                                          const GradientCheckOptions& options) {
+  TightAdjointGradient out;
+  out.scene = withTightForwardSolver(input, options.forwardTolerance);
+  const TaskLoss loss(out.scene);  // before the forward run: a bad task fails early
+  out.backward = out.scene.solver.backward;
+  if (options.backwardMethod) out.backward.method = *options.backwardMethod;
+  out.backward.tolerance = options.backwardTolerance;
+  const ForwardPass base = runForwardPass(out.scene);
+  out.unconvergedSteps = base.unconvergedSteps;
+  out.result = backpropagate(base.trajectory, loss, parameters, out.backward);
+  return out;
+}
+
 GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parameters,
                                   const GradientCheckOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const Scene scene = withTightForwardSolver(input, options.forwardTolerance);
+  const TightAdjointGradient tight = tightAdjointGradient(input, parameters, options);
+  const Scene& scene = tight.scene;
+  const GradientResult& adjoint = tight.result;
   const TaskLoss loss(scene);
-  BackwardSettings backward = scene.solver.backward;
-  if (options.backwardMethod) backward.method = *options.backwardMethod;
-  backward.tolerance = options.backwardTolerance;
 
   GradientCheckReport report;
-  report.backwardMethod = backward.method;
-  report.backwardTolerance = backward.tolerance;
-  const ForwardPass base = runForwardPass(scene);
+  report.backwardMethod = tight.backward.method;
+  report.backwardTolerance = tight.backward.tolerance;
   ++report.forwardRuns;
-  report.unconvergedSteps += base.unconvergedSteps;
-  const GradientResult adjoint = backpropagate(base.trajectory, loss, parameters, backward);
+  report.unconvergedSteps += tight.unconvergedSteps;
   report.loss = adjoint.loss;
   report.backward = adjoint.solver;
 

@@ -512,6 +512,13 @@ Scene parseScene(const nlohmann::json& document, const std::string& file,
   return scene;
 }
 
+SceneOverride parseSceneOverride(const std::string& text, const std::string& file) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(file, "--set", "expects PATH=VALUE, got '" + text + "'");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
 Scene loadScene(const std::string& file, const std::vector<SceneOverride>& overrides) {
   std::ifstream in(file);
   if (!fs::is_regular_file(file) || !in) throw InputError(file, "<file>", "cannot open scene file");
@@ -541,6 +548,12 @@ Scene loadScene(const std::string& file, const std::vector<SceneOverride>& overr
     const std::string reason = detail != std::string::npos ? what.substr(detail + 2) : what;
     throw InputError(file, "<json>", "invalid JSON" + where + ": " + reason);
   }
+  const std::string directory = fs::path(file).parent_path().string();
+  return loadSceneDocument(std::move(doc), file, directory.empty() ? "." : directory, overrides);
+}
+
+Scene loadSceneDocument(nlohmann::json doc, const std::string& file, const std::string& directory,
+                        const std::vector<SceneOverride>& overrides) {
   // Per override that introduced keys: the outermost key it created (the path itself, or the
   // first of the objects it had to create), the override's path, and whether it created objects.
   struct Created {
@@ -559,9 +572,8 @@ Scene loadScene(const std::string& file, const std::vector<SceneOverride>& overr
       created.push_back(
           {createdObject.empty() ? o.path : createdObject, o.path, !createdObject.empty()});
   }
-  const std::string directory = fs::path(file).parent_path().string();
   try {
-    return parseScene(doc, file, directory.empty() ? "." : directory);
+    return parseScene(doc, file, directory);
   } catch (const InputError& e) {
     // A key that only an override introduced is reported against the option that wrote it; an
     // object it created that the format does not define makes the path an unknown one.

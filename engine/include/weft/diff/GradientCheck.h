@@ -12,6 +12,7 @@
 // |fd|) (0 when both are 0).
 
 #include <weft/diff/AdjointSolver.h>
+#include <weft/diff/Backpropagation.h>
 #include <weft/diff/ParameterSet.h>
 
 #include <optional>
@@ -46,6 +47,18 @@ struct GradientCheckReport {
 };
 
 double relativeError(double a, double b);
+
+// The check's adjoint half on its own: the task loss's gradient by the adjoint pass, with the
+// forward run and the adjoint solves tightened as above (eps is not used). checkGradient reports
+// these values as its adjoint; the Python module's weft.gradient returns them.
+struct TightAdjointGradient {
+  Scene scene;                // the scene with the tightened forward solver
+  BackwardSettings backward;  // the tightened adjoint solves' settings
+  GradientResult result;      // loss, dL/dtheta in the ParameterSet's order, solver statistics
+  int unconvergedSteps = 0;   // of the forward run
+};
+TightAdjointGradient tightAdjointGradient(const Scene& scene, const ParameterSet& parameters,
+                                          const GradientCheckOptions& options);
 
 GradientCheckReport checkGradient(const Scene& scene, const ParameterSet& parameters,
                                   const GradientCheckOptions& options);

@@ -1,0 +1,257 @@
+"""Weft, a differentiable cloth simulator, from Python (docs/python.md).
+
+    import weft
+    run = weft.simulate("assets/scenes/wind.json", steps=20, set={"wind.strength": 3.0})
+    run.positions            # float64 [steps + 1, vertices, 3], as positions.npy
+    grads = weft.gradient("assets/scenes/wind_sysid.json")   # {param path: dL/dp}
+
+A scene is a scene file's path (str or os.PathLike) or the scene as a dict (what json.load gives
+for a scene file). A dict's relative mesh and target paths resolve against the current working
+directory, and its errors name it "<dict>". `set` overrides values by their JSON path, as the
+CLI's --set does: a dict {path: value} (values as JSON: numbers, lists, strings) or a list of
+"PATH=VALUE" strings.
+
+Errors are exceptions: InputError (a ValueError) where the CLI exits 2, NumericalError (a
+RuntimeError) where it exits 3. str(error) is the CLI's message without its "error: " prefix.
+The engine's warnings (repaired meshes, unconverged steps) are issued as WeftWarning.
+"""
+
+import json
+import os
+import threading as _threading
+import warnings as _warnings
+
+import numpy as _np
+
+from . import _weft
+
+__version__ = _weft.__version__
+
+InputError = _weft.InputError
+NumericalError = _weft.NumericalError
+
+__all__ = [
+    "simulate",
+    "gradient",
+    "Gradient",
+    "Run",
+    "Simulator",
+    "InputError",
+    "NumericalError",
+    "WeftWarning",
+]
+
+
+class WeftWarning(UserWarning):
+    """A warning of the engine, as the CLI prints it after "warning: "."""
+
+
+def _warn(texts):
+    for text in texts:
+        _warnings.warn(text, WeftWarning, stacklevel=3)
+
+
+def _json_value(value):
+    """A `set` value as JSON-ready Python (NumPy scalars and arrays included)."""
+    if isinstance(value, _np.ndarray):
+        return value.tolist()
+    if isinstance(value, _np.generic):
+        return value.item()
+    if isinstance(value, (list, tuple)):
+        return [_json_value(v) for v in value]
+    return value
+
+
+def _input_error(file, path, reason):
+    """An InputError as the engine raises them: `<file>: <path>: <reason>`, with the parts."""
+    error = InputError(f"{file}: {path}: {reason}")
+    error.file, error.path, error.reason = file, path, reason
+    return error
+
+
+def _overrides(set, name):
+    """`set` as the CLI's --set arguments, "PATH=VALUE" (a dict's values written as JSON)."""
+    if set is None:
+        return []
+    if isinstance(set, dict):
+        out = []
+        for path, value in set.items():
+            if not isinstance(path, str):
+                raise TypeError(f"set: keys must be JSON paths (str), got {path!r}")
+            try:
+                text = json.dumps(_json_value(value), allow_nan=False)
+            except (TypeError, ValueError) as e:
+                raise _input_error(name, f"--set {path}", f"not a JSON value: {e}") from None
+            out.append(f"{path}={text}")
+        return out
+    if isinstance(set, str):
+        raise TypeError('set: give a dict {path: value} or a list of "PATH=VALUE" strings')
+    out = list(set)
+    for item in out:
+        if not isinstance(item, str):
+            raise TypeError(f'set: list items must be "PATH=VALUE" strings, got {item!r}')
+    return out
+
+
+def _source(scene, set):
+    """The (file, document, overrides) arguments of the compiled calls."""
+    if isinstance(scene, dict):
+        try:
+            document = json.dumps(scene, allow_nan=False)
+        except (TypeError, ValueError) as e:
+            raise _input_error("<dict>", "<json>", f"not a JSON document: {e}") from None
+        return None, document, _overrides(set, "<dict>")
+    if isinstance(scene, (str, os.PathLike)):
+        file = os.fspath(scene)
+        if not isinstance(file, str):
+            raise TypeError("scene: a path given as bytes is not supported; give a str")
+        return file, None, _overrides(set, file)
+    raise TypeError(f"scene: a path or a dict, got {type(scene).__name__}")
+
+
+class Run:
+    """A simulated run: what `weft simulate` writes, as arrays.
+
+    positions, velocities: float64 [steps + 1, vertices, 3] (state 0 is the initial state)
+    stats: the per-step statistics (stats.csv's quantities), a dict of 1-D arrays of length
+        steps: step, time, converged, residual, pd_iterations, takeoff, stick, slip,
+        contact_sweeps, late_contacts, depth, substeps, halvings
+    summary: summary.json's fields (without area_ratio), as a dict
+    warnings: the engine's warnings, as strings
+    """
+
+    def __init__(self, result):
+        self.positions = result["positions"]
+        self.velocities = result["velocities"]
+        self.stats = result["stats"]
+        self.summary = json.loads(result["summary"])
+        self.warnings = list(result["warnings"])
+
+    @property
+    def steps(self):
+        return self.positions.shape[0] - 1
+
+    @property
+    def vertices(self):
+        return self.positions.shape[1]
+
+    def __repr__(self):
+        return f"<weft.Run {self.summary.get('scene')!r}: {self.steps} steps, {self.vertices} vertices>"
+
+
+def simulate(scene, steps=None, set=None):
+    """Runs `scene` for `steps` steps (default: its time.steps), as `weft simulate` does.
+
+    Returns a Run whose positions equal, bit for bit, the positions.npy `weft simulate` writes
+    for the same scene, --steps and --set (and the same number of OpenMP threads).
+    """
+    if steps is not None and (isinstance(steps, bool) or not isinstance(steps, (int, _np.integer))):
+        raise TypeError(f"steps: an int or None, got {type(steps).__name__}")
+    file, document, overrides = _source(scene, set)
+    run = Run(_weft.simulate(file, document, overrides, None if steps is None else int(steps)))
+    _warn(run.warnings)
+    return run
+
+
+class Gradient(dict):
+    """{parameter path: dL/dp} of the scene's task loss, with what the backward pass reports.
+
+    loss: the task loss of the (tightened) forward run
+    parameter_values: {path: value} the gradient was taken at
+    error_estimate: the engine's rough size of the gradient's relative error from the adjoint
+        solves' tolerance and the adjoint's growth (diff/AdjointGrowth.h; an order of magnitude,
+        not a bound), or None for direct solves
+    backward: the backward pass's statistics (method, tolerance, solves, iterations, ...)
+    unconverged_steps: forward steps that stopped at the iteration cap
+    warnings: the engine's warnings, as strings
+    """
+
+    def __init__(self, result):
+        super().__init__(zip(result["params"], (float(g) for g in result["gradient"])))
+        self.loss = result["loss"]
+        self.parameter_values = dict(zip(result["params"], (float(v) for v in result["values"])))
+        self.error_estimate = result["error_estimate"]
+        self.backward = result["backward"]
+        self.unconverged_steps = result["unconverged_steps"]
+        self.warnings = list(result["warnings"])
+
+
+def gradient(scene, params=None, set=None, values=None):
+    """The adjoint gradient of the scene's task loss, as `weft gradcheck` computes it.
+
+    params: parameter JSON paths (default: the scene's task.parameters), as gradcheck's --param
+    values: the parameters' values to take the gradient at, one per parameter (default: the
+        scene's own)
+    Returns a Gradient, a dict {path: dL/dp} equal to `weft gradcheck --json`'s "adjoint"
+    values: the same tightened forward run (Newton-PCG to 1e-8 m/s^2) and adjoint solves
+    (relative residual 1e-8), without the finite differences.
+    """
+    file, document, overrides = _source(scene, set)
+    if isinstance(params, str):
+        params = [params]
+    if params is not None:
+        params = list(params)
+    if values is not None:
+        values = [float(v) for v in _np.asarray(values, dtype=_np.float64).reshape(-1)]
+    result = Gradient(_weft.gradient(file, document, overrides, params, values))
+    _warn(result.warnings)
+    return result
+
+
+class Simulator:
+    """A scene's simulator, stepped one step at a time.
+
+        sim = weft.Simulator("assets/scenes/wind.json")
+        while sim.step_index < 10:
+            stats = sim.step()
+        sim.positions       # [vertices, 3] copy of the current state
+
+    The states are those of weft.simulate (and `weft simulate`) step for step. A step runs
+    without the GIL; calls on one Simulator from several threads take turns.
+    """
+
+    def __init__(self, scene, set=None):
+        file, document, overrides = _source(scene, set)
+        self._sim = _weft.Simulator(file, document, overrides)
+        self._lock = _threading.Lock()
+
+    def step(self):
+        """Advances one step; returns its statistics (the fields of Run.stats) as a dict."""
+        with self._lock:
+            return self._sim.step()
+
+    @property
+    def positions(self):
+        """The current positions, a [vertices, 3] copy."""
+        with self._lock:
+            return self._sim.positions
+
+    @property
+    def velocities(self):
+        """The current velocities, a [vertices, 3] copy."""
+        with self._lock:
+            return self._sim.velocities
+
+    @property
+    def step_index(self):
+        """The index of the current state (0 before the first step)."""
+        with self._lock:
+            return self._sim.step_index
+
+    @property
+    def time(self):
+        with self._lock:
+            return self._sim.time
+
+    @property
+    def dt(self):
+        return self._sim.dt
+
+    @property
+    def vertices(self):
+        return self._sim.vertices
+
+    @property
+    def steps(self):
+        """The scene's time.steps."""
+        return self._sim.steps

@@ -1,0 +1,83 @@
+"""weft.torch: the task loss as a torch.autograd.Function of scene parameters, its backward the
+adjoint pass. Checked with torch.autograd.gradcheck (central finite differences of the forward)
+in double precision on small scenes, and against weft.gradient."""
+
+import os
+import unittest
+
+import weft
+
+try:
+    import torch
+    import weft.torch as weft_torch
+except ImportError as e:  # python3-torch missing: the module works without it
+    torch = None
+    missing = str(e)
+
+SOURCE = os.path.abspath(
+    os.environ.get("WEFT_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..")))
+WIND_SYSID = os.path.join(SOURCE, "assets", "scenes", "wind_sysid.json")
+
+# A short rollout with contact: a 5x5 cloth thrown onto a frictional sphere, sliding on it (take-off
+# and slip contacts at every step); the loss puts two vertices at points at the last step.
+CONTACT = {
+    "name": "contact_rollout",
+    "time": {"dt": 0.01, "steps": 12},
+    "gravity": [0, -9.8, 0],
+    "solver": {"backward": {"method": "direct"}},
+    "cloths": [{"mesh": {"grid": {"size": [0.4, 0.4], "resolution": [4, 4]},
+                         "transform": {"translate": [0.05, 0.31, 0]}},
+                "material": {"density": 0.2, "stretch": 300.0, "bend": 0.001},
+                "initial_velocity": [0.3, -0.5, 0]}],
+    "obstacles": [{"sphere": {"center": [0, 0, 0], "radius": 0.3}, "friction": 0.4}],
+    "task": {"loss": {"keypoints": {"points": [
+        {"step": 12, "vertices": [12, 0], "positions": [[0.1, 0.3, 0.0], [-0.1, 0.25, -0.2]]}]}},
+             "parameters": ["obstacles.0.friction", "cloths.0.material.stretch"]},
+}
+
+
+@unittest.skipIf(torch is None, "PyTorch is not installed (python3-torch)")
+class TaskLossTest(unittest.TestCase):
+    PARAMS = ["wind.strength", "wind.phase"]
+
+    def test_backward_is_weft_gradient(self):
+        theta = torch.tensor([1.75, 0.4], dtype=torch.float64, requires_grad=True)
+        loss = weft_torch.task_loss(theta, WIND_SYSID, self.PARAMS)
+        loss.backward()
+        g = weft.gradient(WIND_SYSID, params=self.PARAMS, values=[1.75, 0.4])
+        self.assertEqual(loss.item(), g.loss)
+        self.assertEqual(theta.grad.tolist(), list(g.values()))
+
+    def test_gradcheck(self):
+        theta = torch.tensor([1.75, 0.4], dtype=torch.float64, requires_grad=True)
+        self.assertTrue(torch.autograd.gradcheck(
+            lambda t: weft_torch.task_loss(t, WIND_SYSID, self.PARAMS), (theta,),
+            eps=1e-5, atol=1e-8, rtol=1e-4))
+
+    def test_gradcheck_through_contact(self):
+        run = weft.simulate(CONTACT)
+        self.assertTrue((run.stats["slip"][2:] > 0).all(), "the cloth should slide on the sphere")
+        params = CONTACT["task"]["parameters"]
+        theta = torch.tensor([0.4, 300.0], dtype=torch.float64, requires_grad=True)
+        self.assertTrue(torch.autograd.gradcheck(
+            lambda t: weft_torch.task_loss(t, CONTACT, params), (theta,),
+            eps=1e-6, atol=1e-8, rtol=1e-4))
+
+    def test_chain_rule_through_torch(self):
+        # The loss of a parameter computed in torch: the gradient reaches the leaf.
+        s = torch.tensor(0.5, dtype=torch.float64, requires_grad=True)
+        theta = torch.stack([3.5 * s, torch.tensor(0.3, dtype=torch.float64)])
+        weft_torch.task_loss(theta, WIND_SYSID, self.PARAMS).backward()
+        g = weft.gradient(WIND_SYSID, params=self.PARAMS, values=[1.75, 0.3])
+        self.assertAlmostEqual(s.grad.item(), 3.5 * g["wind.strength"],
+                               delta=1e-12 * abs(g["wind.strength"]))
+
+    def test_bad_values(self):
+        with self.assertRaises(TypeError):
+            weft_torch.task_loss(torch.tensor([1.0, 0.3]), WIND_SYSID, self.PARAMS)  # float32
+        with self.assertRaises(ValueError):
+            weft_torch.task_loss(torch.tensor([1.0], dtype=torch.float64), WIND_SYSID, self.PARAMS)
+
+
+if __name__ == "__main__":
+    unittest.main()
