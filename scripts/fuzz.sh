@@ -38,7 +38,7 @@ mkdir -p "$corpus" "$findings"
 # The seeds, gathered as files into one folder (libFuzzer takes folders; a file argument would
 # make it replay that file and stop): every seed file and the files of seed folders, up to 1 MB.
 rm -rf "$seeds" && mkdir -p "$seeds"
-for s in $(sed -n "s/^$target=//p" "$dir/fuzz-seeds.txt" | tr ';' ' '); do
+for s in $(sed -n "s/^$target=//p" "$dir/fuzz-seeds.txt" | tr '|' ' '); do
   [ -e "$s" ] || continue
   find "$s" -maxdepth 1 -type f -size -1024k -exec cp -t "$seeds" {} +
 done

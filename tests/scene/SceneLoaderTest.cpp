@@ -222,6 +222,24 @@ TEST(SceneLoader, BadOverridesNameTheOption) {
       "--set cloths.0.material", "not a scalar or vector");
   // A value of the right type is still validated like the file's own values.
   expectInputError([&] { loadScene(file, {{"time.dt", "-1"}}); }, "time.dt", "must be > 0");
+  // Bytes that are not UTF-8 (found by the scene fuzzer: writing the value into the message, or
+  // the scene into a run folder, threw nlohmann's type_error instead of an InputError).
+  expectInputError(
+      [&] {
+        loadScene(file, {{"cloths.0.material.stretch", "1e\xFA"}});
+      },
+      "--set cloths.0.material.stretch", "not valid UTF-8");
+  expectInputError(
+      [&] {
+        loadScene(file, {{"name\xC3", "x"}});
+      },
+      "--set name\xC3", "not valid UTF-8");
+  expectInputError(
+      [&] {
+        loadScene(file, {{"name", "caf\xC3\xA9\xFF"}});
+      },
+      "--set name", "not valid UTF-8");
+  EXPECT_EQ(loadScene(file, {{"name", "caf\xC3\xA9"}}).document["name"], "caf\xC3\xA9");
 }
 
 TEST(SceneLoader, DocumentWithOverridesIsTheFileWithOverrides) {

@@ -15,6 +15,11 @@ std::vector<std::string> splitJsonPath(const std::string& path) {
 
 namespace {
 
+// A value in an error message (bytes that are not UTF-8 replaced, so that writing it cannot throw).
+std::string shown(const nlohmann::json& value) {
+  return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 bool parseIndex(const std::string& s, std::size_t& out) {
   if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) return false;
   out = std::stoull(s);
@@ -50,6 +55,15 @@ const nlohmann::json* findJsonPath(const nlohmann::json& doc, const std::string&
 nlohmann::json* findJsonPath(nlohmann::json& doc, const std::string& path) {
   const auto parts = splitJsonPath(path);
   return walk(doc, parts, parts.size());
+}
+
+bool isValidUtf8(const std::string& text) {
+  try {
+    (void)nlohmann::json(text).dump();
+    return true;
+  } catch (const nlohmann::json::type_error&) {
+    return false;
+  }
 }
 
 nlohmann::json parseOverrideValue(const std::string& text) {
@@ -114,9 +128,9 @@ std::string setJsonPath(nlohmann::json& doc, const std::string& path, const nloh
   } else {
     return "unknown path (" + parts[parts.size() - 2] + " is not an object or array)";
   }
-  if (target->is_number() && !value.is_number()) return "must be a number, got " + value.dump();
+  if (target->is_number() && !value.is_number()) return "must be a number, got " + shown(value);
   if (target->is_array() && (!value.is_array() || value.size() != target->size()))
-    return "must be an array of " + std::to_string(target->size()) + " values, got " + value.dump();
+    return "must be an array of " + std::to_string(target->size()) + " values, got " + shown(value);
   if (target->is_object() || (target->is_array() && !value.is_array()))
     return "is not a scalar or vector";
   *target = value;

@@ -562,6 +562,9 @@ Scene loadSceneDocument(nlohmann::json doc, const std::string& file, const std::
   };
   std::vector<Created> created;
   for (const SceneOverride& o : overrides) {
+    // A scene's keys and strings are UTF-8 (its file is parsed as JSON); so must an override be.
+    if (!isValidUtf8(o.path) || !isValidUtf8(o.value))
+      throw InputError(file, "--set " + o.path, "not valid UTF-8");
     const bool existed = findJsonPath(doc, o.path) != nullptr;
     // Keys the format defines are settable when the file leaves them (and their objects) at
     // their defaults; the validator below rejects the keys it does not define.

@@ -14,6 +14,10 @@ std::vector<std::string> splitJsonPath(const std::string& path);
 const nlohmann::json* findJsonPath(const nlohmann::json& doc, const std::string& path);
 nlohmann::json* findJsonPath(nlohmann::json& doc, const std::string& path);
 
+// Whether `text` is valid UTF-8, as a JSON string must be (nlohmann::json refuses to write one
+// that is not, so a scene may not hold one).
+bool isValidUtf8(const std::string& text);
+
 // Parses an override value from the command line: JSON if it parses ("[0,-9.8,0]", "0.2",
 // "true", "\"text\""), a comma list of numbers as an array ("0,-9.8,0"), otherwise a string.
 nlohmann::json parseOverrideValue(const std::string& text);
