@@ -123,6 +123,40 @@ TEST(Npy, RejectsWhatItCannotRead) {
   }
 }
 
+// Found by the NPY fuzzer: sizes the file states are checked against the bytes it has before
+// anything is allocated (a 113-byte file claiming a 1 GB header took 20 s and 1 GB to refuse),
+// and a dimension too large for 64 bits is an InputError, not std::out_of_range.
+TEST(Npy, StatedSizesBeyondTheFileAreRefusedBeforeAllocating) {
+  TempDir dir;
+  const double d[2] = {1, 2};
+  const std::string payload(reinterpret_cast<const char*>(d), sizeof d);
+  std::string hugeHeader = std::string("\x93NUMPY\x02\x00", 8) + std::string("\x00\x00\x00\x40", 4);
+  dir.write("huge_header.npy", hugeHeader + "{'descr': '<f8', 'shape': (2,), }\n" + payload);
+  dir.write("huge_shape.npy", handMadeNpy("<f8", "(1000000000000, 3)", payload));
+  dir.write("product_overflow.npy",
+            handMadeNpy("<f8", "(4294967296, 4294967296, 4294967296)", payload));
+  dir.write("too_many_digits.npy",
+            handMadeNpy("<f8", "(123456789012345678901234567890,)", payload));
+  const struct {
+    const char* name;
+    const char* what;
+  } cases[] = {{"huge_header.npy", "truncated header"},
+               {"huge_shape.npy", "file shorter than its shape says"},
+               {"product_overflow.npy", "file shorter than its shape says"},
+               {"too_many_digits.npy", "a dimension beyond 10^18"}};
+  for (const auto& c : cases) {
+    try {
+      readNpy(dir.file(c.name));
+      ADD_FAILURE() << c.name << " was read";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.reason(), c.what) << c.name;
+    }
+  }
+  // A zero dimension is an empty array, whatever the others say.
+  dir.write("empty.npy", handMadeNpy("<f8", "(0, 5)", ""));
+  EXPECT_TRUE(readNpy(dir.file("empty.npy")).data.empty());
+}
+
 TEST(Npy, WriteToAnImpossiblePathIsAnInputError) {
   TempDir dir;
   const double d[1] = {1};

@@ -2,6 +2,7 @@
 
 #include <weft/core/Error.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <numeric>
@@ -61,8 +62,12 @@ void writeNpy(const std::string& path, const std::vector<std::size_t>& shape, co
 }
 
 NpyArray readNpy(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError(path, "npy", "cannot open file");
+  // Every size the file states is checked against the bytes it has before anything is allocated
+  // (a 100-byte file may claim a 4 GB header or a shape of 2^64 values).
+  const std::streamoff fileSize = in.tellg();
+  in.seekg(0);
   char magic[8];
   in.read(magic, 8);
   if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0)
@@ -77,6 +82,8 @@ NpyArray readNpy(const std::string& path) {
     in.read(reinterpret_cast<char*>(b), 4);
     headerLen = b[0] | (b[1] << 8) | (b[2] << 16) | (static_cast<std::size_t>(b[3]) << 24);
   }
+  if (!in || static_cast<std::streamoff>(headerLen) > fileSize - in.tellg())
+    throw InputError(path, "npy", "truncated header");
   std::string header(headerLen, '\0');
   in.read(header.data(), static_cast<std::streamsize>(headerLen));
   if (!in) throw InputError(path, "npy", "truncated header");
@@ -91,11 +98,26 @@ NpyArray readNpy(const std::string& path) {
   NpyArray array;
   std::string dims = m[1];
   std::regex num("[0-9]+");
+  const std::size_t elementSize = isDouble ? 8 : 4;
+  const std::size_t available = static_cast<std::size_t>(fileSize - in.tellg()) / elementSize;
   for (auto it = std::sregex_iterator(dims.begin(), dims.end(), num); it != std::sregex_iterator();
-       ++it)
-    array.shape.push_back(std::stoull(it->str()));
-  const std::size_t count =
-      std::accumulate(array.shape.begin(), array.shape.end(), std::size_t{1}, std::multiplies<>());
+       ++it) {
+    const std::string digits = it->str();
+    if (digits.size() > 18) throw InputError(path, "npy", "a dimension beyond 10^18");
+    array.shape.push_back(std::stoull(digits));
+  }
+  // The product may not exceed the values the file holds (checked without overflowing); a zero
+  // dimension makes an empty array whatever the others say.
+  std::size_t count = 1;
+  const bool empty = std::find(array.shape.begin(), array.shape.end(), 0) != array.shape.end();
+  for (std::size_t d : array.shape) {
+    if (empty) {
+      count = 0;
+      break;
+    }
+    if (count > available / d) throw InputError(path, "npy", "file shorter than its shape says");
+    count *= d;
+  }
   array.data.resize(count);
   if (isDouble) {
     in.read(reinterpret_cast<char*>(array.data.data()), static_cast<std::streamsize>(count * 8));
