@@ -240,6 +240,14 @@ TEST(SceneLoader, BadOverridesNameTheOption) {
       },
       "--set name", "not valid UTF-8");
   EXPECT_EQ(loadScene(file, {{"name", "caf\xC3\xA9"}}).document["name"], "caf\xC3\xA9");
+  // An override on a file that is not an object (found by the scene fuzzer: naming the parent
+  // of a one-part path read before the start of the path's parts).
+  dir.write("number.json", "5");
+  expectInputError(
+      [&] {
+        loadScene(dir.file("number.json"), {{"name", "x"}});
+      },
+      "--set name", "unknown path (the document is not an object or array)");
 }
 
 TEST(SceneLoader, DocumentWithOverridesIsTheFileWithOverrides) {

@@ -126,7 +126,10 @@ std::string setJsonPath(nlohmann::json& doc, const std::string& path, const nloh
     if (!parseIndex(last, i) || i >= parent->size()) return "unknown path (index out of range)";
     target = &(*parent)[i];
   } else {
-    return "unknown path (" + parts[parts.size() - 2] + " is not an object or array)";
+    // (A one-part path's parent is the document itself, which is not an object when the file
+    // is not a scene; found by the scene fuzzer, which read parts[-1] here.)
+    const std::string parentName = parts.size() >= 2 ? parts[parts.size() - 2] : "the document";
+    return "unknown path (" + parentName + " is not an object or array)";
   }
   if (target->is_number() && !value.is_number()) return "must be a number, got " + shown(value);
   if (target->is_array() && (!value.is_array() || value.size() != target->size()))
