@@ -46,6 +46,7 @@ dict=()
 [ "$target" = scene ] && dict=(-dict="$PWD/tests/fuzz/scene.dict")
 
 export ASAN_OPTIONS="detect_leaks=1"
+export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 export OMP_NUM_THREADS=1
 binary=$PWD/$dir/tests/fuzz/weft_fuzz_$target
