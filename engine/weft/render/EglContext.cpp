@@ -63,6 +63,7 @@ EglContext::EglContext(int width, int height) {
     destroy();
     throw;
   }
+  keepLoadedLibrariesForSanitizers();
 }
 
 void EglContext::create(int width, int height) {

@@ -2,6 +2,8 @@
 
 #include <weft/render/RenderError.h>
 
+#include "SharedLibrary.h"
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
@@ -40,6 +42,7 @@ GlfwContext::GlfwContext(const std::string& title, int width, int height, bool v
     throw ContextError("GLFW could not create an OpenGL 3.3 core window (" + glfwLastError + ")");
   }
   makeCurrent();
+  keepLoadedLibrariesForSanitizers();
 }
 
 GlfwContext::~GlfwContext() {

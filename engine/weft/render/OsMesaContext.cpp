@@ -46,6 +46,7 @@ OsMesaContext::OsMesaContext(int width, int height) {
     throw ContextError("OSMesa (" + lib_->so.name() +
                        ") could not create an OpenGL 3.3 core profile context");
   resize(width, height);
+  keepLoadedLibrariesForSanitizers();
 }
 
 OsMesaContext::~OsMesaContext() {

@@ -34,4 +34,10 @@ class SharedLibrary {
 // a way to pick a specific build, and for tests to stand in for a machine that lacks one.
 std::vector<std::string> libraryNames(const char* variable, std::vector<std::string> defaults);
 
+// In a sanitizer build (WEFT_SANITIZE), keeps every shared library mapped now mapped until the
+// process exits, including those a GL library opened itself (Mesa's DRI driver, closed again by
+// eglTerminate and glfwTerminate): LeakSanitizer runs at exit and needs their globals, which
+// still point to what they allocated, and their names for its stacks. Otherwise does nothing.
+void keepLoadedLibrariesForSanitizers();
+
 }  // namespace weft::render
