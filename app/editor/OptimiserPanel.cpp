@@ -193,6 +193,22 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
     ImGui::PopStyleColor();
   }
   if (samples.empty()) return;
+  // The gradients' error estimates (diff/GradientErrorControl.h): the last one, the largest, and
+  // a warning when any missed the scene's solver.backward.accuracy.
+  for (auto s = samples.rbegin(); s != samples.rend(); ++s) {
+    if (!s->hasGradient) continue;
+    ImGui::TextDisabled("gradient error: last %.1e, largest %.1e (relative, estimated)",
+                        s->gradientError, run.largestGradientError());
+    break;
+  }
+  if (const int missing = run.gradientsMissingAccuracy(); missing > 0) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.65f, 0.20f, 1.0f));
+    ImGui::TextWrapped(
+        "%d gradients missed solver.backward.accuracy: the adjoint's growth amplifies round-off "
+        "beyond it even with the direct solve",
+        missing);
+    ImGui::PopStyleColor();
+  }
   std::vector<float> loss;
   for (const auto& s : samples) loss.push_back(float(std::log10(std::max(s.loss, 1e-300))));
   const auto best = run.best();

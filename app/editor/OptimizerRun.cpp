@@ -59,6 +59,8 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
     std::lock_guard<std::mutex> lock(mutex_);
     samples_.clear();
     unconverged_ = 0;
+    missingAccuracy_ = 0;
+    largestError_ = 0.0;
     error_.clear();
     stopReason_.clear();
   }
@@ -77,11 +79,18 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
       s.steps = e.steps;
       s.loss = e.loss;
       s.values.assign(v.data(), v.data() + v.size());
+      s.hasGradient = e.hasGradient;
+      s.gradientError = e.gradientError;
       // (The objective is the worker's: read here, on the worker, after its evaluation.)
-      const int unconverged = run_->objective().unconvergedForwardSteps();
+      const SimulationObjective& objective = run_->objective();
+      const int unconverged = objective.unconvergedForwardSteps();
+      const int missing = objective.gradientsMissingAccuracy();
+      const double largest = objective.largestGradientError();
       std::lock_guard<std::mutex> lock(mutex_);
       samples_.push_back(std::move(s));
       unconverged_ = unconverged;
+      missingAccuracy_ = missing;
+      largestError_ = largest;
     };
     try {
       const OptimizationOutcome outcome = run_->run(settings_, callbacks);
@@ -160,6 +169,16 @@ std::string OptimizerRun::error() const {
 std::string OptimizerRun::stopReason() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return stopReason_;
+}
+
+int OptimizerRun::gradientsMissingAccuracy() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return missingAccuracy_;
+}
+
+double OptimizerRun::largestGradientError() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return largestError_;
 }
 
 int OptimizerRun::unconvergedForwardSteps() const {

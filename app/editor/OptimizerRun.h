@@ -39,6 +39,8 @@ class OptimizerRun {
     long long steps = 0;
     double loss = 0.0;
     std::vector<double> values;
+    bool hasGradient = false;
+    double gradientError = 0.0;  // its estimated relative error, when hasGradient
   };
 
   // The method names makeOptimizer accepts (probed by name, so a method added to the engine
@@ -81,6 +83,10 @@ class OptimizerRun {
   // Forward steps of the run's evaluations so far that stopped at solver.pd_iterations above
   // solver.pd_tolerance: their gradients are those of unconverged steps (the panel warns).
   int unconvergedForwardSteps() const;
+  // Gradients of the run so far whose estimated error missed solver.backward.accuracy, and the
+  // largest estimate (diff/GradientErrorControl.h; the panel shows both).
+  int gradientsMissingAccuracy() const;
+  double largestGradientError() const;
 
  private:
   void join();
@@ -98,6 +104,8 @@ class OptimizerRun {
   mutable std::mutex mutex_;
   std::vector<Sample> samples_;
   int unconverged_ = 0;
+  int missingAccuracy_ = 0;
+  double largestError_ = 0.0;
   std::string error_, stopReason_;
   std::atomic<Status> status_{Status::Idle};
 };

@@ -12,6 +12,9 @@ int benchCommand(const std::vector<std::string>& args);
 int renderCommand(const std::vector<std::string>& args);
 // `weft gradcheck` (GradcheckCommand.cpp): adjoint vs finite-difference gradient of the task loss.
 int gradcheckCommand(const std::vector<std::string>& args);
+// `weft gradient` (GradientCommand.cpp): the task loss's gradient as an optimiser gets it, with
+// its error estimate.
+int gradientCommand(const std::vector<std::string>& args);
 // `weft optimize` (OptimizeCommand.cpp): minimises the task loss over the task's parameters.
 int optimizeCommand(const std::vector<std::string>& args);
 // `weft landscape` (LandscapeCommand.cpp): the task loss on a grid over one or two parameters.

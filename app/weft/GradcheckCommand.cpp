@@ -12,9 +12,9 @@
 #include "SceneWarnings.h"
 
 #include <weft/core/Error.h>
-#include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/Backpropagation.h>
 #include <weft/diff/GradientCheck.h>
+#include <weft/diff/GradientErrorControl.h>
 #include <weft/diff/ParameterSet.h>
 #include <weft/record/ConvergenceReport.h>
 #include <weft/scene/SceneLoader.h>
@@ -73,27 +73,29 @@ int gradcheckCommand(const std::vector<std::string>& args) {
       list.push_back({{"param", e.param},
                       {"adjoint", e.adjoint},
                       {"finite_difference", e.finiteDifference},
-                      {"relative_error", e.relativeError}});
+                      {"relative_error", e.relativeError},
+                      {"error_estimate", e.errorEstimate}});
     std::printf("%s\n", list.dump(2).c_str());
   } else {
     for (const auto& e : report.entries)
-      std::printf("%s  adjoint %.10e  finite_difference %.10e  relative_error %.3e\n",
-                  e.param.c_str(), e.adjoint, e.finiteDifference, e.relativeError);
+      std::printf(
+          "%s  adjoint %.10e  finite_difference %.10e  relative_error %.3e  error_estimate %.2e\n",
+          e.param.c_str(), e.adjoint, e.finiteDifference, e.relativeError, e.errorEstimate);
   }
   const AdjointSolverStats& b = report.backward;
   char summary[512];
   std::snprintf(
       summary, sizeof summary,
       "gradcheck: %s: %zu parameters, loss %.6e, max relative error %.3e; backward %s: %d steps, "
-      "%lld iterations (max %d per step), %d not converged, %d fallbacks, adjoint growth %.2g; "
-      "%d forward runs (%d unconverged steps), %.2f s",
+      "%lld iterations (max %d per step), %d not converged, %d fallbacks, adjoint growth %.2g, "
+      "%s; %d forward runs (%d unconverged steps), %.2f s",
       scene.name.c_str(), report.entries.size(), report.loss, report.maxRelativeError(),
       report.backwardMethod.c_str(), b.solves, b.iterations, b.maxIterations, b.notConverged,
-      b.fallbacks, b.adjointGrowth, report.forwardRuns, report.unconvergedSteps, report.seconds);
+      b.fallbacks, b.adjointGrowth, describeGradientError(report.error).c_str(), report.forwardRuns,
+      report.unconvergedSteps, report.seconds);
   std::fprintf(cl.has("--json") ? stderr : stdout, "%s\n", summary);
-  const std::string growth =
-      adjointGrowthWarning(b, report.backwardMethod, report.backwardTolerance);
-  if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
+  const std::string error = gradientErrorWarning(report.error);
+  if (!error.empty()) std::fprintf(stderr, "warning: %s\n", error.c_str());
   std::fprintf(stderr, "%s", unconvergedGradientWarning(report.unconvergedSteps).c_str());
   return 0;
 }

@@ -29,6 +29,7 @@
 #include <weft/core/Error.h>
 #include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/Backpropagation.h>
+#include <weft/diff/GradientErrorControl.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/optim/OptimizationRun.h>
 #include <weft/record/ConvergenceReport.h>
@@ -62,7 +63,8 @@ nlohmann::json parameterObject(const ParameterSpace& space, const Eigen::VectorX
 int optimizeCommand(const std::vector<std::string>& args) {
   CommandLine cl(args,
                  {"--method", "--seed", "--budget", "--out", "--max-evaluations", "--learning-rate",
-                  "--first-step", "--min-curvature-step", "--set", "--threads"},
+                  "--first-step", "--min-curvature-step", "--smoothing", "--smoothing-pairs",
+                  "--set", "--threads"},
                  {"--quiet"});
   if (cl.positional().size() != 1) cl.fail("SCENE", "optimize takes exactly one scene file");
   const std::string file = cl.positional()[0];
@@ -86,6 +88,15 @@ int optimizeCommand(const std::vector<std::string>& args) {
   if ((cl.has("--first-step") || cl.has("--min-curvature-step")) && method != "lbfgsb")
     cl.fail(cl.has("--first-step") ? "--first-step" : "--min-curvature-step",
             "is an L-BFGS-B setting; --method is '" + method + "'");
+  settings.smoothingSigma = cl.number("--smoothing", 0.0);
+  if (!(settings.smoothingSigma >= 0.0 && std::isfinite(settings.smoothingSigma)))
+    cl.fail("--smoothing", "must be a finite standard deviation >= 0 (optimiser coordinates)");
+  settings.smoothingPairs = cl.integer("--smoothing-pairs", settings.smoothingPairs, 1, 10000);
+  if (cl.has("--smoothing-pairs") && !(settings.smoothingSigma > 0.0))
+    cl.fail("--smoothing-pairs", "needs --smoothing SIGMA > 0");
+  if (settings.smoothingSigma > 0.0 && method != "lbfgsb" && method != "adam")
+    cl.fail("--smoothing",
+            "is for the gradient-based methods (lbfgsb, adam); --method is '" + method + "'");
   const double budgetOption = cl.number("--budget", 0.0);
   if (cl.has("--budget") &&
       !(budgetOption >= 1.0 && budgetOption <= 1e15 && std::floor(budgetOption) == budgetOption))
@@ -99,7 +110,7 @@ int optimizeCommand(const std::vector<std::string>& args) {
   OptimizationRun run(scene, method);  // the task's parameters
   const SimulationObjective& objective = run.objective();
   const bool usesGradient = run.usesGradient();
-  const long long perEvaluation = run.stepsPerEvaluation();
+  const long long perEvaluation = run.stepsPerEvaluation(settings);
   settings.budget = cl.has("--budget") ? static_cast<long long>(budgetOption)
                                        : kDefaultEvaluations * objective.stepsPerEvaluation();
   if (settings.budget < perEvaluation)
@@ -178,6 +189,12 @@ int optimizeCommand(const std::vector<std::string>& args) {
       {"initial_loss", log.entries().front().loss},
       {"final_parameters", parameterObject(space, finalValues)},
       {"final_loss", result.loss},
+      {"smoothing", settings.smoothingSigma > 0.0
+                        ? nlohmann::json{{"sigma", settings.smoothingSigma},
+                                         {"pairs", settings.smoothingPairs},
+                                         {"final_loss_unsmoothed", outcome.unsmoothedLoss},
+                                         {"last_gradient_variance", outcome.lastGradientVariance}}
+                        : null},
       {"evaluations", result.evaluations},
       {"best_evaluation", log.best().evaluation},
       {"iterations", result.iterations},
@@ -186,6 +203,7 @@ int optimizeCommand(const std::vector<std::string>& args) {
       {"uses_gradient", usesGradient},
       {"gradient", result.hasGradient ? parameterObject(space, dLdtheta) : null},
       {"gradient_norm", result.hasGradient ? nlohmann::json(dLdtheta.norm()) : null},
+      {"gradient_error_estimate", result.hasGradient ? nlohmann::json(result.gradientError) : null},
       {"projected_gradient_norm",
        result.hasGradient ? nlohmann::json(result.projectedGradientNorm) : null},
       {"stop_reason", result.stopReason},
@@ -199,14 +217,25 @@ int optimizeCommand(const std::vector<std::string>& args) {
         {"hessian_factorizations", b.hessianFactorizations},
         {"not_converged", b.notConverged},
         {"fallbacks", b.fallbacks},
-        {"adjoint_growth", b.adjointGrowth}}},
+        {"adjoint_growth", b.adjointGrowth},
+        {"accuracy", scene.solver.backward.accuracy},
+        {"passes", objective.backwardPasses()},
+        {"largest_error_estimate", objective.largestGradientError()},
+        {"gradients_missing_accuracy", objective.gradientsMissingAccuracy()}}},
       {"unconverged_forward_steps", objective.unconvergedForwardSteps()},
       {"final_handles_entering_obstacles", entering},
   };
   if (usesGradient) {
-    const std::string growth =
-        adjointGrowthWarning(b, scene.solver.backward.method, scene.solver.backward.tolerance);
-    if (!growth.empty()) std::fprintf(stderr, "warning: %s\n", growth.c_str());
+    if (objective.gradientsMissingAccuracy() > 0)
+      std::fprintf(stderr,
+                   "warning: backward: %d gradients missed solver.backward.accuracy %.2g "
+                   "(largest estimated relative error %.2g; result.json's backward section)\n",
+                   objective.gradientsMissingAccuracy(), scene.solver.backward.accuracy,
+                   objective.largestGradientError());
+    else if (scene.solver.backward.accuracy <= 0.0 &&
+             objective.largestGradientError() >= kAdjointGradientErrorWarning)
+      std::fprintf(stderr, "warning: %s\n",
+                   gradientErrorWarning(objective.lastGradientErrorEstimate()).c_str());
     std::fprintf(stderr, "%s",
                  unconvergedGradientWarning(objective.unconvergedForwardSteps()).c_str());
   }
@@ -227,11 +256,19 @@ int optimizeCommand(const std::vector<std::string>& args) {
   }
   out.commit();
 
+  std::string smoothingNote;
+  if (settings.smoothingSigma > 0.0) {
+    char note[160];
+    std::snprintf(note, sizeof note, " (smoothed, sigma %.3g, %d pairs; unsmoothed final %.6e)",
+                  settings.smoothingSigma, settings.smoothingPairs, outcome.unsmoothedLoss);
+    smoothingNote = note;
+  }
   std::printf(
-      "optimize: %s: %s, %d evaluations, %lld simulated steps, loss %.6e -> %.6e, stop: %s, %.2f s "
-      "-> %s\n",
+      "optimize: %s: %s, %d evaluations, %lld simulated steps, loss %.6e -> %.6e%s, stop: %s, "
+      "%.2f s -> %s\n",
       scene.name.c_str(), method.c_str(), result.evaluations, result.steps,
-      log.entries().front().loss, result.loss, result.stopReason.c_str(), seconds, outDir.c_str());
+      log.entries().front().loss, result.loss, smoothingNote.c_str(), result.stopReason.c_str(),
+      seconds, outDir.c_str());
   return 0;
 }
 

@@ -23,6 +23,7 @@ const std::vector<std::pair<std::string, std::string>>& usages() {
        "SCENE [--param PATH ...] [--eps E] [--json] [--set PATH=VALUE ...]\n"
        "    [--backward gmres|fixed_point|direct] [--forward-tolerance T] [--backward-tolerance "
        "T]"},
+      {"gradient", "SCENE [--param PATH ...] [--json] [--set PATH=VALUE ...] [--threads N]"},
       {"optimize",
        "SCENE [--method lbfgsb|cmaes|es1p1|adam] [--seed S] [--budget STEPS] [--out DIR]\n"
        "    [--max-evaluations N] [--learning-rate R] [--first-step L]\n"

@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
     if (verb == "render") return weft::cli::renderCommand(args);
     if (verb == "bench") return weft::cli::benchCommand(args);
     if (verb == "gradcheck") return weft::cli::gradcheckCommand(args);
+    if (verb == "gradient") return weft::cli::gradientCommand(args);
     if (verb == "optimize") return weft::cli::optimizeCommand(args);
     if (verb == "landscape") return weft::cli::landscapeCommand(args);
     std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(),

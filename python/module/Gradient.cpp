@@ -8,8 +8,8 @@
 #include "WarningLines.h"
 
 #include <weft/core/Error.h>
-#include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/GradientCheck.h>
+#include <weft/diff/GradientErrorControl.h>
 #include <weft/diff/ParameterSet.h>
 #include <weft/record/ConvergenceReport.h>
 
@@ -56,9 +56,7 @@ Gradient computeGradient(const SceneSource& source,
   for (const SceneParameter& p : parameters.parameters()) out.names.push_back(p.path);
   out.values = parameters.values(scene);
   out.tight = tightAdjointGradient(scene, parameters, GradientCheckOptions{});  // gradcheck's
-  const AdjointSolverStats& b = out.tight.result.solver;
-  addWarningLines(adjointGrowthWarning(b, out.tight.backward.method, out.tight.backward.tolerance),
-                  out.warnings);
+  addWarningLines(gradientErrorWarning(out.tight.result.error), out.warnings);
   addWarningLines(unconvergedGradientWarning(out.tight.unconvergedSteps), out.warnings);
   return out;
 }
@@ -81,12 +79,14 @@ py::dict gradient(const SceneSource& source, const std::optional<std::vector<std
   out["values"] = vectorArray(toVector(g->values));
   out["gradient"] = vectorArray(toVector(tight.result.gradient));
   out["loss"] = tight.result.loss;
-  // The engine's rough size of an iterative backward pass's relative gradient error
-  // (AdjointGrowth.h); none for direct solves, whose error is round-off.
-  if (tight.backward.method == "direct")
-    out["error_estimate"] = py::none();
-  else
-    out["error_estimate"] = adjointGradientErrorEstimate(b.adjointGrowth, tight.backward.tolerance);
+  // The gradient's estimated relative error and each parameter's absolute one
+  // (GradientErrorControl.h), as gradcheck reports them.
+  const GradientErrorEstimate& e = tight.result.error;
+  out["error_estimate"] = e.relative;
+  out["error_estimates"] = vectorArray(toVector(e.absolute));
+  out["error"] = py::dict(py::arg("basis") = e.basis, py::arg("passes") = e.passes,
+                          py::arg("requested") = e.requested, py::arg("met") = e.met,
+                          py::arg("tolerance") = e.tolerance);
   out["backward"] = py::dict(
       py::arg("method") = tight.backward.method, py::arg("tolerance") = tight.backward.tolerance,
       py::arg("solves") = b.solves, py::arg("iterations") = b.iterations,

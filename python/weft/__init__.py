@@ -158,9 +158,11 @@ class Gradient(dict):
 
     loss: the task loss of the (tightened) forward run
     parameter_values: {path: value} the gradient was taken at
-    error_estimate: the engine's rough size of the gradient's relative error from the adjoint
-        solves' tolerance and the adjoint's growth (diff/AdjointGrowth.h; an order of magnitude,
-        not a bound), or None for direct solves
+    error_estimate: the gradient's estimated relative error |g - g_exact| / |g| (the pass
+        against one at a 100 times looser tolerance, tightened until it meets
+        solver.backward.accuracy; diff/GradientErrorControl.h)
+    error_estimates: {path: estimated absolute error of dL/dp}
+    error: how it was estimated (basis, passes, requested, met, tolerance)
     backward: the backward pass's statistics (method, tolerance, solves, iterations, ...)
     unconverged_steps: forward steps that stopped at the iteration cap
     warnings: the engine's warnings, as strings
@@ -171,6 +173,9 @@ class Gradient(dict):
         self.loss = result["loss"]
         self.parameter_values = dict(zip(result["params"], (float(v) for v in result["values"])))
         self.error_estimate = result["error_estimate"]
+        self.error_estimates = dict(
+            zip(result["params"], (float(e) for e in result["error_estimates"])))
+        self.error = dict(result["error"])
         self.backward = result["backward"]
         self.unconverged_steps = result["unconverged_steps"]
         self.warnings = list(result["warnings"])

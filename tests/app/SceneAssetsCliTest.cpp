@@ -219,8 +219,8 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   const auto rows = readCsv(out + "/backward.csv");
   // Wind and Slope: direct, then fixed point and GMRES preconditioned by P, by the clamped Hessian
-  // and automatically, each at 1e-4 and 1e-6.
-  ASSERT_EQ(rows.size(), 1u + 2 * 9);
+  // and automatically, each at 1e-4 and 1e-6, and the default: automatic with accuracy 1e-3.
+  ASSERT_EQ(rows.size(), 1u + 2 * 10);
   const std::vector<std::string> columns = {"scene",
                                             "quads",
                                             "vertices",
@@ -248,7 +248,9 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
                                             "cpu_speedup_vs_direct",
                                             "adjoint_growth",
                                             "hessian_iterations_per_step",
-                                            "hessian_factorizations"};
+                                            "hessian_factorizations",
+                                            "passes",
+                                            "error_estimate"};
   EXPECT_EQ(rows[0], columns);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     // The adjoint's growth over each pass (diff/AdjointGrowth.h): at least 1 by definition.
@@ -264,6 +266,15 @@ TEST(SceneAssets, BackwardBenchQuickWritesCsv) {
     }
     if (rows[i][4] == "gmres") {
       EXPECT_EQ(std::stod(rows[i][26]), 0.0) << "row " << i;
+    }
+    // The error-controlled row: at least two passes, its estimate within the accuracy and
+    // bounding its error against the direct row's gradient.
+    if (rows[i][4] == "gmres+auto accuracy 0.001") {
+      EXPECT_GE(std::stoi(rows[i][28]), 2) << "row " << i;
+      EXPECT_LE(std::stod(rows[i][29]), 1e-3) << "row " << i;
+      EXPECT_LE(std::stod(rows[i][16]), std::stod(rows[i][29]) + 1e-12) << "row " << i;
+    } else {
+      EXPECT_EQ(rows[i][28], "1") << "row " << i;
     }
   }
   // GMRES at tolerance 1e-6 gives the direct solve's gradient to about 6e-7 on Wind here (1e-5 in

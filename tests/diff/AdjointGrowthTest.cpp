@@ -14,7 +14,6 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <limits>
 
 namespace weft {
@@ -60,22 +59,8 @@ TEST(AdjointGrowth, WarnsWhenTheEstimatedGradientErrorIsLarge) {
   EXPECT_NE(adjointGrowthWarning(stats, "fixed_point", 1e-6), "");
 }
 
-nlohmann::json softNapkin(int quads) {
-  std::ifstream in(std::string(WEFT_ASSET_DIR) + "/scenes/wind_reference.json");
-  nlohmann::json doc = nlohmann::json::parse(in);
-  doc["cloths"][0]["mesh"]["grid"]["resolution"] = {quads, quads};
-  doc["cloths"][0]["attachments"][0]["vertices"] = {0, quads};
-  return doc;
-}
-
-// Growth of the direct backward pass of a trajectory loss against the same scene with the wind
-// 1.5 times as strong (what `weft bench backward --scenes wind_reference` differentiates).
-double directGrowth(const TempDir& dir, nlohmann::json doc, const std::string& name) {
-  nlohmann::json targetDoc = doc;
-  targetDoc["wind"]["strength"] = 1.5 * doc["wind"]["strength"].get<double>();
-  const std::string target = test::writeTargetTrajectory(targetDoc, dir.file(name + ".npy"));
-  test::addTask(doc, "trajectory", target, {"wind.strength"});
-  const Scene scene = withTightForwardSolver(test::parse(doc), 1e-8);
+// Growth of the direct backward pass of the scene's trajectory loss.
+double directGrowth(const Scene& scene, const std::string& name) {
   const ForwardPass pass = runForwardPass(scene);
   EXPECT_EQ(pass.unconvergedSteps, 0) << name;
   BackwardSettings direct = scene.solver.backward;
@@ -90,15 +75,20 @@ TEST(AdjointGrowth, GrowsByOrdersOfMagnitudeOnTheSoftNapkinWithoutBending) {
   TempDir dir;
   // Measured (2026-12-02): 1.8e5 at 12^2 and 1.2e8 at 24^2 over 200 steps, where GMRES at 1e-4
   // was 8.8e-5 and 2.1e-2 off the direct gradient (and 3.1e11, 197 % off, at 48^2).
-  const double coarse = directGrowth(dir, softNapkin(12), "soft12");
-  const double fine = directGrowth(dir, softNapkin(24), "soft24");
+  const double coarse = directGrowth(test::softNapkinTaskScene(dir, 12), "soft12");
+  const double fine = directGrowth(test::softNapkinTaskScene(dir, 24), "soft24");
   EXPECT_LT(coarse, 1e6);
   EXPECT_GT(fine, 1e7);
   EXPECT_GT(fine, 100.0 * coarse);
   // The stiff test cloth with bending (12^2, 100 steps), in the same kind of wind: no unstable
   // modes, growth from the loss accumulating over the steps only.
   nlohmann::json stiff = test::windClothScene(12, 100);
-  EXPECT_LT(directGrowth(dir, stiff, "stiff12"), 1e4);  // measured 1.4e3
+  nlohmann::json targetDoc = stiff;
+  targetDoc["wind"]["strength"] = 1.5 * stiff["wind"]["strength"].get<double>();
+  test::addTask(stiff, "trajectory", test::writeTargetTrajectory(targetDoc, dir.file("s.npy")),
+                {"wind.strength"});
+  const Scene scene = withTightForwardSolver(test::parse(stiff), 1e-8);
+  EXPECT_LT(directGrowth(scene, "stiff12"), 1e4);  // measured 1.4e3
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 namespace weft::test {
 
@@ -73,6 +74,19 @@ Scene withTrajectoryTask(const TempDir& dir, const nlohmann::json& document,
   const std::string target = writeTargetTrajectory(targetDoc, dir.file("target.npy"));
   addTask(doc, "trajectory", target, parameters);
   return parse(doc);
+}
+
+Scene softNapkinTaskScene(const TempDir& dir, int quads) {
+  std::ifstream in(std::string(WEFT_ASSET_DIR) + "/scenes/wind_reference.json");
+  nlohmann::json doc = nlohmann::json::parse(in);
+  doc["cloths"][0]["mesh"]["grid"]["resolution"] = {quads, quads};
+  doc["cloths"][0]["attachments"][0]["vertices"] = {0, quads};
+  nlohmann::json targetDoc = doc;
+  targetDoc["wind"]["strength"] = 1.5 * doc["wind"]["strength"].get<double>();
+  const std::string name = "soft" + std::to_string(quads);
+  const std::string target = writeTargetTrajectory(targetDoc, dir.file(name + ".npy"));
+  addTask(doc, "trajectory", target, {"wind.strength"});
+  return withTightForwardSolver(parse(doc), 1e-8);
 }
 
 Scene windTaskScene(const TempDir& dir, const std::vector<std::string>& parameters, int steps) {

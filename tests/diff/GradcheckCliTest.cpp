@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <sstream>
 
 namespace weft {
@@ -56,12 +57,15 @@ TEST(GradcheckCli, JsonListHasTheSpecKeys) {
   EXPECT_EQ(list[0]["param"], "cloths.0.material.density");
   EXPECT_EQ(list[1]["param"], "wind.phase");
   for (const auto& e : list) {
-    EXPECT_EQ(e.size(), 4u);
-    for (const char* key : {"adjoint", "finite_difference", "relative_error"})
+    EXPECT_EQ(e.size(), 5u);
+    for (const char* key : {"adjoint", "finite_difference", "relative_error", "error_estimate"})
       EXPECT_TRUE(e[key].is_number()) << key;
     EXPECT_LT(e["relative_error"].get<double>(), 1e-4) << e.dump();
+    EXPECT_LT(e["error_estimate"].get<double>(), 1e-6 * std::abs(e["adjoint"].get<double>()))
+        << e.dump();
   }
   EXPECT_THAT(r.err, HasSubstr("gradcheck: wind_sysid:"));
+  EXPECT_THAT(r.err, HasSubstr("accuracy 0.001 met"));
 }
 
 TEST(GradcheckCli, TaskParametersAreTheDefault) {

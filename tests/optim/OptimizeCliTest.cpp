@@ -190,6 +190,41 @@ TEST(OptimizeCli, FirstStepIsTheFirstTrialLengthInOptimiserCoordinates) {
   EXPECT_EQ(result["lbfgsb"]["min_curvature_step"].get<double>(), 0.0);
 }
 
+// Every gradient's error estimate reaches result.json; with --smoothing an evaluation costs 2K
+// gradient evaluations, the losses are smoothed ones, and the task loss at the result is
+// reported beside them.
+TEST(OptimizeCli, ReportsGradientErrorsAndSmoothing) {
+  TempDir dir;
+  const std::string scene = writeTinyScene(dir);
+  const std::string plainOut = dir.file("plain"), smoothOut = dir.file("smooth");
+  auto r = runWeft({"optimize", scene, "--max-evaluations", "4", "--out", plainOut, "--quiet",
+                    "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  nlohmann::json result = nlohmann::json::parse(test::readFile(plainOut + "/result.json"));
+  EXPECT_TRUE(result["smoothing"].is_null());
+  EXPECT_LT(result["gradient_error_estimate"].get<double>(), 1e-3);
+  EXPECT_EQ(result["backward"]["accuracy"], 1e-3);
+  EXPECT_GE(result["backward"]["passes"].get<int>(), 2 * 4) << "two passes per gradient";
+  EXPECT_EQ(result["backward"]["gradients_missing_accuracy"], 0);
+  EXPECT_LT(result["backward"]["largest_error_estimate"].get<double>(), 1e-3);
+
+  r = runWeft({"optimize", scene, "--max-evaluations", "3", "--smoothing", "0.05",
+               "--smoothing-pairs", "2", "--out", smoothOut, "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  EXPECT_THAT(r.out, HasSubstr("smoothed, sigma 0.05, 2 pairs; unsmoothed final"));
+  result = nlohmann::json::parse(test::readFile(smoothOut + "/result.json"));
+  ASSERT_TRUE(result["smoothing"].is_object()) << result.dump();
+  EXPECT_EQ(result["smoothing"]["sigma"], 0.05);
+  EXPECT_EQ(result["smoothing"]["pairs"], 2);
+  EXPECT_GE(result["smoothing"]["last_gradient_variance"].get<double>(), 0.0);
+  const double unsmoothed = result["smoothing"]["final_loss_unsmoothed"].get<double>();
+  EXPECT_TRUE(std::isfinite(unsmoothed));
+  EXPECT_NE(unsmoothed, result["final_loss"].get<double>()) << "the smoothed loss differs";
+  EXPECT_EQ(result["steps_per_evaluation"], 2 * 2 * 2 * kSteps);
+  EXPECT_EQ(result["steps"].get<long long>(),
+            2LL * 2 * 2 * kSteps * result["evaluations"].get<int>());
+}
+
 TEST(OptimizeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
   TempDir dir;
   const std::string scene = writeTinyScene(dir);
@@ -217,6 +252,19 @@ TEST(OptimizeCli, BadInputExitsTwoAndKeepsAnExistingOutput) {
        {scene, "--method", "cmaes", "--first-step", "0.1"},
        "--first-step: ",
        "L-BFGS-B setting"},
+      {"NegativeSmoothing", {scene, "--smoothing", "-0.1"}, "--smoothing: ", "must be a finite"},
+      {"SmoothingForCmaes",
+       {scene, "--method", "cmaes", "--smoothing", "0.1"},
+       "--smoothing: ",
+       "gradient-based methods"},
+      {"PairsWithoutSmoothing",
+       {scene, "--smoothing-pairs", "3"},
+       "--smoothing-pairs: ",
+       "needs --smoothing"},
+      {"ZeroPairs",
+       {scene, "--smoothing", "0.1", "--smoothing-pairs", "0"},
+       "--smoothing-pairs: ",
+       ""},
   };
   for (const BadOptimize& c : cases) {
     SCOPED_TRACE(c.name);

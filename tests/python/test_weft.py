@@ -268,6 +268,13 @@ class GradientTest(unittest.TestCase):
         self.assertEqual(g.backward["method"], "gmres")
         self.assertIsNotNone(g.error_estimate)
         self.assertLess(g.error_estimate, 1e-6)
+        self.assertEqual(g.error["basis"], "difference")
+        self.assertTrue(g.error["met"])
+        self.assertEqual(g.error["passes"], 2)
+        self.assertEqual(set(g.error_estimates), set(g))
+        norm = sum(v * v for v in g.values()) ** 0.5
+        for path in g:  # a component's error is at most the vector's
+            self.assertLessEqual(g.error_estimates[path], g.error_estimate * norm * (1 + 1e-12))
 
     def test_params_and_set_equal_gradchecks(self):
         params = ["cloths.0.material.bend", "wind.phase"]

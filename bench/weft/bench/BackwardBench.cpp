@@ -15,6 +15,7 @@
 #include <weft/diff/AdjointSystem.h>
 #include <weft/diff/Backpropagation.h>
 #include <weft/diff/ForwardPass.h>
+#include <weft/diff/GradientErrorControl.h>
 #include <weft/diff/ParameterSet.h>
 #include <weft/diff/TaskLoss.h>
 #include <weft/io/Npy.h>
@@ -219,6 +220,9 @@ struct Method {
   std::string label, method;
   double tolerance;
   std::string preconditioner = "p";  // GMRES's (solver.backward.preconditioner)
+  // solver.backward.accuracy: 0, one pass at `tolerance`; else the error-controlled passes
+  // (diff/GradientErrorControl.h) starting from it, what every command's gradient does.
+  double accuracy = 0.0;
 };
 
 }  // namespace
@@ -238,15 +242,17 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
                                        : quick                      ? std::vector<int>{12, 24}
                                                                     : std::vector<int>{12, 24, 48};
   if (options.calibrate) return calibrateFactorCost(cases, resolutions, threads, out, outDir);
-  const std::vector<Method> methods = {{"direct", "direct", 1e-4},
-                                       {"fixed_point 1e-4", "fixed_point", 1e-4},
-                                       {"fixed_point 1e-6", "fixed_point", 1e-6},
-                                       {"gmres 1e-4", "gmres", 1e-4},
-                                       {"gmres 1e-6", "gmres", 1e-6},
-                                       {"gmres+hessian 1e-4", "gmres", 1e-4, "hessian"},
-                                       {"gmres+hessian 1e-6", "gmres", 1e-6, "hessian"},
-                                       {"gmres+auto 1e-4", "gmres", 1e-4, "auto"},
-                                       {"gmres+auto 1e-6", "gmres", 1e-6, "auto"}};
+  const std::vector<Method> methods = {
+      {"direct", "direct", 1e-4},
+      {"fixed_point 1e-4", "fixed_point", 1e-4},
+      {"fixed_point 1e-6", "fixed_point", 1e-6},
+      {"gmres 1e-4", "gmres", 1e-4},
+      {"gmres 1e-6", "gmres", 1e-6},
+      {"gmres+hessian 1e-4", "gmres", 1e-4, "hessian"},
+      {"gmres+hessian 1e-6", "gmres", 1e-6, "hessian"},
+      {"gmres+auto 1e-4", "gmres", 1e-4, "auto"},
+      {"gmres+auto 1e-6", "gmres", 1e-6, "auto"},
+      {"gmres+auto accuracy 1e-3 (default)", "gmres", 1e-4, "auto", 1e-3}};
   BenchTable table({"scene",
                     "quads",
                     "vertices",
@@ -274,7 +280,9 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
                     "cpu_speedup_vs_direct",
                     "adjoint_growth",
                     "hessian_iterations_per_step",
-                    "hessian_factorizations"});
+                    "hessian_factorizations",
+                    "passes",
+                    "error_estimate"});
   std::vector<PlotSeries> plot;
 
   const std::filesystem::path scratch = std::filesystem::temp_directory_path() /
@@ -338,9 +346,11 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
         settings.tolerance = method.tolerance;
         settings.preconditioner = method.preconditioner;
         settings.fallback = "direct";
+        settings.accuracy = method.accuracy;
         const auto start = std::chrono::steady_clock::now();
         const double cpuStart = processCpuSeconds();
-        const GradientResult g = backpropagate(forward.trajectory, loss, parameters, settings);
+        const GradientResult g =
+            backpropagateToAccuracy(forward.trajectory, loss, parameters, settings);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double cpuSeconds = processCpuSeconds() - cpuStart;
@@ -352,9 +362,10 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
         const double perStep = 1e3 * seconds / steps;
         const double solvePerStep = 1e3 * s.seconds / steps;
         const bool iterative = method.method != "direct";
-        const std::string methodName = method.preconditioner == "p"
-                                           ? method.method
-                                           : method.method + "+" + method.preconditioner;
+        const std::string methodName =
+            (method.preconditioner == "p" ? method.method
+                                          : method.method + "+" + method.preconditioner) +
+            (method.accuracy > 0.0 ? " accuracy " + formatNumber(method.accuracy, 1) : "");
         table.add(
             {c.name,
              std::to_string(n),
@@ -383,7 +394,9 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
              formatNumber(directCpuSeconds / cpuSeconds, 3),
              formatNumber(s.adjointGrowth, 3),
              iterative ? formatNumber(double(s.hessianIterations) / std::max(1, s.solves)) : "-",
-             std::to_string(s.hessianFactorizations)});
+             std::to_string(s.hessianFactorizations),
+             std::to_string(g.error.passes),
+             formatNumber(g.error.relative, 3)});
         plot[firstSeries + m].x.push_back(n);
         plot[firstSeries + m].y.push_back(perStep);
       }
@@ -445,7 +458,12 @@ int runBackwardBench(const BackwardBenchOptions& options, const std::string& out
       "is of the order of tolerance x sqrt(adjoint_growth) / 100. hessian_iterations_per_step = of "
       "iterations_per_step, those preconditioned by the clamped Hessian; hessian_factorizations = "
       "its "
-      "factorisations over the pass (gmres+hessian: one per step; gmres+auto: where it chose to).";
+      "factorisations over the pass (gmres+hessian: one per step; gmres+auto: where it chose to). "
+      "The accuracy row is what every command's gradient does (solver.backward.accuracy, "
+      "diff/GradientErrorControl.h): passes from its tolerance down by 100 until two agree to "
+      "1e-3; its times cover all its passes. passes = backward passes made; error_estimate = "
+      "the gradient's estimated relative error (the accuracy row: its difference to the looser "
+      "pass; one-pass rows: tolerance x sqrt(growth) / 100, or epsilon x growth for direct).";
   table.writeCsv(out.file("backward.csv"));
   table.writeMarkdown(out.file("backward.md"),
                       "Backward pass: adjoint solvers (weft bench backward)", preamble);

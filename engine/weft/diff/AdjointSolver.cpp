@@ -30,6 +30,21 @@ std::unique_ptr<AdjointLinearSolver> makeAdjointLinearSolver(const BackwardSetti
       settings.history);
 }
 
+void addSolverCosts(AdjointSolverStats& into, const AdjointSolverStats& from) {
+  into.solves += from.solves;
+  into.iterations += from.iterations;
+  into.maxIterations = std::max(into.maxIterations, from.maxIterations);
+  into.hessianIterations += from.hessianIterations;
+  into.hessianFactorizations += from.hessianFactorizations;
+  into.notConverged += from.notConverged;
+  into.diverged += from.diverged;
+  into.fallbacks += from.fallbacks;
+  into.maxResidual = std::max(into.maxResidual, from.maxResidual);
+  into.seconds += from.seconds;
+  into.fallbackSeconds += from.fallbackSeconds;
+  into.adjointGrowth = std::max(into.adjointGrowth, from.adjointGrowth);
+}
+
 AdjointSolver::AdjointSolver(const BackwardSettings& settings)
     : settings_(settings), primary_(makeAdjointLinearSolver(settings)) {}
 

@@ -3,9 +3,13 @@
 #include <weft/core/Error.h>
 #include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/AdjointSystem.h>
+#include <weft/diff/GradientErrorControl.h>
 #include <weft/diff/ParameterPartials.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -30,6 +34,25 @@ struct StepAdjoint {
 };
 
 }  // namespace
+
+GradientErrorEstimate singlePassErrorEstimate(const GradientResult& result,
+                                              const BackwardSettings& settings) {
+  GradientErrorEstimate e;
+  const double growth = std::max(result.solver.adjointGrowth, 1.0);
+  if (settings.method == "direct") {
+    e.relative = std::numeric_limits<double>::epsilon() * growth;
+    e.basis = "round-off";
+  } else {
+    e.relative = adjointGradientErrorEstimate(growth, settings.tolerance);
+    e.tolerance = settings.tolerance;
+    e.basis = "fit";
+  }
+  const double norm = result.gradient.norm();
+  if (norm == 0.0) e.relative = 0.0;
+  // A component's error is at most the vector's: relative * |g|.
+  e.absolute = Eigen::VectorXd::Constant(result.gradient.size(), e.relative * norm);
+  return e;
+}
 
 GradientResult backpropagate(const Trajectory& trajectory, const TaskLoss& loss,
                              const ParameterSet& parameters, const BackwardSettings& settings) {
@@ -125,6 +148,7 @@ GradientResult backpropagate(const Trajectory& trajectory, const TaskLoss& loss,
   loss.addParameterGradient(scene, parameters.parameters(), result.gradient);
   result.solver = solver.stats();
   result.solver.adjointGrowth = growth.factor();
+  result.error = singlePassErrorEstimate(result, settings);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -1,7 +1,7 @@
 #include <weft/diff/GradientCheck.h>
 
-#include <weft/diff/Backpropagation.h>
 #include <weft/diff/ForwardPass.h>
+#include <weft/diff/GradientErrorControl.h>
 #include <weft/diff/TaskLoss.h>
 
 #include <algorithm>
@@ -31,7 +31,7 @@ TightAdjointGradient tightAdjointGradient(const Scene& input, const ParameterSet
   out.backward.tolerance = options.backwardTolerance;
   const ForwardPass base = runForwardPass(out.scene);
   out.unconvergedSteps = base.unconvergedSteps;
-  out.result = backpropagate(base.trajectory, loss, parameters, out.backward);
+  out.result = backpropagateToAccuracy(base.trajectory, loss, parameters, out.backward);
   return out;
 }
 
@@ -50,6 +50,7 @@ GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parame
   report.unconvergedSteps += tight.unconvergedSteps;
   report.loss = adjoint.loss;
   report.backward = adjoint.solver;
+  report.error = adjoint.error;
 
   const Eigen::VectorXd values = parameters.values(scene);
   for (int k = 0; k < parameters.size(); ++k) {
@@ -68,6 +69,7 @@ GradientCheckReport checkGradient(const Scene& input, const ParameterSet& parame
     }
     e.finiteDifference = (side[0] - side[1]) / (2.0 * e.step);
     e.adjoint = adjoint.gradient[k];
+    e.errorEstimate = adjoint.error.absolute[k];
     e.relativeError = relativeError(e.adjoint, e.finiteDifference);
     report.entries.push_back(e);
   }

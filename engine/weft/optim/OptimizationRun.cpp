@@ -2,6 +2,7 @@
 
 #include <weft/core/Error.h>
 #include <weft/diff/ParameterSet.h>
+#include <weft/optim/SmoothedObjective.h>
 
 namespace weft {
 namespace {
@@ -70,8 +71,22 @@ OptimizationOutcome OptimizationRun::run(const OptimizerSettings& settings,
     });
   HookedObjective objective(objective_, callbacks.beforeEvaluation);
   OptimizationOutcome outcome;
-  outcome.result = optimizer_->minimize(objective, start, space().lowerCoordinates(),
-                                        space().upperCoordinates());
+  if (settings.smoothingSigma > 0.0) {
+    if (!usesGradient_)
+      throw InputError(objective_.scene().file, "smoothing",
+                       "smoothing is for the gradient-based methods (lbfgsb, adam); '" + method_ +
+                           "' does not use gradients");
+    SmoothedObjective smoothed(objective, settings.smoothingSigma, settings.smoothingPairs,
+                               settings.seed, space().lowerCoordinates(),
+                               space().upperCoordinates());
+    outcome.result = optimizer_->minimize(smoothed, start, space().lowerCoordinates(),
+                                          space().upperCoordinates());
+    outcome.lastGradientVariance = smoothed.lastGradientVariance();
+    if (!optimizer_->log().empty()) outcome.unsmoothedLoss = objective_.value(outcome.result.x);
+  } else {
+    outcome.result = optimizer_->minimize(objective, start, space().lowerCoordinates(),
+                                          space().upperCoordinates());
+  }
   outcome.bestValues = space().toValues(outcome.result.x);
   return outcome;
 }

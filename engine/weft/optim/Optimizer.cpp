@@ -46,6 +46,7 @@ double Optimizer::evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) 
   LogEntry e;
   e.loss = objective_->evaluate(x, e.gradient);
   e.hasGradient = true;
+  e.gradientError = objective_->lastGradientError();
   e.x = x;
   gradient = e.gradient;
   return record(std::move(e), cost);
@@ -79,6 +80,7 @@ OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::Vector
     result.loss = best.loss;
     result.hasGradient = best.hasGradient;
     result.gradient = best.gradient;
+    result.gradientError = best.gradientError;
     result.projectedGradientNorm = best.hasGradient
                                        ? projectedGradientNorm(best.x, best.gradient, lower, upper)
                                        : std::numeric_limits<double>::quiet_NaN();

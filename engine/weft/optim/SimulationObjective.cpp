@@ -1,6 +1,5 @@
 #include <weft/optim/SimulationObjective.h>
 
-#include <weft/diff/Backpropagation.h>
 #include <weft/diff/ForwardPass.h>
 
 #include <algorithm>
@@ -9,7 +8,11 @@
 namespace weft {
 
 SimulationObjective::SimulationObjective(const Scene& scene, const ParameterSet& parameters)
-    : scene_(scene), parameters_(parameters), space_(scene, parameters), loss_(scene) {}
+    : scene_(scene),
+      parameters_(parameters),
+      space_(scene, parameters),
+      loss_(scene),
+      backwardPass_(scene.solver.backward) {}
 
 namespace {
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -20,28 +23,19 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& gradient) {
   const auto start = std::chrono::steady_clock::now();
   const ForwardPass forward = runForwardPass(parameters_.compile(scene_, space_.toValues(z)));
-  const Model& model = *forward.trajectory.model;
   unconverged_ += forward.unconvergedSteps;
   const double forwardSeconds = secondsSince(start);
   forwardSeconds_ += forwardSeconds;
   ++forwardPasses_;
-  const GradientResult r =
-      backpropagate(forward.trajectory, loss_, parameters_, model.solver().backward);
+  const GradientResult r = backwardPass_.differentiate(forward.trajectory, loss_, parameters_);
+  lastError_ = r.error;
+  largestError_ = std::max(largestError_, r.error.relative);
+  if (!r.error.met) ++missingAccuracy_;
   gradient = space_.gradientToCoordinates(z, r.gradient);
-  backward_.solves += r.solver.solves;
-  backward_.iterations += r.solver.iterations;
-  backward_.maxIterations = std::max(backward_.maxIterations, r.solver.maxIterations);
-  backward_.notConverged += r.solver.notConverged;
-  backward_.diverged += r.solver.diverged;
-  backward_.fallbacks += r.solver.fallbacks;
-  backward_.hessianIterations += r.solver.hessianIterations;
-  backward_.hessianFactorizations += r.solver.hessianFactorizations;
-  backward_.maxResidual = std::max(backward_.maxResidual, r.solver.maxResidual);
-  backward_.seconds += r.solver.seconds;
-  backward_.adjointGrowth = std::max(backward_.adjointGrowth, r.solver.adjointGrowth);
+  addSolverCosts(backward_, r.solver);
   const double seconds = secondsSince(start);
   backwardSeconds_ += seconds - forwardSeconds;
-  ++backwardPasses_;
+  backwardPasses_ += r.error.passes;
   seconds_ += seconds;
   return r.loss;
 }

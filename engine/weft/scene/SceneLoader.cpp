@@ -312,8 +312,8 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
   if (auto v = r.optional("max_halvings")) s.maxHalvings = v->integer(0, 10);
   if (auto v = r.optional("remember_halvings")) s.rememberHalvings = v->boolean();
   if (auto b = r.optional("backward")) {
-    b->allowOnly(
-        {"method", "tolerance", "max_iterations", "fallback", "preconditioner", "history"});
+    b->allowOnly({"method", "tolerance", "max_iterations", "fallback", "preconditioner", "history",
+                  "accuracy"});
     if (auto v = b->optional("method"))
       s.backward.method = v->choice({"gmres", "fixed_point", "direct"});
     if (auto v = b->optional("tolerance")) s.backward.tolerance = v->positive();
@@ -322,6 +322,7 @@ void readSolver(const JsonReader& r, SolverSettings& s) {
     if (auto v = b->optional("preconditioner"))
       s.backward.preconditioner = v->choice({"auto", "p", "hessian"});
     if (auto v = b->optional("history")) s.backward.history = v->integer(0, 64);
+    if (auto v = b->optional("accuracy")) s.backward.accuracy = v->number(0.0, 1.0);
   }
 }
 

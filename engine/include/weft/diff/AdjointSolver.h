@@ -33,6 +33,10 @@ struct AdjointSolverStats {
   double adjointGrowth = 1.0;
 };
 
+// Adds what `from` cost (solves, iterations, factorisations, failures, seconds) to `into`; the
+// largest residual and growth are the larger of the two.
+void addSolverCosts(AdjointSolverStats& into, const AdjointSolverStats& from);
+
 class AdjointSolver {
  public:
   explicit AdjointSolver(const BackwardSettings& settings);

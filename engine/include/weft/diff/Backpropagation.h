@@ -18,7 +18,28 @@
 
 #include <Eigen/Core>
 
+#include <string>
+
 namespace weft {
+
+// What is known of a gradient's error from its linear solves (the forward pass is taken as
+// given). backpropagate fills it from one pass; backpropagateToAccuracy
+// (diff/GradientErrorControl.h) from two passes at different tolerances.
+struct GradientErrorEstimate {
+  // |g - g_exact|_2 / |g|_2 over the parameters, estimated (0 for a zero gradient that is
+  // exactly zero), and each parameter's |g_i - g_exact,i|.
+  double relative = 0.0;
+  Eigen::VectorXd absolute;
+  double requested = 0.0;  // solver.backward.accuracy (0: not controlled)
+  bool met = true;         // relative <= requested (true when not controlled)
+  int passes = 1;          // backward passes made for this gradient
+  double tolerance = 0.0;  // the returned pass's relative residual per step (0: direct)
+  // How `relative` was obtained: "difference", the returned pass against one at a 100 times
+  // looser tolerance (an upper estimate: the error falls with the tolerance); "fit", tolerance *
+  // sqrt(growth) / 100 (diff/AdjointGrowth.h, a size, not a bound); "round-off", machine
+  // epsilon times the adjoint's growth for a direct pass (a size, not a bound).
+  std::string basis = "fit";
+};
 
 struct GradientResult {
   double loss = 0.0;
@@ -34,10 +55,11 @@ struct GradientResult {
   // linear solves are solver.seconds; the rest (losses, partials, state gradients) is the
   // remainder.
   double deltaPSeconds = 0.0, deltaRSeconds = 0.0;
+  GradientErrorEstimate error;
 };
 
-// Backpropagates `loss` through `trajectory` (recorded by Simulator::run, e.g. through
-// runForwardPass), with the model it carries: the forward's constraints, obstacles and dt.
+// One backward pass: backpropagates `loss` through `trajectory` (recorded by Simulator::run, e.g.
+// through runForwardPass), with the model it carries: the forward's constraints, obstacles and dt.
 // Throws std::invalid_argument for a trajectory without a model (one read from a run folder).
 GradientResult backpropagate(const Trajectory& trajectory, const TaskLoss& loss,
                              const ParameterSet& parameters, const BackwardSettings& settings);

@@ -3,7 +3,8 @@
 // `weft gradcheck` prints). Both use the same tightened forward solver (withTightForwardSolver),
 // so their difference measures the adjoint, not the forward solver's stopping noise; the adjoint
 // solves are tightened too (backwardTolerance replaces solver.backward.tolerance, which is the
-// setting for optimisation). The relative error of the gradient follows the backward tolerance,
+// setting for optimisation) and checked against solver.backward.accuracy like any gradient
+// (GradientErrorControl.h). The relative error of the gradient follows the backward tolerance,
 // while the forward tolerance mostly shows up as noise in the finite differences, down to the
 // forward residual's round-off floor (docs/how-it-works/backward.md).
 //
@@ -32,12 +33,14 @@ struct GradientCheckEntry {
   std::string param;
   double value = 0.0, step = 0.0;
   double adjoint = 0.0, finiteDifference = 0.0, relativeError = 0.0;
+  double errorEstimate = 0.0;  // the adjoint's estimated absolute error (GradientErrorControl.h)
 };
 
 struct GradientCheckReport {
   double loss = 0.0;
   std::vector<GradientCheckEntry> entries;
   AdjointSolverStats backward;
+  GradientErrorEstimate error;  // the adjoint's
   std::string backwardMethod;
   double backwardTolerance = 0.0;
   int forwardRuns = 0;

@@ -23,6 +23,9 @@ class Objective {
     Eigen::VectorXd unused;
     return evaluate(x, unused);
   }
+  // The estimated relative error of the gradient the last evaluate() wrote (0 for analytic
+  // objectives, whose gradients are exact to round-off).
+  virtual double lastGradientError() const { return 0.0; }
   // Simulated steps one evaluate() costs (0 for analytic objectives).
   virtual long long stepsPerEvaluation() const { return 0; }
   // Simulated steps one value() costs: by default that of evaluate(), which the default value()

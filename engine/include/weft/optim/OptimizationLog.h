@@ -16,9 +16,10 @@ struct LogEntry {
   long long steps = 0;   // simulated steps so far, this evaluation included
   double seconds = 0.0;  // wall-clock seconds since the run started, this evaluation included
   double loss = 0.0;
-  bool hasGradient = false;  // a gradient evaluation (else value only, `gradient` empty)
-  Eigen::VectorXd x;         // optimiser coordinates
-  Eigen::VectorXd gradient;  // dL/dx in optimiser coordinates, when hasGradient
+  bool hasGradient = false;    // a gradient evaluation (else value only, `gradient` empty)
+  Eigen::VectorXd x;           // optimiser coordinates
+  Eigen::VectorXd gradient;    // dL/dx in optimiser coordinates, when hasGradient
+  double gradientError = 0.0;  // its estimated relative error (Objective::lastGradientError)
 };
 
 class OptimizationLog {

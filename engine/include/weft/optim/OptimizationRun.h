@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +33,11 @@ struct OptimizationCallbacks {
 struct OptimizationOutcome {
   OptimizationResult result;   // the best point (optimiser coordinates), evaluations, stop reason
   Eigen::VectorXd bestValues;  // result.x in physical units
+  // With smoothing (settings.smoothingSigma > 0) the log's losses are smoothed ones; this is the
+  // task loss itself at result.x, from one more forward run outside the budget (NaN without
+  // smoothing). Also the last gradient's sampling variance (SmoothedObjective).
+  double unsmoothedLoss = std::numeric_limits<double>::quiet_NaN();
+  double lastGradientVariance = 0.0;
 };
 
 class OptimizationRun {
@@ -51,10 +57,16 @@ class OptimizationRun {
   long long stepsPerEvaluation() const {
     return usesGradient_ ? objective_.stepsPerEvaluation() : objective_.stepsPerValue();
   }
+  // The same with the settings' smoothing: 2 x smoothingPairs times that.
+  long long stepsPerEvaluation(const OptimizerSettings& settings) const {
+    return settings.smoothingSigma > 0.0 ? 2LL * settings.smoothingPairs * stepsPerEvaluation()
+                                         : stepsPerEvaluation();
+  }
   const ParameterSpace& space() const { return objective_.space(); }
   const SimulationObjective& objective() const { return objective_; }
 
-  // Minimises from the scene's values. Throws what the objective or the callbacks throw
+  // Minimises from the scene's values. Smoothing (settings.smoothingSigma > 0) needs a
+  // gradient-based method (InputError otherwise). Throws what the objective or the callbacks throw
   // (InputError, NumericalError, a cancellation); running out of budget is a normal stop.
   OptimizationOutcome run(const OptimizerSettings& settings,
                           const OptimizationCallbacks& callbacks = {});

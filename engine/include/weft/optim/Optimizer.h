@@ -30,13 +30,19 @@ struct OptimizerSettings {
   // LBFGSpp's), and the shortest step whose curvature pair enters the BFGS matrix (0: all).
   double lbfgsbFirstStep = 1.0;
   double lbfgsbMinCurvatureStep = 0.0;
+  // Gaussian smoothing of the objective for gradient-based methods (optim/SmoothedObjective.h):
+  // the standard deviation in optimiser coordinates (0: off) and the antithetic pairs per
+  // evaluation; the directions come from `seed`.
+  double smoothingSigma = 0.0;
+  int smoothingPairs = 4;
 };
 
 struct OptimizationResult {
   Eigen::VectorXd x;  // best point evaluated, optimiser coordinates
   double loss = 0.0;
-  bool hasGradient = false;  // whether x was a gradient evaluation (never for CMA-ES, (1+1)-ES)
-  Eigen::VectorXd gradient;  // at x, when hasGradient (else empty)
+  bool hasGradient = false;    // whether x was a gradient evaluation (never for CMA-ES, (1+1)-ES)
+  Eigen::VectorXd gradient;    // at x, when hasGradient (else empty)
+  double gradientError = 0.0;  // its estimated relative error (Objective::lastGradientError)
   double projectedGradientNorm =
       0.0;  // infinity norm of the bound-projected gradient at x (NaN without one)
   int evaluations = 0;

@@ -4,9 +4,12 @@
 // pass and backpropagates the loss (DiffCloth Sec. 4.1, Eqs. 16-19); value() runs the forward
 // pass alone. Cost, as the paper's tables count it: each forward step is one simulated step and
 // each backward step one more, so one gradient evaluation costs 2 * time.steps and one
-// value-only evaluation time.steps.
+// value-only evaluation time.steps. Each gradient is made to meet solver.backward.accuracy
+// (AccurateBackward: usually two backward passes); backwardPasses() counts them all, the step
+// cost above one per gradient, as DiffCloth's tables count its single pass.
 
 #include <weft/diff/AdjointSolver.h>
+#include <weft/diff/GradientErrorControl.h>
 #include <weft/diff/TaskLoss.h>
 #include <weft/optim/Objective.h>
 #include <weft/optim/ParameterSpace.h>
@@ -30,6 +33,12 @@ class SimulationObjective : public Objective {
   const Scene& scene() const { return scene_; }
   // Totals over all evaluations.
   const AdjointSolverStats& backwardStats() const { return backward_; }
+  // The last gradient's error estimate (diff/GradientErrorControl.h), the largest relative
+  // estimate over all gradients, and how many missed solver.backward.accuracy.
+  double lastGradientError() const override { return lastError_.relative; }
+  const GradientErrorEstimate& lastGradientErrorEstimate() const { return lastError_; }
+  double largestGradientError() const { return largestError_; }
+  int gradientsMissingAccuracy() const { return missingAccuracy_; }
   int unconvergedForwardSteps() const { return unconverged_; }
   double seconds() const { return seconds_; }
   // Wall seconds in forward passes (of evaluate() and value()) and in backward passes (the adjoint
@@ -44,6 +53,10 @@ class SimulationObjective : public Objective {
   ParameterSet parameters_;
   ParameterSpace space_;
   TaskLoss loss_;
+  AccurateBackward backwardPass_;
+  GradientErrorEstimate lastError_;
+  double largestError_ = 0.0;
+  int missingAccuracy_ = 0;
   AdjointSolverStats backward_;
   int unconverged_ = 0;
   double seconds_ = 0.0;

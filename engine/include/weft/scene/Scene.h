@@ -36,6 +36,11 @@ struct BackwardSettings {
   // GMRES starts each step from the best combination of the last `history` steps' solutions
   // (diff/SolutionHistory.h); 0 starts from the last step's solution alone.
   int history = 8;
+  // The parameter gradient's requested relative accuracy, |g - g_exact| / |g| (2-norms over the
+  // parameters): an iterative backward pass is checked against a second one at a tolerance 100
+  // times tighter, and tightened until the two agree to this (diff/GradientErrorControl.h).
+  // 0 turns the check off: one pass, its error sized by a fit (diff/AdjointGrowth.h).
+  double accuracy = 1e-3;
 };
 
 enum class Acceleration { None, Anderson };
