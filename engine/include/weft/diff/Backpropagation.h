@@ -9,7 +9,8 @@
 //   dL/dv_n  = h M (z + wbar) + (contact frames)        (v_n enters the step and the free momentum)
 //   dL/dtheta += -(z + wbar) . dG/dtheta + (contact law) (ParameterPartials, ContactAdjoint)
 //
-// and at n = 0 the initial-state gradients. The per-step solve is AdjointSolver's.
+// and at n = 0 the initial-state gradients. One step of it is StepBackward's (StepBackward.h);
+// the per-step solve is AdjointSolver's.
 
 #include <weft/diff/AdjointSolver.h>
 #include <weft/diff/ParameterSet.h>
