@@ -225,6 +225,22 @@ class Simulator:
         with self._lock:
             return self._sim.step()
 
+    def backward_step(self, step, dL_dx, dL_dv, params=()):
+        """The backward pass of one step already taken (state `step` -> `step` + 1).
+
+        From dL/dx and dL/dv at state step + 1 (everything the loss owes to the later states,
+        through them), returns (dL/dx, dL/dv) at state `step` -- the step's part: add the loss's
+        own dL/dx at that state before passing them to the step before -- and {path: dL/dp} of
+        the step for the parameter paths `params` (as weft.gradient names them; the initial
+        velocity's part is added at step 0). Summed from the last step to the first this is
+        weft.gradient's pass; a policy acting between steps interleaves its own terms. Each step's
+        adjoint is solved by the direct sparse LU (exact to round-off; DiffCloth Eqs. 16-19, 29).
+        Go from later steps to earlier ones. Bad input raises InputError.
+        """
+        with self._lock:
+            r = self._sim.backward_step(int(step), dL_dx, dL_dv, list(params))
+        return r["dL_dx"], r["dL_dv"], dict(r["dL_dparams"])
+
     @property
     def positions(self):
         """The current positions, a [vertices, 3] copy."""

@@ -178,6 +178,46 @@ class SimulateTest(unittest.TestCase):
         self.assertEqual(len(run.stats["residual"]), 0)
 
 
+class BackwardStepTest(unittest.TestCase):
+    """Simulator.backward_step chained from the last step to the first against central
+    differences of a linear function of the final positions."""
+
+    TIGHT = {"solver.method": "newton", "solver.pd_tolerance": 1e-10,
+             "solver.pd_iterations": 20000, "time.steps": 12}
+
+    def final_value(self, weights, strength):
+        run = weft.simulate(WIND_SYSID, set=dict(self.TIGHT, **{"wind.strength": strength}))
+        return float((weights * run.positions[-1]).sum())
+
+    def test_chained_steps_match_finite_differences(self):
+        sim = weft.Simulator(WIND_SYSID, set=self.TIGHT)
+        while sim.step_index < 12:
+            sim.step()
+        weights = np.random.default_rng(3).uniform(-1, 1, (sim.vertices, 3))
+        dx, dv = weights.copy(), np.zeros((sim.vertices, 3))
+        total = 0.0
+        for n in range(11, -1, -1):
+            dx, dv, dp = sim.backward_step(n, dx, dv, params=["wind.strength"])
+            total += dp["wind.strength"]
+        h = 1e-4 * 1.5
+        fd = (self.final_value(weights, 1.5 + h) - self.final_value(weights, 1.5 - h)) / (2 * h)
+        self.assertAlmostEqual(total, fd, delta=1e-5 * abs(fd))
+        self.assertEqual(dx.shape, (sim.vertices, 3))
+
+    def test_bad_input_raises_input_error(self):
+        sim = weft.Simulator(WIND_SYSID)
+        sim.step()
+        zeros = np.zeros((sim.vertices, 3))
+        with self.assertRaises(weft.InputError) as caught:
+            sim.backward_step(1, zeros, zeros)
+        self.assertIn("step: must name a step taken, 0..0", str(caught.exception))
+        with self.assertRaises(weft.InputError) as caught:
+            sim.backward_step(0, np.zeros((3, 3)), zeros)
+        self.assertIn("dL_dx: expects a", str(caught.exception))
+        with self.assertRaises(weft.InputError):
+            sim.backward_step(0, zeros, zeros, params=["time.dt"])
+
+
 class ErrorTest(unittest.TestCase):
     def assertCliMessage(self, call, cli_args, code=2, error=weft.InputError):
         cli_code, message = cli_error(*cli_args)
