@@ -10,6 +10,9 @@ The forward pass runs the scene with the parameters set to the tensor's values a
 task loss; the backward pass is the adjoint gradient weft.gradient computes (the forward run
 and adjoint solves tightened as `weft gradcheck` does), so one call costs one forward and one
 backward run. Double precision only; the tensor must be 1-D with one value per parameter.
+
+Rollout makes the simulator's steps differentiable for losses on the states themselves (each
+step's backward is weft.Simulator.backward_step).
 """
 
 import numpy as _np
@@ -47,3 +50,66 @@ def task_loss(values, scene, params, set=None):
     """The task loss of `scene` with the parameters `params` (JSON paths) set to `values`."""
     params = [params] if isinstance(params, str) else list(params)
     return TaskLoss.apply(values, scene, params, set)
+
+
+class _Step(_torch.autograd.Function):
+    """(x_n, v_n, theta) -> (x_{n+1}, v_{n+1}): one step of a Rollout's simulator."""
+
+    @staticmethod
+    def forward(ctx, x, v, theta, rollout):
+        sim = rollout.simulator
+        if not (_np.array_equal(x.detach().cpu().numpy(), sim.positions)
+                and _np.array_equal(v.detach().cpu().numpy(), sim.velocities)):
+            raise ValueError(
+                "Rollout.step: x and v must be the simulator's current state (the previous "
+                "step's outputs, or Rollout.initial_state()); the state cannot be set from "
+                "Python yet")
+        ctx.rollout = rollout
+        ctx.step = sim.step_index
+        ctx.device = x.device
+        sim.step()
+        return (_torch.tensor(sim.positions, dtype=_torch.float64, device=x.device),
+                _torch.tensor(sim.velocities, dtype=_torch.float64, device=x.device))
+
+    @staticmethod
+    def backward(ctx, grad_x, grad_v):
+        rollout = ctx.rollout
+        dx, dv, dp = rollout.simulator.backward_step(
+            ctx.step, grad_x.detach().cpu().numpy(), grad_v.detach().cpu().numpy(),
+            params=rollout.params)
+        grad_theta = _torch.tensor([dp[p] for p in rollout.params], dtype=_torch.float64,
+                                   device=ctx.device)
+        return (_torch.tensor(dx, device=ctx.device), _torch.tensor(dv, device=ctx.device),
+                grad_theta, None)
+
+
+class Rollout:
+    """A scene's simulator as differentiable steps, for losses on the states themselves.
+
+        rollout = weft.torch.Rollout("assets/scenes/wind_sysid.json", params=["wind.strength"])
+        x, v = rollout.initial_state()
+        for _ in range(10):
+            x, v = rollout.step(x, v)
+        loss = ((x - target) ** 2).sum()
+        loss.backward()      # rollout.theta.grad = dL/d(wind.strength); x0.grad, v0.grad too
+
+    Each step's backward is weft.Simulator.backward_step (the direct LU per step, exact to
+    round-off), called by autograd from the last step to the first. `theta` is a leaf tensor of
+    offsets from the parameters' scene values, zero: the run is at the scene's values (set them
+    with `set=`), and theta.grad is dL/dp there, every step's part summed. The steps must be chained:
+    x and v must be the simulator's current state (the state cannot be set from Python yet).
+    """
+
+    def __init__(self, scene, params=(), set=None):
+        self.params = [params] if isinstance(params, str) else list(params)
+        self.simulator = _weft.Simulator(scene, set=set)
+        self.theta = _torch.zeros(len(self.params), dtype=_torch.float64, requires_grad=True)
+
+    def initial_state(self, requires_grad=True):
+        """(x_0, v_0) as float64 tensors [vertices, 3]."""
+        return (_torch.tensor(self.simulator.positions, requires_grad=requires_grad),
+                _torch.tensor(self.simulator.velocities, requires_grad=requires_grad))
+
+    def step(self, x, v):
+        """One step from (x, v), the current state: (x_{n+1}, v_{n+1})."""
+        return _Step.apply(x, v, self.theta, self)

@@ -81,3 +81,44 @@ class TaskLossTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+@unittest.skipIf(torch is None, "PyTorch is not installed (python3-torch)")
+class RolloutTest(unittest.TestCase):
+    """weft.torch.Rollout: a loss on the states after 12 steps, backpropagated by autograd through
+    Simulator.backward_step, against central differences of the same loss."""
+
+    TIGHT = {"solver.method": "newton", "solver.pd_tolerance": 1e-10,
+             "solver.pd_iterations": 20000, "time.steps": 12}
+
+    def loss_after(self, rollout, weights):
+        x, v = rollout.initial_state()
+        x0, v0 = x, v
+        for _ in range(12):
+            x, v = rollout.step(x, v)
+        return (weights * x).sum() + 0.1 * (weights * v).sum(), x0, v0
+
+    def test_parameter_and_initial_state_gradients_match_finite_differences(self):
+        weights = torch.tensor(
+            __import__("numpy").random.default_rng(5).uniform(-1, 1, (49, 3)))
+        rollout = weft_torch.Rollout(WIND_SYSID, params=["wind.strength"], set=self.TIGHT)
+        loss, x0, v0 = self.loss_after(rollout, weights)
+        loss.backward()
+
+        def value(strength):
+            r = weft_torch.Rollout(WIND_SYSID, set=dict(self.TIGHT, **{"wind.strength": strength}))
+            with torch.no_grad():
+                return float(self.loss_after(r, weights)[0])
+
+        h = 1.5e-4
+        fd = (value(1.5 + h) - value(1.5 - h)) / (2 * h)
+        self.assertAlmostEqual(float(rollout.theta.grad[0]), fd, delta=1e-5 * abs(fd))
+        self.assertEqual(tuple(x0.grad.shape), (49, 3))
+        self.assertTrue(torch.all(torch.isfinite(v0.grad)))
+
+    def test_steps_must_be_chained(self):
+        rollout = weft_torch.Rollout(WIND_SYSID)
+        x, v = rollout.initial_state()
+        rollout.step(x, v)
+        with self.assertRaises(ValueError):
+            rollout.step(x, v)  # the state before, not the simulator's current one
