@@ -74,6 +74,13 @@ TEST(OptimizerRun, StepsOneEvaluationAtATimeAndLowersTheLoss) {
   EXPECT_NEAR(run.best()->values[0], 250.0, 1.0);
   EXPECT_NEAR(run.best()->values[1], 2.0, 0.01);
   EXPECT_EQ(run.unconvergedForwardSteps(), 0) << "the scene's steps converge";
+  // Every gradient carries its error estimate, within the scene's accuracy (the panel shows it).
+  EXPECT_EQ(run.gradientsMissingAccuracy(), 0);
+  EXPECT_LT(run.largestGradientError(), 1e-3);
+  for (const OptimizerRun::Sample& s : run.samples()) {
+    EXPECT_TRUE(s.hasGradient) << "L-BFGS-B evaluates gradients";
+    EXPECT_LE(s.gradientError, run.largestGradientError());
+  }
 }
 
 TEST(OptimizerRun, CountsTheUnconvergedForwardStepsItDifferentiates) {
