@@ -83,6 +83,12 @@ TEST(SoakBench, RunsBothPhasesThroughTheCli) {
   const auto summary = readCsv(out + "/soak_summary.csv");
   ASSERT_EQ(summary.size(), 3u);
   EXPECT_EQ(summary[1][3], "0") << "unconverged contact steps";
+  // The exit code is the verdict the phase lines print: 1 exactly when one says it went beyond a
+  // limit.
+  const bool beyond = r.out.find("(beyond a limit)") != std::string::npos;
+  EXPECT_EQ(r.exitCode, beyond ? 1 : 0) << r.out;
+  EXPECT_NE(r.out.find("bench soak: contact: 30 steps"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("bench soak: optimiser: 5 evaluations"), std::string::npos) << r.out;
 }
 
 TEST(SoakBench, ItsOptionsAreRefusedElsewhere) {
