@@ -80,6 +80,7 @@ TEST(OptimizerRun, StepsOneEvaluationAtATimeAndLowersTheLoss) {
   for (const OptimizerRun::Sample& s : run.samples()) {
     EXPECT_TRUE(s.hasGradient) << "L-BFGS-B evaluates gradients";
     EXPECT_LE(s.gradientError, run.largestGradientError());
+    EXPECT_GT(s.gradientError, 0.0) << "each sample carries its gradient's estimate";
   }
 }
 

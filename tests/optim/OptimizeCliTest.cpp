@@ -203,6 +203,8 @@ TEST(OptimizeCli, ReportsGradientErrorsAndSmoothing) {
   nlohmann::json result = nlohmann::json::parse(test::readFile(plainOut + "/result.json"));
   EXPECT_TRUE(result["smoothing"].is_null());
   EXPECT_LT(result["gradient_error_estimate"].get<double>(), 1e-3);
+  EXPECT_GT(result["gradient_error_estimate"].get<double>(), 0.0)
+      << "the optimiser's gradient carries the objective's estimate";
   EXPECT_EQ(result["backward"]["accuracy"], 1e-3);
   EXPECT_GE(result["backward"]["passes"].get<int>(), 2 * 4) << "two passes per gradient";
   EXPECT_EQ(result["backward"]["gradients_missing_accuracy"], 0);

@@ -2,6 +2,7 @@
 
 #include <weft/diff/AdjointGrowth.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 
@@ -19,15 +20,23 @@ GradientResult pass(const Trajectory& trajectory, const TaskLoss& loss,
   return backpropagate(trajectory, loss, parameters, settings);
 }
 
-// The estimate for `tight` from its difference to `loose`.
+// The estimate for `tight` (solved at `tolerance`, 0: direct) from its difference to `loose`.
+// The difference says nothing below the tight pass's own error: where both passes accept the
+// same solutions (a warm start already within the tighter tolerance, as near an optimum where
+// the loss's gradient is tiny) it is zero. So the estimate is at least that pass's own size, the
+// fit for its tolerance and growth (or epsilon times the growth for the direct solve).
 GradientErrorEstimate difference(const GradientResult& loose, const GradientResult& tight,
-                                 double requested) {
+                                 double tolerance, double requested) {
   GradientErrorEstimate e;
   e.absolute = (loose.gradient - tight.gradient).cwiseAbs();
   const double norm = tight.gradient.norm();
   const double gap = e.absolute.norm();
-  e.relative =
-      norm > 0.0 ? gap / norm : (gap > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  const double growth = std::max(tight.solver.adjointGrowth, 1.0);
+  const double floor = tolerance > 0.0 ? adjointGradientErrorEstimate(growth, tolerance)
+                                       : std::numeric_limits<double>::epsilon() * growth;
+  e.relative = norm > 0.0 ? std::max(gap / norm, floor)
+                          : (gap > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  e.absolute = e.absolute.cwiseMax(floor * norm);
   e.requested = requested;
   e.met = e.relative <= requested;
   e.basis = "difference";
@@ -58,7 +67,7 @@ GradientResult AccurateBackward::differentiate(const Trajectory& trajectory, con
     ++passes;
     addSolverCosts(costs, tight.solver);
     seconds += tight.seconds;
-    GradientErrorEstimate e = difference(loose, tight, settings_.accuracy);
+    GradientErrorEstimate e = difference(loose, tight, tightTolerance, settings_.accuracy);
     if (e.met || tightTolerance == 0.0) {
       // Remember the pair (or, missed, the last one tried). Never looser again: the error
       // does not scale with the tolerance in any fixed way (on the 24^2 soft napkin 100 times

@@ -40,6 +40,7 @@ class HookedObjective final : public Objective {
   }
   long long stepsPerEvaluation() const override { return inner_.stepsPerEvaluation(); }
   long long stepsPerValue() const override { return inner_.stepsPerValue(); }
+  double lastGradientError() const override { return inner_.lastGradientError(); }
 
  private:
   Objective& inner_;

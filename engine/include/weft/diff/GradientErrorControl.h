@@ -6,9 +6,11 @@
 // 1e11, where the default residual 1e-4 leaves a gradient off by orders of magnitude. Nothing
 // cheap bounds that beforehand, so it is measured: a pass at tolerance t and one at t / 100 on
 // the same trajectory, whose difference is the estimate for the tighter one (an upper estimate,
-// as the error falls with the tolerance). While it exceeds the accuracy, the pair moves down by
-// 100 to kTightestTolerance, and then the direct sparse LU is the reference. A direct pass is
-// made once: its error is round-off. The forward pass is taken as given.
+// as the error falls with the tolerance; never below the tight pass's own size, which the
+// difference cannot see where both passes accept the same solutions). While it exceeds the
+// accuracy, the pair moves down by 100 to kTightestTolerance, and then the direct sparse LU is the
+// reference. A direct pass is made once: its error is round-off. The forward pass is taken as
+// given.
 
 #include <weft/diff/Backpropagation.h>
 
