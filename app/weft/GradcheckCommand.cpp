@@ -10,6 +10,7 @@
 #include "Commands.h"
 #include "SceneOverrideOption.h"
 #include "SceneWarnings.h"
+#include "TaskParameters.h"
 
 #include <weft/core/Error.h>
 #include <weft/diff/Backpropagation.h>
@@ -53,17 +54,9 @@ int gradcheckCommand(const std::vector<std::string>& args) {
     options.backwardMethod = m;
   }
 
-  const Scene scene = loadScene(file, parseOverrides(cl));
-  printSceneWarnings(scene);
-  if (!scene.task)
-    throw InputError(file, "task",
-                     "the scene has no task; gradcheck needs task.loss and parameters");
-  const std::vector<std::string> paths = cl.values("--param");
-  const ParameterSet parameters =
-      paths.empty() ? ParameterSet::fromTask(scene) : ParameterSet::fromPaths(scene, paths);
-  if (parameters.empty())
-    throw InputError(file, "task.parameters",
-                     "no parameters to check: list them in task.parameters or give --param PATH");
+  const TaskParameters task = loadTaskParameters(cl, file, "gradcheck");
+  const Scene& scene = task.scene;
+  const ParameterSet& parameters = task.parameters;
 
   const GradientCheckReport report = checkGradient(scene, parameters, options);
 

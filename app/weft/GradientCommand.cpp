@@ -9,6 +9,7 @@
 #include "Commands.h"
 #include "SceneOverrideOption.h"
 #include "SceneWarnings.h"
+#include "TaskParameters.h"
 
 #include <weft/core/Error.h>
 #include <weft/diff/GradientErrorControl.h>
@@ -34,17 +35,9 @@ int gradientCommand(const std::vector<std::string>& args) {
   cl.setContext(file);
   applyThreads(cl);
 
-  const Scene scene = loadScene(file, parseOverrides(cl));
-  printSceneWarnings(scene);
-  if (!scene.task)
-    throw InputError(file, "task",
-                     "the scene has no task; gradient needs task.loss and parameters");
-  const std::vector<std::string> paths = cl.values("--param");
-  const ParameterSet parameters =
-      paths.empty() ? ParameterSet::fromTask(scene) : ParameterSet::fromPaths(scene, paths);
-  if (parameters.empty())
-    throw InputError(file, "task.parameters",
-                     "no parameters: list them in task.parameters or give --param PATH");
+  const TaskParameters task = loadTaskParameters(cl, file, "gradient");
+  const Scene& scene = task.scene;
+  const ParameterSet& parameters = task.parameters;
 
   const SceneGradient g = sceneGradient(scene, parameters);
   const GradientResult& r = g.result;
