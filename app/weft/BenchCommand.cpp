@@ -15,6 +15,7 @@
 #include <weft/bench/PaperMeshScenes.h>
 #include <weft/bench/SoakBench.h>
 #include <weft/core/Error.h>
+#include <weft/distributed/WorkDistributor.h>
 
 #include <algorithm>
 #include <cmath>
@@ -225,8 +226,14 @@ int benchCommand(const std::vector<std::string>& arguments) {
     if (cl.has("--resolutions"))
       cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
     if (cl.has("--contact")) cl.fail("--contact", "applies to the contact benchmark only");
-    return bench::runApplicationsBench(applicationsOptions(cl), out);
+    bench::ApplicationsBenchOptions options = applicationsOptions(cl);
+    if (launchSize() > 1 && options.jobs > 1)
+      cl.fail("--jobs", "under mpirun each rank makes one run at a time: use more ranks");
+    options.workers = &processWorkers();
+    return bench::runApplicationsBench(options, out);
   }
+  // The other benchmarks time one process: under mpirun, rank 0 runs them alone.
+  if (launchRank() != 0) throw QuietExit{0};
   for (const char* option : {"--tasks", "--methods", "--seeds", "--budget", "--jobs", "--resume",
                              "--paper-meshes", "--first-step", "--min-curvature-step"})
     if (cl.has(option)) cl.fail(option, "applies to the applications benchmark only");

@@ -19,6 +19,8 @@ int gradientCommand(const std::vector<std::string>& args);
 int optimizeCommand(const std::vector<std::string>& args);
 // `weft landscape` (LandscapeCommand.cpp): the task loss on a grid over one or two parameters.
 int landscapeCommand(const std::vector<std::string>& args);
+// `weft sweep` (SweepCommand.cpp): one simulation per combination of --set-grid values.
+int sweepCommand(const std::vector<std::string>& args);
 // `weft bench render` (RenderBenchCommand.cpp; the benchmark is bench/weft/bench/RenderBench).
 int renderBenchmark(const std::vector<std::string>& args);
 

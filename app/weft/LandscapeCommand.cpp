@@ -19,6 +19,7 @@
 #include <weft/diff/ForwardPass.h>
 #include <weft/diff/ParameterSet.h>
 #include <weft/diff/TaskLoss.h>
+#include <weft/distributed/WorkDistributor.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/scene/SceneLoader.h>
 
@@ -27,8 +28,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -219,13 +223,16 @@ int landscapeCommand(const std::vector<std::string>& args) {
   }
 
   const std::string outDir = cl.value("--out", "out/landscape-" + scene.name);
-  StagedDirectory out(outDir);  // fails early on an unusable --out, before simulating
+  // Rank 0 alone writes (under mpirun every rank runs this command); it fails early on an
+  // unusable --out, before simulating.
+  std::optional<StagedDirectory> out;
+  if (launchRank() == 0) out.emplace(outDir);
 
-  const bool quiet = cl.has("--quiet");
+  bool quiet = cl.has("--quiet");
   const std::size_t total = parameters.size() == 1 ? grid : static_cast<std::size_t>(grid) * grid;
   std::vector<double> losses;
   losses.reserve(total);
-  std::ofstream csv(out.file("landscape.csv"));
+  std::ostringstream csv;
   for (int p = 0; p < parameters.size(); ++p) csv << parameters[p].path << ",";
   csv << "loss\n";
   csv.precision(17);
@@ -233,19 +240,25 @@ int landscapeCommand(const std::vector<std::string>& args) {
   double best = HUGE_VAL;
   std::vector<double> bestPoint;
   const auto start = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < total; ++k) {
-    std::vector<double> point;
-    if (parameters.size() == 1)
-      point = {axes[0][k]};
-    else
-      point = {axes[0][k / grid], axes[1][k % grid]};
+  const auto pointAt = [&](std::size_t k) {
+    return parameters.size() == 1 ? std::vector<double>{axes[0][k]}
+                                  : std::vector<double>{axes[0][k / grid], axes[1][k % grid]};
+  };
+  // The grid points are work items (serial, or over MPI's ranks): each gives its loss and the
+  // forward steps that stopped above tolerance.
+  WorkDistributor& workers = processWorkers();
+  if (!workers.isRoot()) quiet = true;
+  std::size_t done = 0;
+  const std::vector<WorkItemResult> results = workers.map(total, [&](std::size_t k) {
+    const std::vector<double> point = pointAt(k);
     const std::string name = pointName(parameters, point);
     double value = 0.0;
+    int steps = 0;
     try {
       const Scene at = parameters.withValues(
           scene, Eigen::Map<const Eigen::VectorXd>(point.data(), point.size()));
       const ForwardPass pass = runForwardPass(at);
-      unconverged += pass.unconvergedSteps;
+      steps = pass.unconvergedSteps;
       value = loss.value(at, pass.trajectory);
     } catch (const InputError& e) {
       throw InputError(e.file(), e.path(), e.reason() + " (at grid point " + name + ")");
@@ -254,24 +267,42 @@ int landscapeCommand(const std::vector<std::string>& args) {
     }
     if (!std::isfinite(value))
       throw NumericalError(0, "landscape", "loss is not finite at grid point " + name);
+    if (!quiet) std::fprintf(stderr, "\rpoint %zu/%zu, loss %.6e   ", ++done, total, value);
+    std::string bytes(sizeof value + sizeof steps, '\0');
+    std::memcpy(bytes.data(), &value, sizeof value);
+    std::memcpy(bytes.data() + sizeof value, &steps, sizeof steps);
+    return bytes;
+  });
+  for (std::size_t k = 0; k < total; ++k) {
+    if (!results[k].ok) rethrowFailure(results[k]);  // the first failing point, as serially
+    double value = 0.0;
+    int steps = 0;
+    std::memcpy(&value, results[k].data.data(), sizeof value);
+    std::memcpy(&steps, results[k].data.data() + sizeof value, sizeof steps);
+    unconverged += steps;
+    const std::vector<double> point = pointAt(k);
     losses.push_back(value);
     if (value < best) best = value, bestPoint = point;
     for (double v : point) csv << v << ",";
     csv << value << "\n";
-    if (!quiet) std::fprintf(stderr, "\rpoint %zu/%zu, loss %.6e   ", k + 1, total, value);
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) std::fprintf(stderr, "\n");
-  csv.close();
-  if (!csv) throw InputError(outDir, "landscape.csv", "cannot write");
+  if (!workers.isRoot()) return 0;
+  {
+    std::ofstream file(out->file("landscape.csv"));
+    file << csv.str();
+    file.close();
+    if (!file) throw InputError(outDir, "landscape.csv", "cannot write");
+  }
 
   std::string plotNote;
   const std::vector<double> scenePoint(sceneValues.data(), sceneValues.data() + sceneValues.size());
-  if (!plotLandscape(out.file("landscape.png"), scene.name + ": task loss landscape", parameters,
+  if (!plotLandscape(out->file("landscape.png"), scene.name + ": task loss landscape", parameters,
                      axes, losses, scenePoint, plotNote))
     std::fprintf(stderr, "warning: %s\n", plotNote.c_str());
-  out.commit();
+  out->commit();
 
   if (unconverged > 0)
     std::fprintf(stderr,

@@ -30,6 +30,7 @@
 #include <weft/diff/AdjointGrowth.h>
 #include <weft/diff/Backpropagation.h>
 #include <weft/diff/GradientErrorControl.h>
+#include <weft/distributed/WorkDistributor.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/optim/OptimizationRun.h>
 #include <weft/record/ConvergenceReport.h>
@@ -41,6 +42,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
+#include <sstream>
 #include <string>
 
 namespace weft::cli {
@@ -119,16 +122,29 @@ int optimizeCommand(const std::vector<std::string>& args) {
                             (usesGradient ? " + " + std::to_string(scene.time.steps) + " backward)"
                                           : ", no backward)"));
 
+  // The gradient-free methods spread their evaluations over MPI's ranks when launched by
+  // mpirun/srun (each rank runs the same optimisation; rank 0 writes); the gradient-based ones
+  // evaluate one point at a time, so rank 0 runs them alone.
+  if (usesGradient && launchSize() > 1) {
+    if (launchRank() != 0) throw QuietExit{0};
+    std::fprintf(stderr,
+                 "note: %s evaluates one point at a time: rank 0 runs it alone, the other %d "
+                 "process(es) exit (cmaes and es1p1 use them)\n",
+                 method.c_str(), launchSize() - 1);
+  }
   const std::string outDir = cl.value("--out", "out/optimize-" + scene.name);
-  StagedDirectory out(outDir);  // fails early on an unusable --out, before optimising
+  std::optional<StagedDirectory> out;  // fails early on an unusable --out, before optimising
+  if (launchRank() == 0) out.emplace(outDir);
+  WorkDistributor* workers = usesGradient ? nullptr : &processWorkers();
+  run.setWorkers(workers);
 
   const ParameterSpace& space = run.space();
-  std::ofstream csv(out.file("loss.csv"));
+  std::ostringstream csv;
   csv << "evaluation,steps,wall_s,loss";
   for (const SceneParameter& p : space.parameters()) csv << "," << p.path;
   csv << "\n";
   csv.precision(17);
-  const bool quiet = cl.has("--quiet");
+  const bool quiet = cl.has("--quiet") || launchRank() != 0;
   OptimizationCallbacks callbacks;
   callbacks.evaluated = [&](const LogEntry& e, const Eigen::VectorXd& v) {
     if (!std::isfinite(e.loss) || !e.gradient.allFinite())
@@ -151,8 +167,13 @@ int optimizeCommand(const std::vector<std::string>& args) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) std::fprintf(stderr, "\n");
-  csv.close();
-  if (!csv) throw InputError(outDir, "loss.csv", "cannot write");
+  if (workers && !workers->isRoot()) return 0;
+  {
+    std::ofstream file(out->file("loss.csv"));
+    file << csv.str();
+    file.close();
+    if (!file) throw InputError(outDir, "loss.csv", "cannot write");
+  }
   if (run.log().empty()) throw NumericalError(0, "optimize", "no evaluation was made");
 
   const OptimizationLog& log = run.log();
@@ -209,6 +230,7 @@ int optimizeCommand(const std::vector<std::string>& args) {
       {"stop_reason", result.stopReason},
       {"bounds", bounds},
       {"seconds", seconds},
+      {"processes", workers ? workers->description() : "serial"},
       {"backward",
        {{"method", scene.solver.backward.method},
         {"solves", b.solves},
@@ -244,17 +266,17 @@ int optimizeCommand(const std::vector<std::string>& args) {
   for (const LogEntry& e : log.entries())
     series.x.push_back(static_cast<double>(e.steps)), series.y.push_back(e.loss);
   const bool plotted = bench::plotSeries(
-      out.file("loss.png"), scene.name + ": " + method,
+      out->file("loss.png"), scene.name + ": " + method,
       usesGradient ? "simulated steps (forward + backward)" : "simulated steps (forward only)",
       "loss", {series}, false, log.best().loss > 0.0, plotNote);
   report["plot"] = plotted ? nlohmann::json("loss.png") : nlohmann::json(nullptr);
   if (!plotted) std::fprintf(stderr, "warning: %s\n", plotNote.c_str());
   {
-    std::ofstream json(out.file("result.json"));
+    std::ofstream json(out->file("result.json"));
     json << report.dump(2) << "\n";
     if (!json) throw InputError(outDir, "result.json", "cannot write");
   }
-  out.commit();
+  out->commit();
 
   std::string smoothingNote;
   if (settings.smoothingSigma > 0.0) {

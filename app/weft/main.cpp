@@ -8,11 +8,30 @@
 
 #include <weft/bench/BuildRecord.h>
 #include <weft/core/Error.h>
+#include <weft/distributed/WorkDistributor.h>
 
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <vector>
+
+namespace {
+
+int runVerb(const std::string& verb, const std::vector<std::string>& args) {
+  if (verb == "simulate") return weft::cli::simulateCommand(args);
+  if (verb == "render") return weft::cli::renderCommand(args);
+  if (verb == "bench") return weft::cli::benchCommand(args);
+  if (verb == "gradcheck") return weft::cli::gradcheckCommand(args);
+  if (verb == "gradient") return weft::cli::gradientCommand(args);
+  if (verb == "optimize") return weft::cli::optimizeCommand(args);
+  if (verb == "landscape") return weft::cli::landscapeCommand(args);
+  if (verb == "sweep") return weft::cli::sweepCommand(args);
+  std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(),
+               weft::cli::generalUsage().c_str());
+  return 2;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   weft::process::preferPassiveOpenMpWait(argv);
@@ -50,28 +69,33 @@ int main(int argc, char** argv) {
       }
   const std::string verb = args[0];
   args.erase(args.begin());
+  // Under mpirun every rank runs the command (weft/distributed/WorkDistributor.h); rank 0 alone
+  // prints errors, and MPI ends on every way out.
+  const bool printErrors = weft::launchRank() == 0;
+  // The verbs that do not distribute run on rank 0 alone; the other ranks leave at once (before
+  // MPI starts, which they would otherwise have to join).
+  const bool distributes =
+      verb == "sweep" || verb == "landscape" || verb == "optimize" || verb == "bench";
+  if (!distributes && !printErrors) return 0;
+  const auto finish = [](int code, bool quiet = true) {
+    weft::endProcessWorkers(code, quiet || weft::failureIsShared());
+    return code;
+  };
   try {
-    if (verb == "simulate") return weft::cli::simulateCommand(args);
-    if (verb == "render") return weft::cli::renderCommand(args);
-    if (verb == "bench") return weft::cli::benchCommand(args);
-    if (verb == "gradcheck") return weft::cli::gradcheckCommand(args);
-    if (verb == "gradient") return weft::cli::gradientCommand(args);
-    if (verb == "optimize") return weft::cli::optimizeCommand(args);
-    if (verb == "landscape") return weft::cli::landscapeCommand(args);
-    std::fprintf(stderr, "error: weft: %s: unknown verb\n%s", verb.c_str(),
-                 weft::cli::generalUsage().c_str());
-    return 2;
+    return finish(runVerb(verb, args));
+  } catch (const weft::QuietExit& e) {
+    return finish(e.code);
   } catch (const weft::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
+    if (printErrors) std::fprintf(stderr, "error: %s\n", e.what());
+    return finish(2, false);
   } catch (const weft::NumericalError& e) {
-    std::fprintf(stderr, "error: numerical failure: %s\n", e.what());
-    return 3;
+    if (printErrors) std::fprintf(stderr, "error: numerical failure: %s\n", e.what());
+    return finish(3, false);
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "error: out of memory\n");
-    return 3;
+    if (printErrors) std::fprintf(stderr, "error: out of memory\n");
+    return finish(3, false);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: internal: %s\n", e.what());
-    return 1;
+    if (printErrors) std::fprintf(stderr, "error: internal: %s\n", e.what());
+    return finish(1, false);
   }
 }

@@ -59,6 +59,7 @@
 #include <weft/core/Error.h>
 #include <weft/core/ProcessCpuTime.h>
 #include <weft/diff/ParameterSet.h>
+#include <weft/distributed/WorkDistributor.h>
 #include <weft/io/AtomicFile.h>
 #include <weft/io/StagedDirectory.h>
 #include <weft/optim/OptimizationRun.h>
@@ -79,6 +80,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -516,6 +518,34 @@ void makeRun(Comparison& c, Job& job) {
 // threads: the runs are independent and each is deterministic, so the stored runs do not depend
 // on how many ran at once (only their wall seconds do, through the load).
 void makeRuns(Comparison& c, std::vector<Job>& jobs) {
+  WorkDistributor* workers = c.options.workers;
+  if (workers && workers->size() > 1) {
+    // One run per work item, made and stored by the rank that takes it; rank 0 reads the others'
+    // back from the store. A failed run (bad input) is reported with its rank once every other
+    // run has been made and stored.
+    const std::vector<WorkItemResult> made = workers->map(jobs.size(), [&](std::size_t j) {
+      makeRun(c, jobs[j]);
+      return std::string();
+    });
+    for (std::size_t j = 0; j < jobs.size(); ++j)
+      if (!made[j].ok)
+        std::fprintf(stderr, "error: %s, %s, seed %d (rank %d): %s\n",
+                     c.results[jobs[j].task].task->name, kApplicationMethods[jobs[j].method].name,
+                     jobs[j].seed, made[j].rank, made[j].message.c_str());
+    if (const WorkItemResult* failed = firstFailure(made)) rethrowFailure(*failed);
+    c.newRuns = static_cast<int>(jobs.size());
+    if (!workers->isRoot()) return;
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      Job& job = jobs[j];
+      if (made[j].rank != 0) {
+        const ApplicationTask& task = *c.results[job.task].task;
+        job.run = readRunFile(c.store + "/" + runFileName(task, job.method, job.seed), task,
+                              job.method, job.seed);
+      }
+      if (!job.run.curve.steps.empty()) c.results[job.task].runs.push_back(std::move(job.run));
+    }
+    return;
+  }
   std::atomic<std::size_t> next{0};
   std::mutex failureMutex;
   std::exception_ptr failure;
@@ -1107,19 +1137,34 @@ void writeReport(const Comparison& c, const Tables& tables, const std::string& m
 
 int runApplicationsBench(const ApplicationsBenchOptions& options, const std::string& outDir) {
   omp_set_num_threads(options.threads);
-  StagedDirectory out(outDir);
+  const std::unique_ptr<WorkDistributor> serial =
+      options.workers ? nullptr : makeSerialDistributor();
+  WorkDistributor& workers = options.workers ? *options.workers : *serial;
+  std::optional<StagedDirectory> staged;  // rank 0's
   std::string finalDir = outDir;
   while (finalDir.size() > 1 && finalDir.back() == '/') finalDir.pop_back();
   const auto benchStart = std::chrono::steady_clock::now();
   Comparison c{options, finalDir + ".partial", checkedTasks(options), {}, {}, {}, false, 0, 0, 0};
   c.loaded.resize(c.results.size());
-  c.storedRuns = openRunStore(c.store, finalDir + "/runs", options.resume, runSettings(options),
-                              &c.storedBuild, &c.appDiffers, &c.storeCopied);
-  std::vector<Job> jobs = readStoredRuns(c);
-  refuseRunsOfAnotherApp(c, jobs);
-  if (c.storedRuns > 0)
+  std::vector<Job> jobs;
+  // Rank 0 opens (or creates) the store and reads it first; the others then read the same store
+  // (as a resume: it exists now), so every rank finds the same runs still to make.
+  workers.rootFirst([&] {
+    if (workers.isRoot()) staged.emplace(outDir);
+    c.storedRuns =
+        openRunStore(c.store, finalDir + "/runs", options.resume || !workers.isRoot(),
+                     runSettings(options), &c.storedBuild, &c.appDiffers, &c.storeCopied);
+    jobs = readStoredRuns(c);
+    refuseRunsOfAnotherApp(c, jobs);
+  });
+  if (c.storedRuns > 0 && workers.isRoot())
     std::fprintf(stderr, "applications: %d stored run(s) in %s\n", c.storedRuns, c.store.c_str());
+  if (workers.size() > 1 && workers.isRoot())
+    std::fprintf(stderr, "applications: %zu run(s) to make over %s\n", jobs.size(),
+                 workers.description().c_str());
   makeRuns(c, jobs);
+  if (!workers.isRoot()) return 0;
+  StagedDirectory& out = *staged;
   measureTasks(c);
 
   const double benchSeconds =

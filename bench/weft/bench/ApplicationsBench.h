@@ -5,6 +5,7 @@
 
 #include "ApplicationTasks.h"
 
+#include <weft/distributed/WorkDistributor.h>
 #include <weft/optim/Optimizer.h>
 
 #include <nlohmann/json.hpp>
@@ -33,6 +34,9 @@ struct ApplicationsBenchOptions {
   std::string paperMeshes;
   // The record of the build running (BuildRecord.h), stored with the runs and compared on resume.
   nlohmann::json build;
+  // The processes the runs are spread over (MPI's ranks under mpirun; each run is made and
+  // stored by one rank, rank 0 tabulates); nullptr: this process alone, --jobs at a time.
+  WorkDistributor* workers = nullptr;
 };
 
 // Writes the comparison into `outDir` (staged; the runs are kept in `outDir`.partial/ until it is

@@ -75,12 +75,15 @@ std::string CmaEsOptimizer::run(Eigen::VectorXd x, const Eigen::VectorXd& lower,
   for (int generation = 1;; ++generation) {
     if (settings().maxIterations > 0 && iterations_ >= settings().maxIterations)
       return "max iterations";
+    // The generation's samples, evaluated together (spread over processes when the objective
+    // is; the same draws, losses and log as one at a time).
+    std::vector<Eigen::VectorXd> population(lambda);
     for (int k = 0; k < lambda; ++k) {
       for (int i = 0; i < n; ++i) z[i] = normal(random);
-      const Eigen::VectorXd at = box.repairedCoordinates(mean + sigma * (B * D.cwiseProduct(z)));
-      steps.col(k) = (box.toSearch(at) - mean) / sigma;
-      losses[k] = evaluateValue(at);
+      population[k] = box.repairedCoordinates(mean + sigma * (B * D.cwiseProduct(z)));
+      steps.col(k) = (box.toSearch(population[k]) - mean) / sigma;
     }
+    losses = evaluateValues(population);
     ++iterations_;
 
     std::iota(order.begin(), order.end(), 0);

@@ -4,6 +4,11 @@
 #include <weft/diff/ParameterSet.h>
 #include <weft/optim/SmoothedObjective.h>
 
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 namespace weft {
 namespace {
 
@@ -24,11 +29,13 @@ ParameterSet chosenParameters(const Scene& scene, const std::vector<std::string>
 }
 
 // The objective as the optimiser sees it: the caller's hook before every evaluation (a pause, a
-// cancellation), then the simulation.
+// cancellation), then the simulation; with workers, points asked for together are simulated
+// on all their processes at once.
 class HookedObjective final : public Objective {
  public:
-  HookedObjective(Objective& inner, const std::function<void()>& before)
-      : inner_(inner), before_(before) {}
+  HookedObjective(SimulationObjective& inner, const std::function<void()>& before,
+                  WorkDistributor* workers)
+      : inner_(inner), before_(before), workers_(workers) {}
   int dimension() const override { return inner_.dimension(); }
   double evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) override {
     if (before_) before_();
@@ -41,10 +48,40 @@ class HookedObjective final : public Objective {
   long long stepsPerEvaluation() const override { return inner_.stepsPerEvaluation(); }
   long long stepsPerValue() const override { return inner_.stepsPerValue(); }
   double lastGradientError() const override { return inner_.lastGradientError(); }
+  int concurrency() const override { return workers_ ? workers_->size() : 1; }
+  void values(const std::vector<Eigen::VectorXd>& points, std::vector<double>& losses) override {
+    if (!workers_ || workers_->size() == 1) return Objective::values(points, losses);
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (before_) before_();
+    // Each item: the loss, the forward steps that stopped above tolerance, the seconds.
+    struct Tally {
+      double loss;
+      int unconverged;
+      double seconds;
+    };
+    const std::vector<WorkItemResult> results = workers_->map(points.size(), [&](std::size_t k) {
+      const int before = inner_.unconvergedForwardSteps();
+      const double secondsBefore = inner_.forwardSeconds();
+      Tally t{};
+      t.loss = inner_.value(points[k]);
+      t.unconverged = inner_.unconvergedForwardSteps() - before;
+      t.seconds = inner_.forwardSeconds() - secondsBefore;
+      return std::string(reinterpret_cast<const char*>(&t), sizeof t);
+    });
+    for (const WorkItemResult& r : results) {
+      if (!r.ok) rethrowFailure(r);  // with the losses before it appended, as one at a time
+      Tally t{};
+      if (r.data.size() != sizeof t) throw std::runtime_error("a population item's result is torn");
+      std::memcpy(&t, r.data.data(), sizeof t);
+      if (r.rank != workers_->rank()) inner_.countValueRunElsewhere(t.unconverged, t.seconds);
+      losses.push_back(t.loss);
+    }
+  }
 
  private:
-  Objective& inner_;
+  SimulationObjective& inner_;
   const std::function<void()>& before_;
+  WorkDistributor* workers_;
 };
 
 }  // namespace
@@ -70,7 +107,7 @@ OptimizationOutcome OptimizationRun::run(const OptimizerSettings& settings,
     optimizer_->log().setObserver([this, evaluated = callbacks.evaluated](const LogEntry& e) {
       evaluated(e, space().toValues(e.x));
     });
-  HookedObjective objective(objective_, callbacks.beforeEvaluation);
+  HookedObjective objective(objective_, callbacks.beforeEvaluation, workers_);
   OptimizationOutcome outcome;
   if (settings.smoothingSigma > 0.0) {
     if (!usesGradient_)

@@ -61,6 +61,59 @@ double Optimizer::evaluateValue(const Eigen::VectorXd& x) {
   return record(std::move(e), cost);
 }
 
+std::vector<double> Optimizer::evaluateValues(const std::vector<Eigen::VectorXd>& points,
+                                              const std::function<bool(double)>& keepGoing) {
+  const long long cost = objective_->stepsPerValue();
+  // The prefix admit() lets through one point at a time, and why the next one is not.
+  std::size_t admitted = 0;
+  std::string stop;
+  {
+    const int done = static_cast<int>(log_.entries().size());
+    for (; admitted < points.size(); ++admitted) {
+      const long long index = static_cast<long long>(done) + static_cast<long long>(admitted);
+      if (settings_.maxEvaluations > 0 && index >= settings_.maxEvaluations) {
+        stop = "max evaluations";
+        break;
+      }
+      if (settings_.budget > 0 &&
+          log_.steps() + cost * static_cast<long long>(admitted + 1) > settings_.budget) {
+        stop = "budget";
+        break;
+      }
+    }
+  }
+  const std::vector<Eigen::VectorXd> batch(points.begin(),
+                                           points.begin() + static_cast<std::ptrdiff_t>(admitted));
+  std::vector<double> losses;
+  losses.reserve(admitted);
+  std::vector<double> logged;
+  const auto recordUpTo = [&](std::size_t count) {
+    for (std::size_t k = logged.size(); k < count; ++k) {
+      LogEntry e;
+      e.loss = losses[k];
+      e.x = batch[k];
+      logged.push_back(record(std::move(e), cost));
+      if (keepGoing && !keepGoing(losses[k])) return false;
+    }
+    return true;
+  };
+  try {
+    objective_->values(batch, losses);
+  } catch (...) {
+    // What evaluateValue() one at a time would have logged; and if a speculative point failed
+    // after the one that ends the run of points, one at a time would never have evaluated it.
+    if (!recordUpTo(losses.size())) return logged;
+    throw;
+  }
+  if (!recordUpTo(losses.size())) return logged;
+  if (admitted < points.size()) throw StopRequest{stop};
+  return logged;
+}
+
+int Optimizer::concurrency() const {
+  return objective_ ? objective_->concurrency() : 1;
+}
+
 OptimizationResult Optimizer::minimize(Objective& objective, const Eigen::VectorXd& x0,
                                        const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
   objective_ = &objective;

@@ -54,4 +54,11 @@ double SimulationObjective::value(const Eigen::VectorXd& z) {
   return loss;
 }
 
+void SimulationObjective::countValueRunElsewhere(int unconvergedSteps, double seconds) {
+  unconverged_ += unconvergedSteps;
+  forwardSeconds_ += seconds;
+  seconds_ += seconds;
+  ++forwardPasses_;
+}
+
 }  // namespace weft

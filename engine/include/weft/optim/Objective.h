@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace weft {
 
 class Objective {
@@ -23,6 +25,16 @@ class Objective {
     Eigen::VectorXd unused;
     return evaluate(x, unused);
   }
+  // The values at several points, appended to `losses` in order: what a population of an
+  // evolution strategy asks for at once. Throws what value() throws, with the values before the
+  // failing point appended. The default evaluates one after another; an objective spread over
+  // processes (OptimizationRun with WorkDistributor) evaluates them at once.
+  virtual void values(const std::vector<Eigen::VectorXd>& points, std::vector<double>& losses) {
+    for (const Eigen::VectorXd& x : points) losses.push_back(value(x));
+  }
+  // How many points values() evaluates at once (1: one after another), so that a method can ask
+  // for that many at a time.
+  virtual int concurrency() const { return 1; }
   // The estimated relative error of the gradient the last evaluate() wrote (0 for analytic
   // objectives, whose gradients are exact to round-off).
   virtual double lastGradientError() const { return 0.0; }

@@ -7,6 +7,7 @@
 // does with the evaluations (loss.csv, a live curve, a run store) is its own, through the
 // callbacks.
 
+#include <weft/distributed/WorkDistributor.h>
 #include <weft/optim/OptimizationLog.h>
 #include <weft/optim/Optimizer.h>
 #include <weft/optim/SimulationObjective.h>
@@ -75,12 +76,17 @@ class OptimizationRun {
                           const OptimizationCallbacks& callbacks = {});
   // Every evaluation of the last run (empty before one).
   const OptimizationLog& log() const;
+  // Spreads the evaluations the method asks for at once (CMA-ES's population, the (1+1)-ES's
+  // speculative offspring) over `workers`' processes; every rank runs the same optimisation and
+  // gets the same log. nullptr (the default): one process. Gradient evaluations stay local.
+  void setWorkers(WorkDistributor* workers) { workers_ = workers; }
 
  private:
   std::string method_;
   bool usesGradient_ = true;
   SimulationObjective objective_;
   std::unique_ptr<Optimizer> optimizer_;
+  WorkDistributor* workers_ = nullptr;
 };
 
 }  // namespace weft

@@ -13,8 +13,10 @@
 #include <Eigen/Core>
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace weft {
 
@@ -77,6 +79,16 @@ class Optimizer {
   double evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& gradient);
   // The same for the value alone (costs stepsPerValue): what gradient-free methods call.
   double evaluateValue(const Eigen::VectorXd& x);
+  // The values at several points at once (Objective::values, spread over processes when the
+  // objective is), logged in order exactly as evaluateValue() one point at a time would have:
+  // the points the cap and the budget admit are evaluated, and StopRequest follows their
+  // entries. With `keepGoing`, the entries stop after the first loss it rejects (that entry
+  // included): the points after it were speculative, evaluated at once in case it was rejected,
+  // and are neither logged nor counted. Returns the logged losses.
+  std::vector<double> evaluateValues(const std::vector<Eigen::VectorXd>& points,
+                                     const std::function<bool(double)>& keepGoing = {});
+  // Points Objective::values() evaluates at once (1 without distribution).
+  int concurrency() const;
   int iterations_ = 0;
 
  private:

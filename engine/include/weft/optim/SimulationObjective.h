@@ -28,6 +28,10 @@ class SimulationObjective : public Objective {
   long long stepsPerEvaluation() const override { return 2LL * scene_.time.steps; }
   long long stepsPerValue() const override { return scene_.time.steps; }
 
+  // Counts a value() another process ran for this objective (a population spread over MPI
+  // ranks), so that the totals below are the run's, wherever its evaluations ran.
+  void countValueRunElsewhere(int unconvergedSteps, double seconds);
+
   const ParameterSpace& space() const { return space_; }
   const ParameterSet& parameters() const { return parameters_; }
   const Scene& scene() const { return scene_; }
