@@ -10,6 +10,7 @@ WEFT_PACKAGES=(
   libimgui-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev
   gnuplot-nox xvfb clang-format python3
   python3-dev pybind11-dev python3-numpy python3-torch
+  libopenmpi-dev openmpi-bin python3-mpi4py
 )
 
 weft_missing_packages() {

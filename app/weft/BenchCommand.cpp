@@ -11,6 +11,7 @@
 #include <weft/bench/BenchNames.h>
 #include <weft/bench/ContactBench.h>
 #include <weft/bench/ContinuityBench.h>
+#include <weft/bench/DistributionBench.h>
 #include <weft/bench/ForwardBench.h>
 #include <weft/bench/PaperMeshScenes.h>
 #include <weft/bench/SoakBench.h>
@@ -205,12 +206,12 @@ int benchCommand(const std::vector<std::string>& arguments) {
                           arguments[i + 1] != "applications";
     args.push_back("--paper-meshes=" + (hasValue ? arguments[++i] : std::string()));
   }
-  CommandLine cl(
-      args,
-      {"--out", "--scene", "--scenes", "--threads", "--resolutions", "--tasks", "--methods",
-       "--seeds", "--budget", "--jobs", "--contact", "--paper-meshes", "--subdivisions",
-       "--resolution", "--first-step", "--min-curvature-step", "--steps", "--evaluations"},
-      {"--quick", "--resume", "--calibrate"});
+  CommandLine cl(args, {"--out",          "--scene",       "--scenes",     "--threads",
+                        "--resolutions",  "--tasks",       "--methods",    "--seeds",
+                        "--budget",       "--jobs",        "--contact",    "--paper-meshes",
+                        "--subdivisions", "--resolution",  "--first-step", "--min-curvature-step",
+                        "--steps",        "--evaluations", "--store",      "--serial-seconds"},
+                 {"--quick", "--resume", "--calibrate"});
   if (cl.positional().size() != 1)
     cl.fail("NAME", "bench takes one benchmark name (" + bench::benchNameList() + ")");
   const std::string name = cl.positional()[0];
@@ -231,6 +232,19 @@ int benchCommand(const std::vector<std::string>& arguments) {
       cl.fail("--jobs", "under mpirun each rank makes one run at a time: use more ranks");
     options.workers = &processWorkers();
     return bench::runApplicationsBench(options, out);
+  }
+  for (const char* option : {"--store", "--serial-seconds"})
+    if (cl.has(option) && name != "distribution")
+      cl.fail(option, "applies to the distribution benchmark only");
+  if (name == "distribution") {
+    bench::DistributionBenchOptions o;
+    o.quick = cl.has("--quick");
+    o.store = cl.value("--store", "");
+    o.serialSeconds = cl.number("--serial-seconds", o.serialSeconds);
+    if (!(o.serialSeconds >= 0.0 && o.serialSeconds < 1e9))
+      cl.fail("--serial-seconds", "must be a number of seconds >= 0");
+    o.workers = &processWorkers();
+    return bench::runDistributionBench(o, out);
   }
   // The other benchmarks time one process: under mpirun, rank 0 runs them alone.
   if (launchRank() != 0) throw QuietExit{0};

@@ -128,9 +128,9 @@ int optimizeCommand(const std::vector<std::string>& args) {
   if (usesGradient && launchSize() > 1) {
     if (launchRank() != 0) throw QuietExit{0};
     std::fprintf(stderr,
-                 "note: %s evaluates one point at a time: rank 0 runs it alone, the other %d "
-                 "process(es) exit (cmaes and es1p1 use them)\n",
-                 method.c_str(), launchSize() - 1);
+                 "note: %s evaluates one point at a time: rank 0 runs it alone, the other "
+                 "processes exit (cmaes and es1p1 use them)\n",
+                 method.c_str());
   }
   const std::string outDir = cl.value("--out", "out/optimize-" + scene.name);
   std::optional<StagedDirectory> out;  // fails early on an unusable --out, before optimising

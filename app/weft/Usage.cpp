@@ -31,6 +31,9 @@ const std::vector<std::pair<std::string, std::string>>& usages() {
       {"landscape",
        "SCENE --param A [--param B] [--grid N] [--range PATH=LO:HI ...] [--out DIR]\n"
        "    [--set PATH=VALUE ...] [--threads N] [--quiet]"},
+      {"sweep",
+       "SCENE --set-grid PATH=A,B,... [--set-grid ...] [--set PATH=VALUE ...] [--steps N]\n"
+       "    [--out DIR] [--threads N] [--quiet]"},
   };
   return list;
 }

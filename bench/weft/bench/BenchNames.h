@@ -6,8 +6,9 @@
 
 namespace weft::bench {
 
-inline constexpr const char* kBenchNames[] = {"forward",      "backward", "continuity", "contact",
-                                              "applications", "render",   "soak"};
+inline constexpr const char* kBenchNames[] = {"forward", "backward",     "continuity",
+                                              "contact", "applications", "render",
+                                              "soak",    "distribution"};
 
 // "forward, backward, ..., render".
 inline std::string benchNameList() {

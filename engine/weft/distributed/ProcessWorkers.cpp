@@ -16,8 +16,10 @@ namespace weft {
 namespace {
 
 // The launcher's word on how many processes this run is and which one this is: Open MPI's
-// mpirun, PMI/PMIx launchers (MPICH's hydra, Slurm's srun --mpi=pmi2|pmix), or Slurm itself.
-// {0, 1} without a launcher.
+// mpirun, PMI/PMIx launchers (MPICH's hydra, Slurm's srun --mpi=pmi2|pmix). {0, 1} without a
+// launcher. Slurm's own variables are not read: a batch script's shell has them too, and is not
+// one of the job's ranks. PMIx names the rank but not the size: 2 stands for "several" there,
+// and MPI says how many once it starts.
 struct Launch {
   int rank = 0;
   int size = 1;
@@ -35,8 +37,7 @@ int environmentInteger(const char* name, int fallback) {
 Launch launchFromEnvironment() {
   const char* sizes[][2] = {{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
                             {"PMI_SIZE", "PMI_RANK"},
-                            {"PMIX_SIZE", "PMIX_RANK"},
-                            {"SLURM_NTASKS", "SLURM_PROCID"}};
+                            {"PMIX_SIZE", "PMIX_RANK"}};
   for (const auto& names : sizes) {
     const int size = environmentInteger(names[0], -1);
     if (size < 1) continue;

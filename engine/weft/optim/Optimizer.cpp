@@ -63,6 +63,16 @@ double Optimizer::evaluateValue(const Eigen::VectorXd& x) {
 
 std::vector<double> Optimizer::evaluateValues(const std::vector<Eigen::VectorXd>& points,
                                               const std::function<bool(double)>& keepGoing) {
+  if (objective_->concurrency() <= 1) {
+    // One at a time, each logged before the next starts: what a caller watching the log between
+    // evaluations (the editor's step-by-step optimiser) relies on.
+    std::vector<double> logged;
+    for (const Eigen::VectorXd& x : points) {
+      logged.push_back(evaluateValue(x));
+      if (keepGoing && !keepGoing(logged.back())) break;
+    }
+    return logged;
+  }
   const long long cost = objective_->stepsPerValue();
   // The prefix admit() lets through one point at a time, and why the next one is not.
   std::size_t admitted = 0;

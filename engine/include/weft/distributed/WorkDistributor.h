@@ -73,7 +73,7 @@ void endProcessWorkers(int exitCode = 0, bool quiet = false);
 // This process's rank as the launcher gave it (0 without one), known before MPI starts: the
 // CLI prints errors on rank 0 only.
 int launchRank();
-// How many processes the launcher started (1 without one).
+// How many processes the launcher started (1 without one; at least 2 when it started several).
 int launchSize();
 
 // Runs every item in this process, in order (also what processWorkers() is without a launcher).

@@ -84,7 +84,8 @@ class Optimizer {
   // the points the cap and the budget admit are evaluated, and StopRequest follows their
   // entries. With `keepGoing`, the entries stop after the first loss it rejects (that entry
   // included): the points after it were speculative, evaluated at once in case it was rejected,
-  // and are neither logged nor counted. Returns the logged losses.
+  // and are neither logged nor counted. Returns the logged losses. An objective of concurrency 1
+  // is evaluated and logged one point at a time.
   std::vector<double> evaluateValues(const std::vector<Eigen::VectorXd>& points,
                                      const std::function<bool(double)>& keepGoing = {});
   // Points Objective::values() evaluates at once (1 without distribution).
