@@ -54,7 +54,7 @@ TEST(DistributionBench, WritesTheHandOutTableAndTheProjectionFromAStore) {
       runWeft({"bench", "distribution", "--quick", "--store", dir.file("runs"), "--serial-seconds",
                "10", "--out", dir.file("out")});
   ASSERT_EQ(r.exitCode, 0) << describe(r);
-  EXPECT_THAT(r.out, ::testing::HasSubstr("bench distribution: serial"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("bench distribution: serial, "));
   const auto handout = test::readCsv(dir.file("out/distribution.csv"));
   ASSERT_EQ(handout.size(), 5u);  // header, empty items, three spinning item lengths
   EXPECT_EQ(handout[1][0], "serial");
