@@ -96,7 +96,8 @@ std::string scriptActionKind(const nlohmann::json& action) {
                         "key_down",
                         "key_up",
                         "type",
-                        "close"})
+                        "close",
+                        "provoke_imgui_assertion"})
     if (action.contains(k)) return k;
   return action.begin().key();
 }

@@ -8,13 +8,24 @@ namespace {
 
 // A point of a raw-input action in window pixels (x right, y down from the window's top-left,
 // what ImGui's io.MousePos takes): [x, y], or {"viewport": [x, y]} in the viewport pixels of
-// click and box_select, placed where the last frame laid the viewport out.
+// click and box_select, placed where the last frame laid the viewport out, or {"item": NAME}:
+// where the last frame drew the named item (EditorApp::itemPoint: a document field by its path,
+// "tab:scene", "timeline:simulate"...).
 Eigen::Vector2f pointOf(const nlohmann::json& j, const char* what, const EditorApp& app) {
+  if (j.is_object() && j.contains("item")) {
+    const std::string name = j["item"].get<std::string>();
+    const std::array<float, 2>* point = app.itemPoint(name);
+    if (!point)
+      throw std::invalid_argument(std::string(what) + ": the item " + name +
+                                  " was not drawn in the last frame");
+    return Eigen::Vector2f((*point)[0], (*point)[1]);
+  }
   const bool inViewport = j.is_object() && j.contains("viewport");
   const nlohmann::json& p = inViewport ? j["viewport"] : j;
   if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
     throw std::invalid_argument(std::string(what) +
-                                " takes [x, y] in window pixels or {\"viewport\": [x, y]}");
+                                " takes [x, y] in window pixels, {\"viewport\": [x, y]} or "
+                                "{\"item\": NAME}");
   Eigen::Vector2f at(p[0].get<float>(), p[1].get<float>());
   if (inViewport) at += Eigen::Vector2f(float(app.viewportX()), float(app.viewportY()));
   return at;

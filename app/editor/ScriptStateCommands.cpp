@@ -128,6 +128,7 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"unsaved_prompt", app.unsavedPrompt().empty() ? nlohmann::json(nullptr)
                                                          : nlohmann::json(app.unsavedPrompt())},
           {"close_confirmed", app.closeConfirmed()},
+          {"imgui_assertions", app.recoveredAssertions()},
           {"document", doc.document()}};
 }
 
@@ -161,11 +162,18 @@ bool writeState(ScriptCall& call) {
   return true;
 }
 
+// The recovery check (EditorApp::provokeAssertion): the next frame breaks ImGui's contract.
+bool provokeImGuiAssertion(ScriptCall& call) {
+  call.app.provokeAssertion();
+  return true;
+}
+
 }  // namespace
 
 void addStateCommands(ScriptCommandTable& table) {
   table["expect"] = expect;
   table["write_state"] = writeState;
+  table["provoke_imgui_assertion"] = provokeImGuiAssertion;
 }
 
 }  // namespace weft::editor

@@ -29,6 +29,7 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
     app_.report(error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : error,
                 !error.empty());
   }
+  app_.noteLastItem("timeline:simulate");
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::Text("%d steps (time.steps)", sceneSteps);
@@ -78,12 +79,15 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   const int frames = session_.timeline().frames();
   ImGui::BeginDisabled(frames <= 1);
   if (ImGui::Button("|<")) playback.step(-1, frames);
+  app_.noteLastItem("timeline:start");
   ImGui::SameLine();
   ImGui::BeginDisabled(available == 0);
   if (ImGui::Button(playback.playing() ? "Pause" : "Play")) session_.timeline().togglePlayback();
+  app_.noteLastItem("timeline:play");
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button(">|")) playback.step(1, frames);
+  app_.noteLastItem("timeline:end");
   ImGui::SameLine();
   int k = playback.frame();
   ImGui::SetNextItemWidth(std::max(100.0f, ImGui::GetContentRegionAvail().x - 260.0f));
