@@ -123,6 +123,7 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
             {"distance", camera.distance},
             {"target", jsonOf(camera.target.cast<double>())}}},
           {"playing", session.playback().playing()},
+          {"animating", session.animating()},
           {"dialog", dialog},
           {"close_prompt", app.closePromptOpen()},
           {"unsaved_prompt", app.unsavedPrompt().empty() ? nlohmann::json(nullptr)

@@ -109,6 +109,24 @@ TEST(EditorRobustness, ImGuiAssertionIsLoggedAndTheEditorCarriesOn) {
   EXPECT_EQ(after["document"]["solver"]["pd_iterations"], 7);
 }
 
+// The window waits for input unless something animates: a simulation running, playback. Idle
+// after a run and after a pause.
+TEST(EditorRobustness, AnimatingOnlyWhilePlayingOrRunning) {
+  TempDir dir;
+  const ProcessResult r = runEditor(dir,
+                                    {{{"open", hangingScene(dir, 20)}},
+                                     {{"frames", 1}},
+                                     {{"expect", {{"animating", false}}}},
+                                     {{"simulate", true}},
+                                     {{"expect", {{"animating", false}}}},
+                                     {{"play", true}},
+                                     {{"expect", {{"animating", true}, {"playing", true}}}},
+                                     {{"pause", true}},
+                                     {{"expect", {{"animating", false}}}}},
+                                    "800x600");
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+}
+
 // A point naming an item that was not drawn fails the action with a message saying so.
 TEST(EditorRobustness, ClickOnAnItemNotDrawnFails) {
   TempDir dir;
