@@ -179,6 +179,13 @@ void EditorApp::drawUi() {
   drawUnsavedPrompt();
 }
 
+const std::string& EditorApp::solverBanner() const {
+  return timeline_->banner();
+}
+int EditorApp::unconvergedTicks() const {
+  return timeline_->unconvergedTicks();
+}
+
 const std::array<float, 2>* EditorApp::itemPoint(const std::string& name) const {
   const auto it = itemPoints_.find(name);
   return it == itemPoints_.end() ? nullptr : &it->second;

@@ -96,6 +96,11 @@ class EditorApp {
   // The last item ImGui drew, noted by `name` at its centre.
   void noteLastItem(const std::string& name);
 
+  // The solver's state as the timeline last drew it: its banner ("" for none) and the red
+  // ticks of unconverged steps on its slider.
+  const std::string& solverBanner() const;
+  int unconvergedTicks() const;
+
   // Dear ImGui assertions this app has recovered from (ImGuiAssert.h): each is logged to stderr
   // with its file, line and expression, and the frame it broke ended through ImGui's recovery.
   int recoveredAssertions() const { return recoveredAssertions_; }

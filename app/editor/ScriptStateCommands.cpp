@@ -94,6 +94,9 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"cache_stale", session.timeline().cacheStale()},
           {"cache_unconverged_steps", convergence.unconverged},
           {"cache_max_depth", convergence.maxDepth},
+          {"solver_banner", app.solverBanner().empty() ? nlohmann::json(nullptr)
+                                                       : nlohmann::json(app.solverBanner())},
+          {"unconverged_ticks", app.unconvergedTicks()},
           {"frame", session.playback().frame()},
           {"selected", session.selection().nodes()},
           {"can_undo", doc.canUndo()},
