@@ -224,6 +224,8 @@ void EditorApp::handleShortcuts() {
     session_.playback().step(1, available);
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_LeftArrow)))
     session_.playback().step(-1, available);
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Home))) session_.timeline().goToStart();
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_End))) session_.timeline().goToEnd();
   if (keyChord(false, false, kKeyF)) session_.frameCamera(viewport_->aspect());
   if (keyChord(false, false, kKeyK) &&
       session_.placement().activeObject().kind == EditorObject::Kind::Handle) {
@@ -434,18 +436,26 @@ void EditorApp::drawScenePanel(float top, float height) {
   }
   EditorDocument& doc = session_.document();
   ImGui::Text("%s%s", doc.displayName().c_str(), doc.dirty() ? " (unsaved changes)" : "");
+  // The status (valid or why not, the loader's warnings, the last action's message) lives in a
+  // box of fixed height, so that the panel below never moves when it changes; more than fits
+  // scrolls inside the box, and hovering shows it all.
+  std::string all;
+  const float statusHeight = 3.0f * ImGui::GetTextLineHeightWithSpacing() + 4.0f;
+  ImGui::BeginChild("status", ImVec2(0.0f, statusHeight), false);
   if (doc.valid()) {
     ImGui::TextColored(kOkColour, "Valid scene: %d vertices", doc.scene()->vertexCount());
     for (const std::string& w : doc.scene()->warnings) {
       ImGui::PushStyleColor(ImGuiCol_Text, kWarningColour);
       ImGui::TextWrapped("warning: %s", w.c_str());
       ImGui::PopStyleColor();
+      all += "warning: " + w + "\n";
     }
   } else {
     // The loader's own message (file, JSON path, what is wrong); simulation waits for a fix.
     ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
     ImGui::TextWrapped("error: %s", doc.validationError().c_str());
     ImGui::PopStyleColor();
+    all += "error: " + doc.validationError() + "\n";
   }
   if (!message_.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, messageIsError_
@@ -453,6 +463,15 @@ void EditorApp::drawScenePanel(float top, float height) {
                                              : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("%s", message_.c_str());
     ImGui::PopStyleColor();
+    all += message_;
+  }
+  ImGui::EndChild();
+  if (!all.empty() && ImGui::IsItemHovered()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+    ImGui::TextUnformatted(all.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
   }
   ImGui::Separator();
   ImGui::PushItemWidth(170.0f);

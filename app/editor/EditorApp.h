@@ -92,6 +92,7 @@ class EditorApp {
   // "tab:optimise", the timeline's buttons as "timeline:simulate", "timeline:start",
   // "timeline:play", "timeline:end" (their centres). Null when not drawn in the last frame.
   const std::array<float, 2>* itemPoint(const std::string& name) const;
+  const std::map<std::string, std::array<float, 2>>& itemPoints() const { return itemPoints_; }
   void noteItem(const std::string& name, float x, float y);
   // The last item ImGui drew, noted by `name` at its centre.
   void noteLastItem(const std::string& name);

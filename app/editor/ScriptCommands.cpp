@@ -37,6 +37,7 @@ std::string scriptActionKind(const nlohmann::json& action) {
                         "select_band",
                         "pin",
                         "simulate",
+                        "wait_simulation",
                         "cancel",
                         "scrub",
                         "step",

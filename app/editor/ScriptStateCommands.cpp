@@ -133,6 +133,7 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
                                                          : nlohmann::json(app.unsavedPrompt())},
           {"close_confirmed", app.closeConfirmed()},
           {"imgui_assertions", app.recoveredAssertions()},
+          {"items", app.itemPoints()},
           {"document", doc.document()}};
 }
 

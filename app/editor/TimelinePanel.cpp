@@ -28,8 +28,14 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   ImGui::BeginDisabled(!doc.valid() || cache.running());
   if (ImGui::Button("Simulate")) {
     const std::string error = session_.timeline().simulate();
-    app_.report(error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : error,
-                !error.empty());
+    runMessage_ = error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : "";
+    app_.report(error.empty() ? runMessage_ : error, !error.empty());
+  }
+  // "simulating N steps" is true while the run lasts; the verdict line says how it ended. Any
+  // other message reported since is left alone.
+  if (!runMessage_.empty() && !cache.running()) {
+    if (app_.message() == runMessage_) app_.report("", false);
+    runMessage_.clear();
   }
   app_.noteLastItem("timeline:simulate");
   ImGui::EndDisabled();
@@ -100,7 +106,8 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   // anywhere); beyond the cache the viewport keeps the last cached state.
   const int frames = session_.timeline().frames();
   ImGui::BeginDisabled(frames <= 1);
-  if (ImGui::Button("|<")) playback.step(-1, frames);
+  if (ImGui::Button("|<")) session_.timeline().goToStart();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The first state (Home)");
   app_.noteLastItem("timeline:start");
   ImGui::SameLine();
   ImGui::BeginDisabled(available == 0);
@@ -108,7 +115,8 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   app_.noteLastItem("timeline:play");
   ImGui::EndDisabled();
   ImGui::SameLine();
-  if (ImGui::Button(">|")) playback.step(1, frames);
+  if (ImGui::Button(">|")) session_.timeline().goToEnd();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The last simulated state (End)");
   app_.noteLastItem("timeline:end");
   ImGui::SameLine();
   int k = playback.frame();
@@ -145,7 +153,7 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   if (session_.placement().activeObject().kind == EditorObject::Kind::Handle)
     keyControls();
   else
-    ImGui::TextDisabled("Space: play/pause   Left/Right: step one state");
+    ImGui::TextDisabled("Space: play/pause   Left/Right: step one state   Home/End: first/last");
   ImGui::End();
 }
 

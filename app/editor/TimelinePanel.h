@@ -32,6 +32,7 @@ class TimelinePanel {
   EditorApp& app_;
   std::string banner_;
   int unconvergedTicks_ = 0;
+  std::string runMessage_;  // "simulating N steps" while the run it announced lasts
 };
 
 }  // namespace weft::editor
