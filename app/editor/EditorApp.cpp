@@ -152,13 +152,19 @@ void EditorApp::recover(const std::exception& failure) {
   const ImGuiContext& g = *ImGui::GetCurrentContext();
   const ImGuiWindow* window = g.CurrentWindow;
   // The context a report needs: where (the window being drawn, the tab), what the user was
-  // working with (the active and hovered items), when (the frame).
-  std::fprintf(stderr,
-               "weft-editor: recovered from %s (frame %d, window \"%s\", tab %d, active item "
-               "0x%08x, hovered item 0x%08x, dialog \"%s\")\n",
-               failure.what(), g.FrameCount, window ? window->Name : "", int(tab_), g.ActiveId,
-               g.HoveredId, modalDialog().c_str());
-  ImGui::ErrorCheckEndFrameRecover(logRecovery, nullptr);
+  // working with (the active and hovered items), when (the frame). A failure repeating every
+  // frame is logged ten times, then only counted (state imgui_assertions).
+  constexpr int kLogged = 10;
+  const bool log = recoveredAssertions_ <= kLogged;
+  if (log)
+    std::fprintf(stderr,
+                 "weft-editor: recovered from %s (frame %d, window \"%s\", tab %d, active item "
+                 "0x%08x, hovered item 0x%08x, dialog \"%s\")\n",
+                 failure.what(), g.FrameCount, window ? window->Name : "", int(tab_), g.ActiveId,
+                 g.HoveredId, modalDialog().c_str());
+  if (recoveredAssertions_ == kLogged)
+    std::fprintf(stderr, "weft-editor: further recoveries are counted, not logged\n");
+  ImGui::ErrorCheckEndFrameRecover(log ? logRecovery : nullptr, nullptr);
   // The item that was being edited may be the one in a broken state: let go of it.
   ImGui::ClearActiveID();
   report(std::string("The interface recovered from an internal error (logged): ") + failure.what(),
