@@ -15,36 +15,43 @@ double numberAt(const EditorDocument& doc, const std::string& path, double fallb
 
 }  // namespace
 
-void DocumentFields::apply(const std::string& error, unsigned itemId) {
+void DocumentFields::noteItem(const std::string& path) {
+  const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
+  app_.noteItem(path, low.x + 10.0f, 0.5f * (low.y + high.y));
+}
+
+void DocumentFields::apply(const std::string& error, const std::string& field) {
   if (!error.empty()) app_.report(error, true);
-  lastEditId_ = itemId;
+  lastEditField_ = field;
 }
 
 template <class Value, class Widget>
-bool DocumentFields::field(const char* label, const std::string& path, Value value,
-                           Widget&& widget) {
-  // One document edit per change; consecutive changes of the same item (typing, dragging) merge
-  // into one undo step.
+bool DocumentFields::field(const std::string& path, Value value, Widget&& widget) {
+  // One document edit per change; consecutive changes of the same field (typing, dragging) merge
+  // into one undo step. The field is known by its path, not by an ImGui id: ImGui::GetID (1.86)
+  // marks the id it returns as alive, and called before InputInt it made the widget's group
+  // believe its active text field was alive before the group began, so the group reported no
+  // item and ImGui's MarkItemEdited asserted on the first keystroke (issue 39's crash).
   ImGui::PushID(path.c_str());
-  const ImGuiID id = ImGui::GetID(label);
   const bool changed = widget(&value);
+  noteItem(path);
   if (changed) {
-    const bool coalesce = id == lastEditId_ && !ImGui::IsItemActivated();
-    apply(session_.document().setValue(path, value, coalesce), id);
+    const bool coalesce = path == lastEditField_ && !ImGui::IsItemActivated();
+    apply(session_.document().setValue(path, value, coalesce), path);
   }
-  if (ImGui::IsItemDeactivated()) lastEditId_ = 0;
+  if (ImGui::IsItemDeactivated()) lastEditField_.clear();
   ImGui::PopID();
   return changed;
 }
 
 bool DocumentFields::number(const char* label, const std::string& path, double fallback,
                             const char* format) {
-  return field(label, path, numberAt(session_.document(), path, fallback),
+  return field(path, numberAt(session_.document(), path, fallback),
                [&](double* v) { return ImGui::InputDouble(label, v, 0.0, 0.0, format); });
 }
 
 bool DocumentFields::integer(const char* label, const std::string& path, int fallback) {
-  return field(label, path, static_cast<int>(numberAt(session_.document(), path, fallback)),
+  return field(path, static_cast<int>(numberAt(session_.document(), path, fallback)),
                [&](int* v) { return ImGui::InputInt(label, v); });
 }
 
@@ -55,15 +62,15 @@ bool DocumentFields::vector(const char* label, const std::string& path, const do
     for (int i = 0; i < 3; ++i)
       if ((*j)[std::size_t(i)].is_number()) v[i] = (*j)[std::size_t(i)].get<double>();
   ImGui::PushID(path.c_str());
-  const ImGuiID id = ImGui::GetID(label);
   const bool changed =
       ImGui::InputScalarN(label, ImGuiDataType_Double, v, 3, nullptr, nullptr, "%.4g");
+  noteItem(path);
   if (changed) {
-    const bool coalesce = id == lastEditId_ && !ImGui::IsItemActivated();
+    const bool coalesce = path == lastEditField_ && !ImGui::IsItemActivated();
     apply(session_.document().setValue(path, nlohmann::json::array({v[0], v[1], v[2]}), coalesce),
-          id);
+          path);
   }
-  if (ImGui::IsItemDeactivated()) lastEditId_ = 0;
+  if (ImGui::IsItemDeactivated()) lastEditField_.clear();
   ImGui::PopID();
   return changed;
 }
@@ -73,7 +80,9 @@ void DocumentFields::combo(const char* label, const std::string& path, const cha
   const nlohmann::json* j = session_.document().find(path);
   const std::string current = j && j->is_string() ? j->get<std::string>() : fallback;
   ImGui::PushID(path.c_str());
-  if (ImGui::BeginCombo(label, current.c_str())) {
+  const bool open = ImGui::BeginCombo(label, current.c_str());
+  noteItem(path);
+  if (open) {
     for (int i = 0; i < count; ++i)
       if (ImGui::Selectable(options[i], current == options[i]) && current != options[i])
         apply(session_.document().setValue(path, options[i]));

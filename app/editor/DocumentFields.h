@@ -20,17 +20,19 @@ class DocumentFields {
   bool vector(const char* label, const std::string& path, const double* fallback);
   void combo(const char* label, const std::string& path, const char* const* options, int count,
              const char* fallback);
-  // Reports an edit's error; `itemId` is the ImGui item that made it (0: none), whose next change
-  // merges into the same undo step.
-  void apply(const std::string& error, unsigned itemId = 0);
+  // Reports an edit's error; `field` is the document path of the field that made it ("" for
+  // none), whose next change merges into the same undo step.
+  void apply(const std::string& error, const std::string& field = "");
 
  private:
+  // Tells the app where the item just drawn for `path` lies (scripts click fields by path).
+  void noteItem(const std::string& path);
   template <class Value, class Widget>
-  bool field(const char* label, const std::string& path, Value value, Widget&& widget);
+  bool field(const std::string& path, Value value, Widget&& widget);
 
   EditorSession& session_;
   EditorApp& app_;
-  unsigned lastEditId_ = 0;  // ImGui item that made the last document edit (coalescing)
+  std::string lastEditField_;  // path of the field that made the last document edit (coalescing)
 };
 
 }  // namespace weft::editor

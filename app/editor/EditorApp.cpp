@@ -1,6 +1,7 @@
 #include "EditorApp.h"
 
 #include "EditorGl.h"
+#include "ImGuiAssert.h"
 #include "InspectorPanel.h"
 #include "MeshImportDialog.h"
 #include "ObstacleTemplates.h"
@@ -18,9 +19,11 @@
 #include <imgui_internal.h>  // GetTopMostPopupModal: whether a dialog is open, and which
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <iostream>
 #include <string>
 
 namespace weft::editor {
@@ -33,6 +36,16 @@ bool keyChord(bool ctrl, bool shift, int key) {
   const ImGuiIO& io = ImGui::GetIO();
   return io.KeyCtrl == ctrl && io.KeyShift == shift && !io.KeyAlt &&
          ImGui::IsKeyPressed(key, false);
+}
+
+// Logs what ImGui's error recovery repaired (a window left open, a PushID without its PopID...).
+void logRecovery(void*, const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  std::fprintf(stderr, "weft-editor:   ");
+  std::vfprintf(stderr, format, args);
+  std::fprintf(stderr, "\n");
+  va_end(args);
 }
 
 // GLFW's key codes for letters are their upper-case ASCII codes; ImGui 1.86 indexes
@@ -109,8 +122,57 @@ void EditorApp::frame() {
   ImGuiIO& io = ImGui::GetIO();
   session_.tick(io.DeltaTime);
   ImGui_ImplOpenGL3_NewFrame();
+  itemPoints_.clear();
   ImGui::NewFrame();
+  // A failed ImGui assertion throws (ImGuiAssert.h): the frame it broke is ended through ImGui's
+  // recovery and drawn as far as it got; the next frame starts clean. A second failure while
+  // ending the same frame is not recoverable and goes to the caller.
+  try {
+    drawUi();
+  } catch (const ImGuiAssertion& failure) {
+    recover(failure);
+  }
+  try {
+    ImGui::Render();
+  } catch (const ImGuiAssertion& failure) {
+    recover(failure);
+    ImGui::Render();
+  }
+  const WeftEditorGl& gl = weftEditorGl;
+  context_.makeCurrent();
+  gl.BindFramebuffer(GL_FRAMEBUFFER, context_.framebuffer());
+  gl.Viewport(0, 0, context_.width(), context_.height());
+  gl.ClearColor(0.10f, 0.10f, 0.12f, 1.0f);
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
 
+void EditorApp::recover(const std::exception& failure) {
+  ++recoveredAssertions_;
+  const ImGuiContext& g = *ImGui::GetCurrentContext();
+  const ImGuiWindow* window = g.CurrentWindow;
+  // The context a report needs: where (the window being drawn, the tab), what the user was
+  // working with (the active and hovered items), when (the frame). A failure repeating every
+  // frame is logged ten times, then only counted (state imgui_assertions).
+  constexpr int kLogged = 10;
+  const bool log = recoveredAssertions_ <= kLogged;
+  if (log)
+    std::fprintf(stderr,
+                 "weft-editor: recovered from %s (frame %d, window \"%s\", tab %d, active item "
+                 "0x%08x, hovered item 0x%08x, dialog \"%s\")\n",
+                 failure.what(), g.FrameCount, window ? window->Name : "", int(tab_), g.ActiveId,
+                 g.HoveredId, modalDialog().c_str());
+  if (recoveredAssertions_ == kLogged)
+    std::fprintf(stderr, "weft-editor: further recoveries are counted, not logged\n");
+  ImGui::ErrorCheckEndFrameRecover(log ? logRecovery : nullptr, nullptr);
+  // The item that was being edited may be the one in a broken state: let go of it.
+  ImGui::ClearActiveID();
+  report(std::string("The interface recovered from an internal error (logged): ") + failure.what(),
+         true);
+}
+
+void EditorApp::drawUi() {
+  const ImGuiIO& io = ImGui::GetIO();
   handleShortcuts();
   drawMenuBar();
   const float top = ImGui::GetFrameHeight();  // below the main menu bar
@@ -121,15 +183,27 @@ void EditorApp::frame() {
   drawFileDialog();
   importDialog_->draw(session_, *this);
   drawUnsavedPrompt();
+}
 
-  ImGui::Render();
-  const WeftEditorGl& gl = weftEditorGl;
-  context_.makeCurrent();
-  gl.BindFramebuffer(GL_FRAMEBUFFER, context_.framebuffer());
-  gl.Viewport(0, 0, context_.width(), context_.height());
-  gl.ClearColor(0.10f, 0.10f, 0.12f, 1.0f);
-  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+const std::string& EditorApp::solverBanner() const {
+  return timeline_->banner();
+}
+int EditorApp::unconvergedTicks() const {
+  return timeline_->unconvergedTicks();
+}
+
+const std::array<float, 2>* EditorApp::itemPoint(const std::string& name) const {
+  const auto it = itemPoints_.find(name);
+  return it == itemPoints_.end() ? nullptr : &it->second;
+}
+
+void EditorApp::noteItem(const std::string& name, float x, float y) {
+  itemPoints_[name] = {x, y};
+}
+
+void EditorApp::noteLastItem(const std::string& name) {
+  const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
+  noteItem(name, 0.5f * (low.x + high.x), 0.5f * (low.y + high.y));
 }
 
 void EditorApp::handleShortcuts() {
@@ -156,6 +230,8 @@ void EditorApp::handleShortcuts() {
     session_.playback().step(1, available);
   if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_LeftArrow)))
     session_.playback().step(-1, available);
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_Home))) session_.timeline().goToStart();
+  if (keyChord(false, false, ImGui::GetKeyIndex(ImGuiKey_End))) session_.timeline().goToEnd();
   if (keyChord(false, false, kKeyF)) session_.frameCamera(viewport_->aspect());
   if (keyChord(false, false, kKeyK) &&
       session_.placement().activeObject().kind == EditorObject::Kind::Handle) {
@@ -360,20 +436,32 @@ void EditorApp::drawScenePanel(float top, float height) {
   ImGui::SetNextWindowPos(ImVec2(0, top));
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, height));
   ImGui::Begin("Scene", nullptr, kFixedWindow);
+  if (provokeAssertion_) {
+    provokeAssertion_ = false;
+    ImGui::PopID();  // nothing pushed: ImGui asserts "Too many PopID()"
+  }
   EditorDocument& doc = session_.document();
   ImGui::Text("%s%s", doc.displayName().c_str(), doc.dirty() ? " (unsaved changes)" : "");
+  // The status (valid or why not, the loader's warnings, the last action's message) lives in a
+  // box of fixed height, so that the panel below never moves when it changes; more than fits
+  // scrolls inside the box, and hovering shows it all.
+  std::string all;
+  const float statusHeight = 3.0f * ImGui::GetTextLineHeightWithSpacing() + 4.0f;
+  ImGui::BeginChild("status", ImVec2(0.0f, statusHeight), false);
   if (doc.valid()) {
     ImGui::TextColored(kOkColour, "Valid scene: %d vertices", doc.scene()->vertexCount());
     for (const std::string& w : doc.scene()->warnings) {
       ImGui::PushStyleColor(ImGuiCol_Text, kWarningColour);
       ImGui::TextWrapped("warning: %s", w.c_str());
       ImGui::PopStyleColor();
+      all += "warning: " + w + "\n";
     }
   } else {
     // The loader's own message (file, JSON path, what is wrong); simulation waits for a fix.
     ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
     ImGui::TextWrapped("error: %s", doc.validationError().c_str());
     ImGui::PopStyleColor();
+    all += "error: " + doc.validationError() + "\n";
   }
   if (!message_.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, messageIsError_
@@ -381,6 +469,15 @@ void EditorApp::drawScenePanel(float top, float height) {
                                              : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("%s", message_.c_str());
     ImGui::PopStyleColor();
+    all += message_;
+  }
+  ImGui::EndChild();
+  if (!all.empty() && ImGui::IsItemHovered()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+    ImGui::TextUnformatted(all.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
   }
   ImGui::Separator();
   ImGui::PushItemWidth(170.0f);
@@ -388,14 +485,17 @@ void EditorApp::drawScenePanel(float top, float height) {
     const struct {
       const char* label;
       PanelTab tab;
-    } tabs[] = {{"Scene", PanelTab::Scene},
-                {"Inspect", PanelTab::Inspect},
-                {"Targets", PanelTab::Targets},
-                {"Optimise", PanelTab::Optimise}};
+      const char* item;
+    } tabs[] = {{"Scene", PanelTab::Scene, "tab:scene"},
+                {"Inspect", PanelTab::Inspect, "tab:inspect"},
+                {"Targets", PanelTab::Targets, "tab:targets"},
+                {"Optimise", PanelTab::Optimise, "tab:optimise"}};
     for (const auto& t : tabs) {
       const ImGuiTabItemFlags flags =
           tabRequested_ && requestedTab_ == t.tab ? ImGuiTabItemFlags_SetSelected : 0;
-      if (ImGui::BeginTabItem(t.label, nullptr, flags)) {
+      const bool open = ImGui::BeginTabItem(t.label, nullptr, flags);
+      noteLastItem(t.item);
+      if (open) {
         tab_ = t.tab;
         switch (t.tab) {
           case PanelTab::Scene:

@@ -13,6 +13,8 @@
 #include <weft/render/RenderContext.h>
 #include <weft/render/RenderStyle.h>
 
+#include <array>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -84,7 +86,32 @@ class EditorApp {
   // Opens the dialog importing a garment or a mesh obstacle.
   void openImport(MeshImportDialog::Kind kind);
 
+  // Where named items were drawn in the last frame, for scripts that click them (the point
+  // {"item": NAME}): document fields by their path (a point inside the input box, which is the
+  // item's left part), the left panel's tabs as "tab:scene", "tab:inspect", "tab:targets",
+  // "tab:optimise", the timeline's buttons as "timeline:simulate", "timeline:start",
+  // "timeline:play", "timeline:end" (their centres). Null when not drawn in the last frame.
+  const std::array<float, 2>* itemPoint(const std::string& name) const;
+  const std::map<std::string, std::array<float, 2>>& itemPoints() const { return itemPoints_; }
+  void noteItem(const std::string& name, float x, float y);
+  // The last item ImGui drew, noted by `name` at its centre.
+  void noteLastItem(const std::string& name);
+
+  // The solver's state as the timeline last drew it: its banner ("" for none) and the red
+  // ticks of unconverged steps on its slider.
+  const std::string& solverBanner() const;
+  int unconvergedTicks() const;
+
+  // Dear ImGui assertions this app has recovered from (ImGuiAssert.h): each is logged to stderr
+  // with its file, line and expression, and the frame it broke ended through ImGui's recovery.
+  int recoveredAssertions() const { return recoveredAssertions_; }
+  // A check of that recovery: the next frame breaks ImGui's contract (a PopID without its
+  // PushID, which Debian's libimgui.a asserts on).
+  void provokeAssertion() { provokeAssertion_ = true; }
+
  private:
+  void drawUi();
+  void recover(const std::exception& failure);
   void drawMenuBar();
   void drawScenePanel(float top, float height);
   void drawFileDialog();
@@ -122,6 +149,9 @@ class EditorApp {
   void carryOut(PendingAction action, const std::string& file);
   std::string message_;
   bool messageIsError_ = false;
+  std::map<std::string, std::array<float, 2>> itemPoints_;
+  int recoveredAssertions_ = 0;
+  bool provokeAssertion_ = false;
 };
 
 }  // namespace weft::editor

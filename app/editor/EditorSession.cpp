@@ -73,6 +73,12 @@ std::optional<VertexReport> EditorSession::inspect() const {
   return inspectVertex(*f, node, cached->time.dt, clothVertexOffsets(*cached));
 }
 
+bool EditorSession::animating() const {
+  return playback_.playing() || cache_.running() ||
+         optimisation_.optimizer().status() == OptimizerRun::Status::Running ||
+         gradients_.computing();
+}
+
 void EditorSession::tick(double seconds) {
   timeline_.advance(seconds);
   stepSeries_.update(cache_);

@@ -90,6 +90,11 @@ class EditorSession {
   std::optional<VertexReport> inspect() const;
   const StepStatsSeries& stepSeries() const { return stepSeries_; }
 
+  // True while what the window shows changes without any input: playback, or a simulation, an
+  // optimisation or a gradient running on a worker (their results are drawn as they come). The
+  // window waits for input otherwise (main.cpp).
+  bool animating() const;
+
   // Per-frame bookkeeping: playback advance, clamping the frame to the cache, the solver
   // series, an active object gone, a finished gradient job.
   void tick(double seconds);

@@ -43,7 +43,12 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
           ? "Mesh file (OBJ, glTF, FBX, PLY, ...; absolute or relative to the working directory):"
           : "Obstacle mesh file (a closed, outward-facing surface):");
   ImGui::SetNextItemWidth(520.0f);
-  changed |= ImGui::InputText("##file", path_, sizeof path_);
+  // The path is what the dialog is for: typing goes into it at once, and Enter imports (as the
+  // Open and Save As dialogs do). Esc, once the field is let go, cancels.
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  const bool enter =
+      ImGui::InputText("##file", path_, sizeof path_, ImGuiInputTextFlags_EnterReturnsTrue);
+  changed |= ImGui::IsItemEdited();
   ImGui::PushItemWidth(260.0f);
   changed |= ImGui::Checkbox("Fit to a size", &options_.fit);
   if (options_.fit) {
@@ -71,9 +76,11 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
     previewed_ = true;
   }
   ImGui::SameLine();
-  const bool import = ImGui::Button(kind_ == Kind::Garment ? "Import" : "Add");
+  const bool import = ImGui::Button(kind_ == Kind::Garment ? "Import" : "Add") || enter;
   ImGui::SameLine();
-  const bool cancel = ImGui::Button("Cancel");
+  const bool cancel =
+      ImGui::Button("Cancel") || (!ImGui::IsAnyItemActive() && !ImGui::IsWindowAppearing() &&
+                                  ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false));
   if (previewed_) {
     if (preview_.ok()) {
       const Vec3 size = preview_.upper - preview_.lower;

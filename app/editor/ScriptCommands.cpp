@@ -37,6 +37,7 @@ std::string scriptActionKind(const nlohmann::json& action) {
                         "select_band",
                         "pin",
                         "simulate",
+                        "wait_simulation",
                         "cancel",
                         "scrub",
                         "step",
@@ -96,7 +97,8 @@ std::string scriptActionKind(const nlohmann::json& action) {
                         "key_down",
                         "key_up",
                         "type",
-                        "close"})
+                        "close",
+                        "provoke_imgui_assertion"})
     if (action.contains(k)) return k;
   return action.begin().key();
 }

@@ -3,18 +3,43 @@
 #include "EditorApp.h"
 #include "ScriptCommands.h"
 
+#include <iterator>
+
 namespace weft::editor {
 namespace {
 
 // A point of a raw-input action in window pixels (x right, y down from the window's top-left,
 // what ImGui's io.MousePos takes): [x, y], or {"viewport": [x, y]} in the viewport pixels of
-// click and box_select, placed where the last frame laid the viewport out.
+// click and box_select, placed where the last frame laid the viewport out, or {"item": NAME}:
+// where the last frame drew the named item (EditorApp::itemPoint: a document field by its path,
+// "tab:scene", "timeline:simulate"...), or {"item_index": k}: the k-th of those items by name.
 Eigen::Vector2f pointOf(const nlohmann::json& j, const char* what, const EditorApp& app) {
+  if (j.is_object() && j.contains("item_index")) {
+    // The k-th named item (by name, modulo their number) of the last frame: lets a generated
+    // script (the monkey test) aim at whatever widgets are on screen.
+    const auto& items = app.itemPoints();
+    if (items.empty())
+      throw std::invalid_argument(std::string(what) +
+                                  ": no named item was drawn in the last frame");
+    const long n = long(items.size());
+    auto it = items.begin();
+    std::advance(it, ((j["item_index"].get<long>() % n) + n) % n);
+    return Eigen::Vector2f(it->second[0], it->second[1]);
+  }
+  if (j.is_object() && j.contains("item")) {
+    const std::string name = j["item"].get<std::string>();
+    const std::array<float, 2>* point = app.itemPoint(name);
+    if (!point)
+      throw std::invalid_argument(std::string(what) + ": the item " + name +
+                                  " was not drawn in the last frame");
+    return Eigen::Vector2f((*point)[0], (*point)[1]);
+  }
   const bool inViewport = j.is_object() && j.contains("viewport");
   const nlohmann::json& p = inViewport ? j["viewport"] : j;
   if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
     throw std::invalid_argument(std::string(what) +
-                                " takes [x, y] in window pixels or {\"viewport\": [x, y]}");
+                                " takes [x, y] in window pixels, {\"viewport\": [x, y]} or "
+                                "{\"item\": NAME}");
   Eigen::Vector2f at(p[0].get<float>(), p[1].get<float>());
   if (inViewport) at += Eigen::Vector2f(float(app.viewportX()), float(app.viewportY()));
   return at;

@@ -40,6 +40,26 @@ bool simulate(ScriptCall& call) {
   return true;
 }
 
+// Lets UI frames pass until the simulation running (one the Simulate button started) ends;
+// done at once when none runs. Fails after "timeout_seconds" (default 300).
+bool waitSimulation(ScriptCall& call) {
+  ScriptProgress& progress = call.progress;
+  SimulationCache& cache = call.session.cache();
+  if (!progress.waitingForSimulation) {
+    progress.waitingForSimulation = true;
+    progress.waitStarted = scriptClock();
+    progress.timeout = call.action.value("timeout_seconds", 300.0);
+  }
+  if (cache.running()) {
+    if (scriptClock() - progress.waitStarted > progress.timeout) {
+      cache.cancel();
+      call.fail("the simulation did not finish within " + std::to_string(progress.timeout) + " s");
+    }
+    return false;
+  }
+  return true;
+}
+
 bool cancel(ScriptCall& call) {
   call.session.cache().cancel();
   return true;
@@ -76,6 +96,7 @@ bool frames(ScriptCall& call) {
 
 void addPlaybackCommands(ScriptCommandTable& table) {
   table["simulate"] = simulate;
+  table["wait_simulation"] = waitSimulation;
   table["cancel"] = cancel;
   table["scrub"] = scrub;
   table["step"] = step;

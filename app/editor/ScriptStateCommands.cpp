@@ -94,6 +94,9 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"cache_stale", session.timeline().cacheStale()},
           {"cache_unconverged_steps", convergence.unconverged},
           {"cache_max_depth", convergence.maxDepth},
+          {"solver_banner", app.solverBanner().empty() ? nlohmann::json(nullptr)
+                                                       : nlohmann::json(app.solverBanner())},
+          {"unconverged_ticks", app.unconvergedTicks()},
           {"frame", session.playback().frame()},
           {"selected", session.selection().nodes()},
           {"can_undo", doc.canUndo()},
@@ -123,11 +126,14 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
             {"distance", camera.distance},
             {"target", jsonOf(camera.target.cast<double>())}}},
           {"playing", session.playback().playing()},
+          {"animating", session.animating()},
           {"dialog", dialog},
           {"close_prompt", app.closePromptOpen()},
           {"unsaved_prompt", app.unsavedPrompt().empty() ? nlohmann::json(nullptr)
                                                          : nlohmann::json(app.unsavedPrompt())},
           {"close_confirmed", app.closeConfirmed()},
+          {"imgui_assertions", app.recoveredAssertions()},
+          {"items", app.itemPoints()},
           {"document", doc.document()}};
 }
 
@@ -161,11 +167,18 @@ bool writeState(ScriptCall& call) {
   return true;
 }
 
+// The recovery check (EditorApp::provokeAssertion): the next frame breaks ImGui's contract.
+bool provokeImGuiAssertion(ScriptCall& call) {
+  call.app.provokeAssertion();
+  return true;
+}
+
 }  // namespace
 
 void addStateCommands(ScriptCommandTable& table) {
   table["expect"] = expect;
   table["write_state"] = writeState;
+  table["provoke_imgui_assertion"] = provokeImGuiAssertion;
 }
 
 }  // namespace weft::editor

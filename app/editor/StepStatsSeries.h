@@ -23,10 +23,14 @@ class StepStatsSeries {
   // log10 of the residual (m/s^2): it spans decades, so a linear plot shows only its peaks.
   const std::vector<float>& log10Residual() const { return log10Residual_; }
   bool anyContact() const { return anyContact_; }
+  // The states (1..N) whose step stopped at the iteration limit above the tolerance, in order:
+  // the timeline marks each with a red tick.
+  const std::vector<int>& unconvergedStates() const { return unconverged_; }
 
  private:
   long runId_ = -1;
   std::vector<float> takeoff_, stick_, slip_, pdIterations_, log10Residual_;
+  std::vector<int> unconverged_;
   bool anyContact_ = false;
 };
 

@@ -5,6 +5,7 @@
 
 #include <imgui.h>
 
+#include <cfloat>
 #include <cstdio>
 #include <string>
 
@@ -110,11 +111,12 @@ void TargetPanel::draw(EditorSession& session, EditorApp& app) {
   } else {
     ImGui::TextDisabled("No target motion (a positions.npy of weft simulate).");
   }
-  ImGui::SetNextItemWidth(250.0f);
+  // The path on a line of its own, the buttons under it: side by side they did not fit the panel
+  // ("Load shape" was clipped to "Lo").
+  ImGui::SetNextItemWidth(-FLT_MIN);
   ImGui::InputText("##motion", motionPath_, sizeof motionPath_);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("A positions.npy for Load motion, or a mesh file for Load shape");
-  ImGui::SameLine();
   ImGui::BeginDisabled(motionPath_[0] == '\0');
   if (ImGui::Button("Load motion")) {
     const std::string error = session.targets().loadTargetMotion(motionPath_);

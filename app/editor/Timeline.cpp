@@ -33,6 +33,15 @@ double Timeline::time() const {
   return scene ? std::round(playback_.frame() * scene->time.dt * 1e12) / 1e12 : 0.0;
 }
 
+void Timeline::goToStart() {
+  playback_.scrub(0, frames());
+}
+
+void Timeline::goToEnd() {
+  const int available = cache_.frameCount();
+  playback_.scrub(available > 0 ? available - 1 : frames() - 1, frames());
+}
+
 void Timeline::togglePlayback() {
   // Playing on from the end would stop at once. A growing cache is left alone (its end is not
   // the end).

@@ -31,6 +31,10 @@ class Timeline {
   double time() const;
   // The scene whose time steps the timeline counts: the document's, or the last valid one.
   const Scene* scene() const;
+  // |< and Home: the first state. >| and End: the last simulated state, or the timeline's last
+  // when nothing is cached. Playing or paused as before.
+  void goToStart();
+  void goToEnd();
   // Play or pause (the Play button, Space). Play at the last state starts again from the first.
   void togglePlayback();
   // Playback advance over `seconds`, clamping the frame to the timeline.

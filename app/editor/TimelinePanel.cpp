@@ -16,6 +16,8 @@ TimelinePanel::TimelinePanel(EditorSession& session, EditorApp& app)
     : session_(session), app_(app) {}
 
 void TimelinePanel::draw(float left, float top, float width, float height) {
+  banner_.clear();
+  unconvergedTicks_ = 0;
   ImGui::SetNextWindowPos(ImVec2(left, top));
   ImGui::SetNextWindowSize(ImVec2(width, height));
   ImGui::Begin("Timeline", nullptr, kFixedWindow);
@@ -26,9 +28,16 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   ImGui::BeginDisabled(!doc.valid() || cache.running());
   if (ImGui::Button("Simulate")) {
     const std::string error = session_.timeline().simulate();
-    app_.report(error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : error,
-                !error.empty());
+    runMessage_ = error.empty() ? "simulating " + std::to_string(sceneSteps) + " steps" : "";
+    app_.report(error.empty() ? runMessage_ : error, !error.empty());
   }
+  // "simulating N steps" is true while the run lasts; the verdict line says how it ended. Any
+  // other message reported since is left alone.
+  if (!runMessage_.empty() && !cache.running()) {
+    if (app_.message() == runMessage_) app_.report("", false);
+    runMessage_.clear();
+  }
+  app_.noteLastItem("timeline:simulate");
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::Text("%d steps (time.steps)", sceneSteps);
@@ -53,23 +62,43 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
         "The scene changed since this simulation: the frames are stale. Simulate again.");
   } else {
     // The run's verdict: a step that stopped at the iteration limit is never shown as a result
-    // without saying so (the same report as `weft simulate`'s).
+    // without saying so (the same report as `weft simulate`'s). Unconverged steps get a banner
+    // (red, the width of the panel, one line so that the panel keeps its height) with the worst
+    // residual against the tolerance of the run's own settings, and a red tick each on the
+    // slider below.
     const ConvergenceReport run = cache.convergence();
-    if (run.steps == 0)
+    const auto simulated = cache.scene();
+    if (run.steps == 0) {
       ImGui::TextDisabled("solver: no steps simulated");
-    else if (run.unconverged == 0 && run.maxDepth <= ConvergenceReport::kDepthTolerance)
+    } else if (run.unconverged > 0 && simulated) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "%d of %d steps unconverged at %d iterations: worst residual %.3g m/s^2, "
+                    "tolerance %.3g (state %d)",
+                    run.unconverged, run.steps, simulated->solver.pdIterations, run.worstResidual,
+                    simulated->solver.pdTolerance, run.worstResidualStep);
+      banner_ = text;
+      const ImVec2 at = ImGui::GetCursorScreenPos();
+      const float h = ImGui::GetTextLineHeight();
+      ImGui::GetWindowDrawList()->AddRectFilled(
+          ImVec2(at.x - 4.0f, at.y - 1.0f),
+          ImVec2(at.x + ImGui::GetContentRegionAvail().x + 4.0f, at.y + h + 1.0f),
+          ImGui::GetColorU32(kUnconvergedColour));
+      ImGui::TextColored(ImVec4(1, 1, 1, 1), "%s", text);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "These steps stopped at solver.pd_iterations with the residual (the mass-weighted\n"
+            "imbalance of the step's equations) above solver.pd_tolerance: their states are not\n"
+            "solutions. Red ticks on the slider mark them; raise the iteration cap, loosen the\n"
+            "tolerance or shorten dt.");
+    } else if (run.maxDepth <= ConvergenceReport::kDepthTolerance) {
       ImGui::TextColored(kOkColour, "solver: all %d steps converged", run.steps);
-    else if (run.unconverged == 0)
+    } else {
       ImGui::TextColored(kWarningColour,
                          "solver: all %d steps converged; deepest %.2f mm into an obstacle's skin "
                          "(state %d)",
                          run.steps, 1e3 * run.maxDepth, run.maxDepthStep);
-    else
-      ImGui::TextColored(kWarningColour,
-                         "solver: %d of %d steps stopped at the iteration limit (worst residual "
-                         "%.3g m/s^2, state %d); deepest %.2f mm into an obstacle's skin",
-                         run.unconverged, run.steps, run.worstResidual, run.worstResidualStep,
-                         1e3 * run.maxDepth);
+    }
   }
 
   Playback& playback = session_.playback();
@@ -77,19 +106,25 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   // anywhere); beyond the cache the viewport keeps the last cached state.
   const int frames = session_.timeline().frames();
   ImGui::BeginDisabled(frames <= 1);
-  if (ImGui::Button("|<")) playback.step(-1, frames);
+  if (ImGui::Button("|<")) session_.timeline().goToStart();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The first state (Home)");
+  app_.noteLastItem("timeline:start");
   ImGui::SameLine();
   ImGui::BeginDisabled(available == 0);
   if (ImGui::Button(playback.playing() ? "Pause" : "Play")) session_.timeline().togglePlayback();
+  app_.noteLastItem("timeline:play");
   ImGui::EndDisabled();
   ImGui::SameLine();
-  if (ImGui::Button(">|")) playback.step(1, frames);
+  if (ImGui::Button(">|")) session_.timeline().goToEnd();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The last simulated state (End)");
+  app_.noteLastItem("timeline:end");
   ImGui::SameLine();
   int k = playback.frame();
   ImGui::SetNextItemWidth(std::max(100.0f, ImGui::GetContentRegionAvail().x - 260.0f));
   if (ImGui::SliderInt("##frame", &k, 0, std::max(frames - 1, 0),
                        k < available ? "state %d" : "state %d (not simulated)"))
     playback.scrub(k, frames);
+  if (!session_.timeline().cacheStale()) drawUnconvergedTicks(frames);
   drawKeyTicks(frames);
   ImGui::EndDisabled();
   ImGui::SameLine();
@@ -118,28 +153,52 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   if (session_.placement().activeObject().kind == EditorObject::Kind::Handle)
     keyControls();
   else
-    ImGui::TextDisabled("Space: play/pause   Left/Right: step one state");
+    ImGui::TextDisabled("Space: play/pause   Left/Right: step one state   Home/End: first/last");
   ImGui::End();
+}
+
+namespace {
+
+// Where state `frame` of `frames` lies on the slider just drawn: where its grab's centre would
+// stand (Dear ImGui 1.86 SliderBehaviorT: 2 px padding, a grab of max(width / (range + 1),
+// GrabMinSize) whose centre travels the rest).
+float sliderX(double frame, int frames) {
+  const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
+  const float padding = 2.0f, width = high.x - low.x - 2.0f * padding;
+  const float grab =
+      std::min(std::max(width / float(frames), ImGui::GetStyle().GrabMinSize), width);
+  return low.x + padding + 0.5f * grab + float(frame / double(frames - 1)) * (width - grab);
+}
+
+}  // namespace
+
+void TimelinePanel::drawUnconvergedTicks(int frames) {
+  // A red tick along the slider's top edge per state whose step stopped at the iteration limit.
+  if (frames <= 1) return;
+  const ImVec2 low = ImGui::GetItemRectMin();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  for (const int state : session_.stepSeries().unconvergedStates()) {
+    if (state >= frames) break;
+    const float x = sliderX(state, frames);
+    draw->AddRectFilled(ImVec2(x - 1.0f, low.y), ImVec2(x + 1.0f, low.y + 7.0f),
+                        ImGui::GetColorU32(kUnconvergedColour));
+    ++unconvergedTicks_;
+  }
 }
 
 void TimelinePanel::drawKeyTicks(int frames) {
   // The active handle's keys as ticks on the slider just drawn, where its grab would stand at
-  // the key's frame (Dear ImGui 1.86 SliderBehaviorT: 2 px padding, a grab of
-  // max(width / (range + 1), GrabMinSize) whose centre travels the rest).
+  // the key's frame.
   const std::vector<HandleKey> keys = session_.placement().keys();
   const EditorDocument& doc = session_.document();
   if (keys.empty() || frames <= 1 || !doc.valid()) return;
   const double dt = doc.scene()->time.dt;
   const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
-  const float padding = 2.0f, width = high.x - low.x - 2.0f * padding;
-  const float grab =
-      std::min(std::max(width / float(frames), ImGui::GetStyle().GrabMinSize), width);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   for (const HandleKey& key : keys) {
     const double frame = key.time / dt;
     if (frame < -0.5 || frame > frames - 0.5) continue;
-    const float x =
-        low.x + padding + 0.5f * grab + float(frame / double(frames - 1)) * (width - grab);
+    const float x = sliderX(frame, frames);
     draw->AddTriangleFilled(ImVec2(x, high.y - 6.0f), ImVec2(x - 4.0f, high.y + 1.0f),
                             ImVec2(x + 4.0f, high.y + 1.0f), IM_COL32(255, 200, 40, 255));
     draw->AddLine(ImVec2(x, low.y), ImVec2(x, high.y), IM_COL32(255, 200, 40, 160), 1.0f);

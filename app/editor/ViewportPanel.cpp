@@ -161,8 +161,11 @@ void ViewportPanel::draw(float left, float top, float width, float height) {
           projectToPixel(camera, scene->cloth.positions.row(node).transpose(), width_, height_);
       if (!p) continue;
       const ImVec2 at(origin.x + p->x(), origin.y + p->y());
-      draw->AddCircleFilled(at, 4.0f, IM_COL32(255, 210, 60, 255));
-      // The inspected vertex gets a ring: its dot alone looks like a slip-branch vertex.
+      // White with a dark rim: unlike every contact branch's colour (blue take-off, red stick,
+      // yellow slip), the cloth's orange and blue, targets' purple and handles' green.
+      draw->AddCircleFilled(at, 4.5f, IM_COL32(20, 20, 24, 255));
+      draw->AddCircleFilled(at, 3.0f, IM_COL32(255, 255, 255, 255));
+      // The inspected vertex gets a ring as well.
       if (node == session_.selection().focus()) {
         draw->AddCircle(at, 9.0f, IM_COL32(20, 20, 24, 255), 0, 4.0f);
         draw->AddCircle(at, 9.0f, IM_COL32(255, 255, 255, 255), 0, 2.0f);

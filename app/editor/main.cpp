@@ -168,12 +168,41 @@ int runHeadless(const Options& o, EditorSession& session, std::optional<ScriptRu
   return code;
 }
 
+// Idle costs nothing: with nothing animating (EditorSession::animating) the window sleeps in
+// glfwWaitEventsTimeout until input arrives, instead of drawing frames nobody needs. Any input
+// event (these callbacks, installed before ImGui's GLFW backend, which calls them on) buys a few
+// frames: ImGui acts on a click in one frame and draws its result in the next, and hover and
+// popups settle over a frame or two more. The timeout only bounds how stale a picture can get.
+constexpr int kFramesAfterInput = 4;
+constexpr double kIdleTimeoutSeconds = 1.0;
+int framesAfterInput = kFramesAfterInput;
+
+void noteInput() {
+  framesAfterInput = kFramesAfterInput;
+}
+void installInputWake(GLFWwindow* window) {
+  glfwSetCursorPosCallback(window, [](GLFWwindow*, double, double) { noteInput(); });
+  glfwSetMouseButtonCallback(window, [](GLFWwindow*, int, int, int) { noteInput(); });
+  glfwSetScrollCallback(window, [](GLFWwindow*, double, double) { noteInput(); });
+  glfwSetKeyCallback(window, [](GLFWwindow*, int, int, int, int) { noteInput(); });
+  glfwSetCharCallback(window, [](GLFWwindow*, unsigned) { noteInput(); });
+  glfwSetWindowFocusCallback(window, [](GLFWwindow*, int) { noteInput(); });
+  glfwSetCursorEnterCallback(window, [](GLFWwindow*, int) { noteInput(); });
+  glfwSetWindowSizeCallback(window, [](GLFWwindow*, int, int) { noteInput(); });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow*, int, int) { noteInput(); });
+  glfwSetWindowRefreshCallback(window, [](GLFWwindow*) { noteInput(); });
+  glfwSetWindowIconifyCallback(window, [](GLFWwindow*, int) { noteInput(); });
+  glfwSetWindowCloseCallback(window, [](GLFWwindow*) { noteInput(); });
+}
+
 int runWindow(const Options& o, EditorSession& session, std::optional<ScriptRunner>& script) {
   render::GlfwContext context("Weft editor", o.width, o.height);
   glfwSwapInterval(1);
   int code = 0;
   {
     EditorApp app(session, context);
+    installInputWake(context.window());
+    bool wasAnimating = true;
     ImGui_ImplGlfw_InitForOpenGL(context.window(), true);
     code = loop(
         session, app, script,
@@ -183,7 +212,15 @@ int runWindow(const Options& o, EditorSession& session, std::optional<ScriptRunn
             app.requestClose();
           }
           if (app.closeConfirmed()) return false;
-          glfwPollEvents();
+          // A script drives every frame itself: it never waits. Once animation stops (a run
+          // ends) one more frame shows where it stopped.
+          const bool animating = session.animating();
+          if (!script && !animating && !wasAnimating && framesAfterInput <= 0)
+            glfwWaitEventsTimeout(kIdleTimeoutSeconds);
+          else
+            glfwPollEvents();
+          wasAnimating = animating;
+          if (framesAfterInput > 0) --framesAfterInput;
           ImGui_ImplGlfw_NewFrame();
           // Once a script plays raw input, it overrides the window's mouse and the keys it holds.
           if (script && script->input().used()) script->input().apply(ImGui::GetIO());

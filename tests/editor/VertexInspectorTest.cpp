@@ -126,20 +126,28 @@ TEST(StepStatsSeries, FollowsTheCachedStepsAndRestartsWithARun) {
   cache.wait();
   series.update(cache);
   ASSERT_EQ(series.size(), steps);
+  std::vector<int> unconverged;
   for (int k = 1; k <= steps; ++k) {
     const StepStats& s = cache.frame(k)->stats;
+    if (!s.converged) unconverged.push_back(k);
     EXPECT_EQ(series.takeoff()[std::size_t(k - 1)], float(s.takeoff));
     EXPECT_EQ(series.stick()[std::size_t(k - 1)], float(s.stick));
     EXPECT_EQ(series.slip()[std::size_t(k - 1)], float(s.slip));
     EXPECT_EQ(series.pdIterations()[std::size_t(k - 1)], float(s.pdIterations));
   }
   EXPECT_TRUE(series.anyContact());
+  EXPECT_EQ(series.unconvergedStates(), unconverged);
   series.update(cache);
   EXPECT_EQ(series.size(), steps) << "no frame is appended twice";
-  cache.start(scene, 3);
+  // A new run, capped at one iteration per step against a tolerance none reaches.
+  Scene capped = test::parse(dropOnSphere(steps));
+  capped.solver.pdIterations = 1;
+  capped.solver.pdTolerance = 1e-14;
+  cache.start(std::make_shared<const Scene>(capped), 3);
   cache.wait();
   series.update(cache);
   EXPECT_EQ(series.size(), 3) << "a new run starts a new series";
+  EXPECT_EQ(series.unconvergedStates(), (std::vector<int>{1, 2, 3}));
 }
 
 }  // namespace
