@@ -64,6 +64,20 @@ std::vector<std::string> withoutColumns(const std::string& path, std::vector<std
   return lines;
 }
 
+// Runs `args` once serially into dir/serial and once under mpirun into dir/mpi (--out appended);
+// both must succeed. Returns the mpirun run.
+test::ProcessResult runSerialThenMpi(const std::vector<std::string>& args, const TempDir& dir,
+                                     int ranks = 2) {
+  auto serialArgs = args, mpiArgs = args;
+  serialArgs.insert(serialArgs.end(), {"--out", dir.file("serial")});
+  mpiArgs.insert(mpiArgs.end(), {"--out", dir.file("mpi")});
+  const test::ProcessResult serial = runWeft(serialArgs);
+  EXPECT_EQ(serial.exitCode, 0) << describe(serial);
+  const test::ProcessResult mpi = mpirunWeft(ranks, mpiArgs);
+  EXPECT_EQ(mpi.exitCode, 0) << describe(mpi);
+  return mpi;
+}
+
 TEST(DistributedCli, SweepWritesTheSerialFileApartFromItsTimingColumns) {
   TempDir dir;
   const std::string scene =
@@ -72,13 +86,8 @@ TEST(DistributedCli, SweepWritesTheSerialFileApartFromItsTimingColumns) {
                                       "--set-grid", "cloths.0.material.stretch=100,300,900",
                                       "--set-grid", "cloths.0.material.bend=0,0.001",
                                       "--quiet"};
-  auto serialArgs = args, mpiArgs = args;
-  serialArgs.insert(serialArgs.end(), {"--out", dir.file("serial")});
-  mpiArgs.insert(mpiArgs.end(), {"--out", dir.file("mpi")});
-  const test::ProcessResult serial = runWeft(serialArgs);
-  ASSERT_EQ(serial.exitCode, 0) << describe(serial);
-  const test::ProcessResult mpi = mpirunWeft(2, mpiArgs);
-  ASSERT_EQ(mpi.exitCode, 0) << describe(mpi);
+  const test::ProcessResult mpi = runSerialThenMpi(args, dir);
+  ASSERT_EQ(mpi.exitCode, 0);
   EXPECT_THAT(mpi.out, ::testing::HasSubstr("6 runs, 0 failed"));
   EXPECT_THAT(mpi.out, ::testing::HasSubstr("MPI, 2 ranks"));
   const auto header =
@@ -116,13 +125,7 @@ TEST(DistributedCli, LandscapeIsTheSerialFileByteForByte) {
                                       "--grid",    "3",
                                       "--quiet",   "--threads",
                                       "1"};
-  auto serialArgs = args, mpiArgs = args;
-  serialArgs.insert(serialArgs.end(), {"--out", dir.file("serial")});
-  mpiArgs.insert(mpiArgs.end(), {"--out", dir.file("mpi")});
-  const test::ProcessResult serial = runWeft(serialArgs);
-  ASSERT_EQ(serial.exitCode, 0) << describe(serial);
-  const test::ProcessResult mpi = mpirunWeft(2, mpiArgs);
-  ASSERT_EQ(mpi.exitCode, 0) << describe(mpi);
+  ASSERT_EQ(runSerialThenMpi(args, dir).exitCode, 0);
   EXPECT_EQ(readFile(dir.file("serial/landscape.csv")), readFile(dir.file("mpi/landscape.csv")));
   EXPECT_EQ(test::splitLines(readFile(dir.file("mpi/landscape.csv"))).size(), 10u);
 }
