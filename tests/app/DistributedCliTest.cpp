@@ -67,7 +67,7 @@ std::vector<std::string> withoutColumns(const std::string& path, std::vector<std
 // Runs `args` once serially into dir/serial and once under mpirun into dir/mpi (--out appended);
 // both must succeed. Returns the mpirun run.
 test::ProcessResult runSerialThenMpi(const std::vector<std::string>& args, const TempDir& dir,
-                                     int ranks = 2) {
+                                     int ranks = 3) {
   auto serialArgs = args, mpiArgs = args;
   serialArgs.insert(serialArgs.end(), {"--out", dir.file("serial")});
   mpiArgs.insert(mpiArgs.end(), {"--out", dir.file("mpi")});
@@ -89,7 +89,7 @@ TEST(DistributedCli, SweepWritesTheSerialFileApartFromItsTimingColumns) {
   const test::ProcessResult mpi = runSerialThenMpi(args, dir);
   ASSERT_EQ(mpi.exitCode, 0);
   EXPECT_THAT(mpi.out, ::testing::HasSubstr("6 runs, 0 failed"));
-  EXPECT_THAT(mpi.out, ::testing::HasSubstr("MPI, 2 ranks"));
+  EXPECT_THAT(mpi.out, ::testing::HasSubstr("MPI, 3 ranks"));
   const auto header =
       test::splitCommas(test::splitLines(readFile(dir.file("serial/sweep.csv")))[0]);
   const std::size_t n = header.size();
@@ -156,6 +156,30 @@ TEST(DistributedCli, GradientFreeOptimisersLogTheSerialRun) {
       fs::remove_all(dir.file("mpi"));
     }
   }
+}
+
+TEST(DistributedCli, QuickApplicationsOnThreeRanksStoreTheSerialRuns) {
+  TempDir dir;
+  const test::ProcessResult mpi =
+      runSerialThenMpi({"bench", "applications", "--quick", "--tasks", "napkin_4x4,wind_sysid",
+                        "--seeds", "2", "--budget", "1200", "--threads", "1"},
+                       dir);
+  ASSERT_EQ(mpi.exitCode, 0);
+  EXPECT_THAT(mpi.out, ::testing::HasSubstr("12 run(s) made, 0 resumed"));
+  int compared = 0;
+  for (const auto& e : fs::directory_iterator(dir.file("serial/runs"))) {
+    if (e.path().extension() != ".csv") continue;
+    const std::string name = e.path().filename().string();
+    // task,method,seed,evaluation,steps,wall_s,loss: all but the wall seconds.
+    EXPECT_EQ(withoutColumns(e.path(), {5}), withoutColumns(dir.file("mpi/runs/" + name), {5}))
+        << name;
+    EXPECT_EQ(readFile(dir.file("serial/runs/parameters/" + name)),
+              readFile(dir.file("mpi/runs/parameters/" + name)))
+        << name;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 12);
+  EXPECT_FALSE(fs::exists(dir.file("mpi.partial"))) << "the store is removed once tabulated";
 }
 
 TEST(DistributedCli, GradientMethodsRunOnRankZeroAloneAndSaySo) {
