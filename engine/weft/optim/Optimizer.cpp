@@ -24,11 +24,16 @@ double projectedGradientNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& gr
   return ((x - gradient).cwiseMax(lower).cwiseMin(upper) - x).cwiseAbs().maxCoeff();
 }
 
+std::string Optimizer::refusal(long long cost, long long ahead) const {
+  const long long done = static_cast<long long>(log_.entries().size()) + ahead;
+  if (settings_.maxEvaluations > 0 && done >= settings_.maxEvaluations) return "max evaluations";
+  if (settings_.budget > 0 && log_.steps() + cost * (ahead + 1) > settings_.budget) return "budget";
+  return "";
+}
+
 void Optimizer::admit(long long cost) const {
-  const int done = static_cast<int>(log_.entries().size());
-  if (settings_.maxEvaluations > 0 && done >= settings_.maxEvaluations)
-    throw StopRequest{"max evaluations"};
-  if (settings_.budget > 0 && log_.steps() + cost > settings_.budget) throw StopRequest{"budget"};
+  std::string reason = refusal(cost, 0);
+  if (!reason.empty()) throw StopRequest{std::move(reason)};
 }
 
 double Optimizer::record(LogEntry e, long long cost) {
@@ -77,21 +82,9 @@ std::vector<double> Optimizer::evaluateValues(const std::vector<Eigen::VectorXd>
   // The prefix admit() lets through one point at a time, and why the next one is not.
   std::size_t admitted = 0;
   std::string stop;
-  {
-    const int done = static_cast<int>(log_.entries().size());
-    for (; admitted < points.size(); ++admitted) {
-      const long long index = static_cast<long long>(done) + static_cast<long long>(admitted);
-      if (settings_.maxEvaluations > 0 && index >= settings_.maxEvaluations) {
-        stop = "max evaluations";
-        break;
-      }
-      if (settings_.budget > 0 &&
-          log_.steps() + cost * static_cast<long long>(admitted + 1) > settings_.budget) {
-        stop = "budget";
-        break;
-      }
-    }
-  }
+  while (admitted < points.size() &&
+         (stop = refusal(cost, static_cast<long long>(admitted))).empty())
+    ++admitted;
   const std::vector<Eigen::VectorXd> batch(points.begin(),
                                            points.begin() + static_cast<std::ptrdiff_t>(admitted));
   std::vector<double> losses;

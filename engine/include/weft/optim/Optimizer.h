@@ -95,6 +95,9 @@ class Optimizer {
  private:
   // Checks the cap and the budget for an evaluation costing `cost` steps (throws StopRequest).
   void admit(long long cost) const;
+  // Why an evaluation costing `cost` steps, `ahead` evaluations after the logged ones, would not
+  // be admitted ("max evaluations", "budget"), or empty when it would.
+  std::string refusal(long long cost, long long ahead) const;
   double record(LogEntry entry, long long cost);
 
   OptimizerSettings settings_;
