@@ -3,7 +3,8 @@
 #
 #   scripts/sanitize.sh [--max-seconds S]
 #
-# Builds every target with WEFT_SANITIZE=address,undefined (-O1 -g) into build-asan/ (or
+# Builds every target with WEFT_SANITIZE=address,undefined (-O1, -g1: line tables, enough for
+# the reports' stacks, and lighter to build than full debug information) into build-asan/ (or
 # $WEFT_ASAN_BUILD_DIR) and runs through ctest each test that took under S seconds (default 5)
 # in the last normal run (build/Testing/Temporary/CTestCostData.txt, written by ./test.sh), so
 # run ./test.sh first. Tests not timed there (new ones) run too. Any sanitizer report fails its
@@ -35,7 +36,7 @@ slow=$(awk -v max="$max_seconds" '$1 == "---" { exit } NF == 3 && $3 + 0 >= max 
 
 dir=${WEFT_ASAN_BUILD_DIR:-build-asan}
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DWEFT_SANITIZE=address,undefined -DWEFT_BUILD_PYTHON=OFF >/dev/null
 cmake --build "$dir" -j "$(nproc 2>/dev/null || echo 2)"
 
