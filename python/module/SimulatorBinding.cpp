@@ -1,8 +1,9 @@
 // _weft.Simulator: the engine's Simulator stepped from Python, one step per call, so that a script
-// can look at (or act on) the state between steps. The state is returned as copies. Every state
-// is recorded (a Trajectory), so that backward_step can run the backward pass of any step taken
-// (diff/StepBackward.h): what training a policy that acts between steps needs (DiffCloth
-// Sec. 6.5).
+// can look at (or act on) the state between steps: drive the handles (a policy's action) or set
+// the state. The state is returned as copies. Every state is recorded (a Trajectory), so that
+// backward_step can run the backward pass of any step taken (diff/StepBackward.h), with the
+// gradient of the handles' driven offsets: what training a policy that acts between steps needs
+// (DiffCloth Sec. 6.5, Fig. 13).
 
 #include "Bindings.h"
 #include "NumpyArrays.h"
@@ -12,6 +13,7 @@
 #include <weft/core/Error.h>
 #include <weft/diff/ParameterSet.h>
 #include <weft/diff/StepBackward.h>
+#include <weft/physics/Model.h>
 #include <weft/physics/Simulator.h>
 #include <weft/record/Trajectory.h>
 
@@ -33,20 +35,40 @@ struct SteppedRun {
   std::vector<std::string> backwardPaths;
   std::unique_ptr<ParameterSet> parameters;
   std::unique_ptr<StepBackward> backward;
-  int backwardSteps = -1;  // the trajectory's step count when `backward` was made
+  int backwardSteps = -1;    // the trajectory's step count when `backward` was made
+  std::vector<char> driven;  // per handle: driven from Python (drive_handles) at least once
+  int stateSetAt = 0;        // the last state set from Python (set_state); 0 if none
 };
 
-NodeMatrix toNodeMatrix(const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
-                        int vertices, const char* name) {
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+NodeMatrix toNodeMatrix(const DoubleArray& a, int vertices, const char* name,
+                        const char* call = "backward_step") {
   if (a.ndim() != 2 || a.shape(0) != vertices || a.shape(1) != 3)
-    throw InputError("backward_step", name,
-                     "expects a [" + std::to_string(vertices) + ", 3] array");
+    throw InputError(call, name, "expects a [" + std::to_string(vertices) + ", 3] array");
   NodeMatrix x(vertices, 3);
   const auto r = a.unchecked<2>();
   for (int i = 0; i < vertices; ++i)
     for (int c = 0; c < 3; ++c) x(i, c) = r(i, c);
-  if (!x.allFinite()) throw InputError("backward_step", name, "is not finite");
+  if (!x.allFinite()) throw InputError(call, name, "is not finite");
   return x;
+}
+
+// A parameter whose partials read a driven handle's trajectory or target (ParameterPartials),
+// which the driven run no longer follows.
+void refuseDrivenHandleParameters(const SteppedRun& run, const ParameterSet& parameters) {
+  const std::vector<HandleGroup>& handles = run.sim->model().handles();
+  for (const SceneParameter& p : parameters.parameters()) {
+    using Kind = SceneParameter::Kind;
+    if (p.kind != Kind::HandleOffset && p.kind != Kind::HandleTangent &&
+        p.kind != Kind::AttachmentStiffness)
+      continue;
+    for (std::size_t g = 0; g < handles.size(); ++g)
+      if (run.driven[g] && handles[g].cloth == p.cloth && handles[g].attachment == p.index)
+        throw InputError("backward_step", p.path,
+                         "is a parameter of handle " + std::to_string(g) +
+                             ", which is driven from Python; its gradient is dL_dhandles");
+  }
 }
 
 py::dict backwardStep(SteppedRun& run, int n,
@@ -58,9 +80,16 @@ py::dict backwardStep(SteppedRun& run, int n,
     throw InputError(
         "backward_step", "step",
         "must name a step taken, 0.." + std::to_string(steps - 1) + ", got " + std::to_string(n));
+  if (n < run.stateSetAt)
+    throw InputError("backward_step", "step",
+                     "the state was set from Python at step " + std::to_string(run.stateSetAt) +
+                         "; the steps before it are not part of this run's backward pass, got " +
+                         std::to_string(n));
   const int m = run.sim->cloth().nodeCount();
   const NodeMatrix dLdx1 = toNodeMatrix(dx, m, "dL_dx"), dLdv1 = toNodeMatrix(dv, m, "dL_dv");
   NodeMatrix dLdx0 = NodeMatrix::Zero(m, 3), dLdv0(m, 3);
+  NodeMatrix dLdHandles =
+      NodeMatrix::Zero(static_cast<Eigen::Index>(run.sim->model().handles().size()), 3);
   Eigen::VectorXd gradient;
   {
     py::gil_scoped_release released;
@@ -68,6 +97,7 @@ py::dict backwardStep(SteppedRun& run, int n,
       run.backward.reset();
       run.parameters =
           std::make_unique<ParameterSet>(ParameterSet::fromPaths(run.sim->scene(), paths));
+      refuseDrivenHandleParameters(run, *run.parameters);
       // Each step's adjoint solved by the direct LU: a step's product exact to round-off.
       BackwardSettings settings = run.sim->scene().solver.backward;
       settings.method = "direct";
@@ -76,7 +106,7 @@ py::dict backwardStep(SteppedRun& run, int n,
       run.backwardSteps = steps;
     }
     gradient = Eigen::VectorXd::Zero(run.parameters->size());
-    run.backward->step(n, dLdx1, dLdv1, dLdx0, dLdv0, gradient);
+    run.backward->step(n, dLdx1, dLdv1, dLdx0, dLdv0, gradient, &dLdHandles);
     if (n == 0) run.backward->addInitial(dLdv0, gradient);
   }
   py::dict params;
@@ -86,6 +116,50 @@ py::dict backwardStep(SteppedRun& run, int n,
   out["dL_dx"] = nodeArray(dLdx0);
   out["dL_dv"] = nodeArray(dLdv0);
   out["dL_dparams"] = params;
+  out["dL_dhandles"] = nodeArray(dLdHandles);
+  return out;
+}
+
+void driveHandles(SteppedRun& run, const DoubleArray& offsets) {
+  const int count = static_cast<int>(run.sim->model().handles().size());
+  if (count == 0) throw InputError("drive_handles", "offsets", "the scene has no handles");
+  const NodeMatrix o = toNodeMatrix(offsets, count, "offsets", "drive_handles");
+  for (int g = 0; g < count; ++g) {
+    run.sim->driveHandle(g, o.row(g).transpose());
+    run.driven[static_cast<std::size_t>(g)] = 1;
+  }
+}
+
+void setState(SteppedRun& run, const DoubleArray& x, const DoubleArray& v) {
+  const int m = run.sim->cloth().nodeCount();
+  const NodeMatrix xs = toNodeMatrix(x, m, "positions", "set_state");
+  const NodeMatrix vs = toNodeMatrix(v, m, "velocities", "set_state");
+  const int step = run.sim->stepIndex();
+  run.sim->restart(step, xs, vs);
+  if (!run.trajectory.positions.empty()) {
+    // The recorded state `step` is now the one set: the steps after it start from it.
+    run.trajectory.positions.back() = xs;
+    run.trajectory.velocities.back() = vs;
+  }
+  run.stateSetAt = step;
+  run.backward.reset();
+}
+
+py::list handleList(const SteppedRun& run) {
+  py::list out;
+  const NodeMatrix& rest = run.sim->cloth().rest.vertices;
+  for (const HandleGroup& g : run.sim->model().handles()) {
+    NodeMatrix anchors(static_cast<Eigen::Index>(g.nodes.size()), 3);
+    for (std::size_t k = 0; k < g.nodes.size(); ++k)
+      anchors.row(static_cast<Eigen::Index>(k)) = rest.row(g.nodes[k]);
+    py::dict h;
+    h["cloth"] = g.cloth;
+    h["attachment"] = g.attachment;
+    h["vertices"] = vectorArray(g.nodes);
+    h["anchors"] = nodeArray(anchors);
+    h["stiffness"] = g.stiffness;
+    out.append(h);
+  }
   return out;
 }
 
@@ -100,6 +174,7 @@ void bindSimulator(py::module_& m) {
              py::gil_scoped_release released;
              auto run = std::make_unique<SteppedRun>();
              run->sim = std::make_unique<Simulator>(source.load());
+             run->driven.assign(run->sim->model().handles().size(), 0);
              return run;
            }),
            py::arg("file"), py::arg("document"), py::arg("overrides"))
@@ -118,6 +193,13 @@ void bindSimulator(py::module_& m) {
       .def("backward_step", &backwardStep, py::arg("step"), py::arg("dL_dx"), py::arg("dL_dv"),
            py::arg("params"),
            "The backward pass of step `step` (state step -> step + 1) of the run so far.")
+      .def("drive_handles", &driveHandles, py::arg("offsets"),
+           "Drives every handle to its anchors + offsets[h] from the next step on.")
+      .def("set_state", &setState, py::arg("positions"), py::arg("velocities"),
+           "Replaces the current state.")
+      .def_property_readonly(
+          "handles", &handleList,
+          "The scene's handles: cloth, attachment, vertices, anchors, stiffness.")
       .def_property_readonly(
           "positions", [](const SteppedRun& r) { return nodeArray(r.sim->positions()); },
           "The current positions, a [vertices, 3] copy.")

@@ -16,6 +16,7 @@ RuntimeError) where it exits 3. str(error) is the CLI's message without its "err
 The engine's warnings (repaired meshes, unconverged steps) are issued as WeftWarning.
 """
 
+import collections as _collections
 import json
 import os
 import threading as _threading
@@ -203,6 +204,13 @@ def gradient(scene, params=None, set=None, values=None):
     return result
 
 
+StepGradient = _collections.namedtuple(
+    "StepGradient", ["dL_dx", "dL_dv", "dL_dparams", "dL_dhandles"])
+StepGradient.__doc__ = """Simulator.backward_step's result: dL/dx and dL/dv at the step's start
+state ([vertices, 3]), {path: dL/dp} of the step, and dL/d(offset) of each handle's driven target
+over the step ([handles, 3])."""
+
+
 class Simulator:
     """A scene's simulator, stepped one step at a time.
 
@@ -213,6 +221,10 @@ class Simulator:
 
     The states are those of weft.simulate (and `weft simulate`) step for step. A step runs
     without the GIL; calls on one Simulator from several threads take turns.
+
+    A script may act between steps: drive_handles moves the handles (a policy's action, as in
+    DiffCloth Sec. 6.5), set_state replaces the state. backward_step returns the gradient of the
+    driven handles' offsets with the rest of the step's backward pass.
     """
 
     def __init__(self, scene, set=None):
@@ -236,10 +248,40 @@ class Simulator:
         weft.gradient's pass; a policy acting between steps interleaves its own terms. Each step's
         adjoint is solved by the direct sparse LU (exact to round-off; DiffCloth Eqs. 16-19, 29).
         Go from later steps to earlier ones. Bad input raises InputError.
+
+        Returns a StepGradient (dL_dx, dL_dv, dL_dparams, dL_dhandles); dL_dhandles[h] is
+        dL/d(offset) of handle h's target over this step (see drive_handles), whether or not it
+        was driven. Parameters of a driven handle's trajectory or stiffness are refused: the run
+        no longer follows them. Steps before the last set_state are refused.
         """
         with self._lock:
             r = self._sim.backward_step(int(step), dL_dx, dL_dv, list(params))
-        return r["dL_dx"], r["dL_dv"], dict(r["dL_dparams"])
+        return StepGradient(r["dL_dx"], r["dL_dv"], dict(r["dL_dparams"]), r["dL_dhandles"])
+
+    @property
+    def handles(self):
+        """The scene's handles (attachments of kind "handle") in scene order: a list of dicts
+        with `cloth`, `attachment` (its index in the cloth's attachments), `vertices` (global
+        vertex indices), `anchors` (their initial positions, [k, 3]) and `stiffness`."""
+        with self._lock:
+            return self._sim.handles
+
+    def drive_handles(self, offsets):
+        """Drives the handles: from the next step on, handle h's vertices are pulled to their
+        anchors + offsets[h] (a translation, [handles, 3], in metres), held over each step,
+        until driven again; the handles' trajectories in the scene no longer apply. A policy's
+        action (the end effectors' next positions, DiffCloth Sec. 6.5): set it before each
+        step. backward_step's dL_dhandles is the gradient of the offsets a step was driven to.
+        """
+        with self._lock:
+            self._sim.drive_handles(offsets)
+
+    def set_state(self, positions, velocities):
+        """Replaces the current state ([vertices, 3] each, finite); the solver's warm start is
+        dropped. The steps after it start from this state; backward_step covers only the steps
+        from here on, and its dL/dx, dL/dv at this step are the gradient of the state set."""
+        with self._lock:
+            self._sim.set_state(positions, velocities)
 
     @property
     def positions(self):

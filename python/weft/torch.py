@@ -53,20 +53,27 @@ def task_loss(values, scene, params, set=None):
 
 
 class _Step(_torch.autograd.Function):
-    """(x_n, v_n, theta) -> (x_{n+1}, v_{n+1}): one step of a Rollout's simulator."""
+    """(x_n, v_n, theta, action) -> (x_{n+1}, v_{n+1}): one step of a Rollout's simulator, its
+    handles driven to `action` (offsets, [handles, 3]) when one is given."""
 
     @staticmethod
-    def forward(ctx, x, v, theta, rollout):
+    def forward(ctx, x, v, theta, action, rollout):
         sim = rollout.simulator
-        if not (_np.array_equal(x.detach().cpu().numpy(), sim.positions)
-                and _np.array_equal(v.detach().cpu().numpy(), sim.velocities)):
-            raise ValueError(
-                "Rollout.step: x and v must be the simulator's current state (the previous "
-                "step's outputs, or Rollout.initial_state()); the state cannot be set from "
-                "Python yet")
+        xs, vs = x.detach().cpu().numpy(), v.detach().cpu().numpy()
+        if not (_np.array_equal(xs, sim.positions) and _np.array_equal(vs, sim.velocities)):
+            if sim.step_index != 0:
+                raise ValueError(
+                    "Rollout.step: x and v must be the simulator's current state (the previous "
+                    "step's outputs); only the initial state may be replaced")
+            sim.set_state(xs, vs)
+        if action is not None:
+            if action.dtype != _torch.float64:
+                raise TypeError(f"action: a float64 tensor, got {action.dtype}")
+            sim.drive_handles(action.detach().cpu().numpy())
         ctx.rollout = rollout
         ctx.step = sim.step_index
         ctx.device = x.device
+        ctx.has_action = action is not None
         sim.step()
         return (_torch.tensor(sim.positions, dtype=_torch.float64, device=x.device),
                 _torch.tensor(sim.velocities, dtype=_torch.float64, device=x.device))
@@ -74,13 +81,14 @@ class _Step(_torch.autograd.Function):
     @staticmethod
     def backward(ctx, grad_x, grad_v):
         rollout = ctx.rollout
-        dx, dv, dp = rollout.simulator.backward_step(
+        dx, dv, dp, dh = rollout.simulator.backward_step(
             ctx.step, grad_x.detach().cpu().numpy(), grad_v.detach().cpu().numpy(),
             params=rollout.params)
         grad_theta = _torch.tensor([dp[p] for p in rollout.params], dtype=_torch.float64,
                                    device=ctx.device)
+        grad_action = _torch.tensor(dh, device=ctx.device) if ctx.has_action else None
         return (_torch.tensor(dx, device=ctx.device), _torch.tensor(dv, device=ctx.device),
-                grad_theta, None)
+                grad_theta, grad_action, None)
 
 
 class Rollout:
@@ -96,8 +104,13 @@ class Rollout:
     Each step's backward is weft.Simulator.backward_step (the direct LU per step, exact to
     round-off), called by autograd from the last step to the first. `theta` is a leaf tensor of
     offsets from the parameters' scene values, zero: the run is at the scene's values (set them
-    with `set=`), and theta.grad is dL/dp there, every step's part summed. The steps must be chained:
-    x and v must be the simulator's current state (the state cannot be set from Python yet).
+    with `set=`), and theta.grad is dL/dp there, every step's part summed. The steps must be
+    chained: x and v must be the simulator's current state, except at the first step, where any
+    state may be given (it is set with Simulator.set_state).
+
+    A step may take an action: step(x, v, action) drives the handles to `action`, offsets from
+    their anchors ([handles, 3], float64; Simulator.drive_handles), and gradients reach it, so a
+    policy a = pi(s) trained through the simulator gets dL/dtheta (DiffCloth Sec. 6.5, Fig. 13).
     """
 
     def __init__(self, scene, params=(), set=None):
@@ -110,6 +123,12 @@ class Rollout:
         return (_torch.tensor(self.simulator.positions, requires_grad=requires_grad),
                 _torch.tensor(self.simulator.velocities, requires_grad=requires_grad))
 
-    def step(self, x, v):
-        """One step from (x, v), the current state: (x_{n+1}, v_{n+1})."""
-        return _Step.apply(x, v, self.theta, self)
+    def step(self, x, v, action=None):
+        """One step from (x, v), the current state, the handles driven to `action` when given:
+        (x_{n+1}, v_{n+1})."""
+        return _Step.apply(x, v, self.theta, action, self)
+
+    @property
+    def handles(self):
+        """The scene's handles (Simulator.handles)."""
+        return self.simulator.handles

@@ -122,3 +122,56 @@ class RolloutTest(unittest.TestCase):
         rollout.step(x, v)
         with self.assertRaises(ValueError):
             rollout.step(x, v)  # the state before, not the simulator's current one
+
+
+@unittest.skipIf(torch is None, "PyTorch is not installed (python3-torch)")
+class ActionRolloutTest(unittest.TestCase):
+    """Rollout.step with actions (the handles driven from Python): gradcheck of a loss on the
+    last state as a function of every step's action, without and with contact."""
+
+    def run_actions(self, scene, actions, weights):
+        rollout = weft_torch.Rollout(scene)
+        x, v = rollout.initial_state(requires_grad=False)
+        for a in actions:
+            x, v = rollout.step(x, v, a)
+        return (weights * x).sum()
+
+    def test_gradcheck_through_actions(self):
+        from test_drive import scene
+        s = scene(steps=4, keyframes=False)
+        weights = torch.tensor(
+            __import__("numpy").random.default_rng(2).uniform(-1, 1, (36, 3)))
+        actions = torch.tensor(
+            __import__("numpy").random.default_rng(4).uniform(-0.02, 0.02, (4, 2, 3)),
+            requires_grad=True)
+        self.assertTrue(torch.autograd.gradcheck(
+            lambda a: self.run_actions(s, a, weights), (actions,), eps=1e-6, atol=1e-6,
+            rtol=1e-5))
+
+    def test_gradcheck_through_actions_with_contact(self):
+        # CONTACT's cloth sliding on the sphere, two corners held by handles the actions drive.
+        import copy
+        s = copy.deepcopy(CONTACT)
+        s.pop("task")
+        s["cloths"][0]["attachments"] = [
+            {"vertices": [0], "kind": "handle", "stiffness": 2000.0,
+             "trajectory": {"keyframes": [{"time": 0.0, "offset": [0, 0, 0]}]}},
+            {"vertices": [24], "kind": "handle", "stiffness": 2000.0,
+             "trajectory": {"keyframes": [{"time": 0.0, "offset": [0, 0, 0]}]}}]
+        steps = 8
+        s["time"]["steps"] = steps
+        rng = __import__("numpy").random.default_rng(6)
+        weights = torch.tensor(rng.uniform(-1, 1, (25, 3)))
+        drift = __import__("numpy").array([0.003, -0.005, 0.0])
+        actions = torch.tensor([[drift * (n + 1), drift * (n + 1)] for n in range(steps)]
+                               + rng.uniform(-0.002, 0.002, (steps, 2, 3)), requires_grad=True)
+        sim = weft.Simulator(s)
+        touching = 0
+        for a in actions.detach().numpy():
+            sim.drive_handles(a)
+            stats = sim.step()
+            touching += stats["takeoff"] + stats["stick"] + stats["slip"]
+        self.assertGreater(touching, 0)
+        self.assertTrue(torch.autograd.gradcheck(
+            lambda a: self.run_actions(s, a, weights), (actions,), eps=1e-6, atol=1e-5,
+            rtol=1e-4))

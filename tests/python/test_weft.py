@@ -197,7 +197,7 @@ class BackwardStepTest(unittest.TestCase):
         dx, dv = weights.copy(), np.zeros((sim.vertices, 3))
         total = 0.0
         for n in range(11, -1, -1):
-            dx, dv, dp = sim.backward_step(n, dx, dv, params=["wind.strength"])
+            dx, dv, dp, _ = sim.backward_step(n, dx, dv, params=["wind.strength"])
             total += dp["wind.strength"]
         h = 1e-4 * 1.5
         fd = (self.final_value(weights, 1.5 + h) - self.final_value(weights, 1.5 - h)) / (2 * h)

@@ -3,6 +3,7 @@
 #include <weft/diff/AdjointSystem.h>
 #include <weft/diff/ContactAdjoint.h>
 #include <weft/diff/ParameterPartials.h>
+#include <weft/physics/Model.h>
 
 #include <chrono>
 #include <stdexcept>
@@ -80,6 +81,13 @@ void StepBackward::backStep(Piece& a, const NodeMatrix& x0, const NodeMatrix& v0
   // Force-like parameters enter f as well as G1: their partials take S^T z = z + wbar.
   forceLike_ = z_ + wbar_;
   a.partials.accumulate(x0, v0, x1, t1, forceLike_, gradient);
+  if (handleSink_) {
+    const std::vector<HandleGroup>& handles = trajectory_.model->handles();
+    for (std::size_t g = 0; g < handles.size(); ++g)
+      for (int j : handles[g].nodes)
+        handleSink_->row(static_cast<Eigen::Index>(g)) +=
+            h * h * handles[g].stiffness * forceLike_.row(j);
+  }
   dLdx0 += model.mass.asDiagonal() * z_ - dLdvNext_ / h;
   // Projections set from x_n enter the step like a force (b, and through it f): S^T z.
   if (a.system.dependsOnStart()) a.system.addStartGradient(x0, forceLike_, dLdx0);
@@ -92,10 +100,15 @@ void StepBackward::backStep(Piece& a, const NodeMatrix& x0, const NodeMatrix& v0
 }
 
 void StepBackward::step(int n, const NodeMatrix& dLdx1, const NodeMatrix& dLdv1, NodeMatrix& dLdx0,
-                        NodeMatrix& dLdv0, Eigen::VectorXd& gradient) {
+                        NodeMatrix& dLdv0, Eigen::VectorXd& gradient,
+                        NodeMatrix* dLdHandleOffsets) {
   const Trajectory& t = trajectory_;
   if (n < 0 || n >= t.stepCount())
     throw std::invalid_argument("StepBackward::step: no step " + std::to_string(n));
+  if (dLdHandleOffsets &&
+      (dLdHandleOffsets->rows() != static_cast<Eigen::Index>(t.model->handles().size())))
+    throw std::invalid_argument("StepBackward::step: dLdHandleOffsets needs one row per handle");
+  handleSink_ = dLdHandleOffsets;
   dLdvNext_ = dLdv1;
   const std::vector<Substep>* split =
       n < static_cast<int>(t.substeps.size()) && !t.substeps[n].empty() ? &t.substeps[n] : nullptr;
@@ -117,6 +130,7 @@ void StepBackward::step(int n, const NodeMatrix& dLdx1, const NodeMatrix& dLdv1,
     }
   }
   dLdv0 = dLdvNext_;
+  handleSink_ = nullptr;
 }
 
 void StepBackward::addInitial(const NodeMatrix& dLdv0, Eigen::VectorXd& gradient) const {

@@ -18,12 +18,21 @@ AttachmentConstraint::AttachmentConstraint(const char* name, std::vector<Row> ro
     sel.emplace_back(r, rows_[r].node, 1.0);
   }
   targets_ = anchors_;
+  driven_.assign(static_cast<std::size_t>(n), 0);
+  driveOffsets_ = NodeMatrix::Zero(n, 3);
   setSelection(static_cast<int>(initial.rows()), sel);
+}
+
+void AttachmentConstraint::drive(int row, const Vec3& offset) {
+  driven_.at(static_cast<std::size_t>(row)) = 1;
+  driveOffsets_.row(row) = offset.transpose();
 }
 
 void AttachmentConstraint::beginStep(double time, const NodeMatrix& /*start*/) {
   for (int r = 0; r < rowCount(); ++r)
-    if (rows_[r].trajectory)
+    if (driven_[r])
+      targets_.row(r) = anchors_.row(r) + driveOffsets_.row(r);
+    else if (rows_[r].trajectory)
       targets_.row(r) = rows_[r].trajectory->target(anchors_.row(r).transpose(), time).transpose();
 }
 

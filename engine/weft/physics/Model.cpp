@@ -63,6 +63,20 @@ std::shared_ptr<const Model::Parts> Model::compileParts(const Scene& scene) {
   for (std::size_t c = 0; c < scene.cloths.size(); ++c)
     for (int i = cloth.vertexOffset[c]; i < cloth.vertexOffset[c + 1]; ++i)
       velocities.row(i) = scene.cloths[c].initialVelocity.transpose();
+
+  // The same order as makeAttachmentConstraint's rows for the handles.
+  for (std::size_t c = 0; c < scene.cloths.size(); ++c) {
+    const auto& attachments = scene.cloths[c].attachments;
+    for (std::size_t j = 0; j < attachments.size(); ++j) {
+      if (attachments[j].kind != Attachment::Kind::Handle) continue;
+      HandleGroup group;
+      group.cloth = static_cast<int>(c);
+      group.attachment = static_cast<int>(j);
+      group.stiffness = attachments[j].stiffness;
+      for (int v : attachments[j].vertices) group.nodes.push_back(cloth.vertexOffset[c] + v);
+      parts->handles.push_back(std::move(group));
+    }
+  }
   return parts;
 }
 

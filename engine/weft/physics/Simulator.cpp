@@ -2,6 +2,7 @@
 
 #include <weft/contact/FrictionalContact.h>
 #include <weft/core/Error.h>
+#include <weft/physics/AttachmentConstraint.h>
 #include <weft/physics/ExternalForce.h>
 #include <weft/physics/ModuleTimer.h>
 #include <weft/physics/ProjectiveConstraint.h>
@@ -48,7 +49,11 @@ Simulator::Simulator(std::shared_ptr<const Model> model)
   // rows, its forces, contact for obstacles or self-collision).
   solverModule_ = timer_->add("solver");
   constraints_ = compiled_->instantiateConstraints();
-  for (const auto& c : constraints_) constraintModule_.push_back(timer_->add(c->name()));
+  for (const auto& c : constraints_) {
+    constraintModule_.push_back(timer_->add(c->name()));
+    if (std::string(c->name()) == "handles")
+      handles_ = dynamic_cast<AttachmentConstraint*>(c.get());
+  }
   for (const auto& f : compiled_->forces()) forceModule_.push_back(timer_->add(f->name()));
 
   if (compiled_->hasContact()) {
@@ -332,6 +337,17 @@ void Simulator::restart(int step, const NodeMatrix& x, const NodeMatrix& v) {
   warmStartStep_ = h_;
   nextStart_ = 0;
   cleanSteps_ = 0;
+}
+
+void Simulator::driveHandle(int handle, const Vec3& offset) {
+  const std::vector<HandleGroup>& groups = compiled_->handles();
+  if (handle < 0 || handle >= static_cast<int>(groups.size()) || !handles_)
+    throw std::out_of_range("Simulator::driveHandle: the scene has no handle " +
+                            std::to_string(handle));
+  int row = 0;  // the handles family's rows take the groups in order
+  for (int g = 0; g < handle; ++g) row += static_cast<int>(groups[g].nodes.size());
+  for (std::size_t k = 0; k < groups[handle].nodes.size(); ++k)
+    handles_->drive(row + static_cast<int>(k), offset);
 }
 
 void Simulator::diagnoseNonFinite(const NodeMatrix& lastGood, double t1) const {

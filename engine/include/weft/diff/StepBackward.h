@@ -39,8 +39,13 @@ class StepBackward {
   // dL/dv_n into dLdv0 and adds the step's dL/dtheta to `gradient` (the ParameterSet's order).
   // dLdx1 and dLdv1 may not alias dLdx0 or dLdv0. Throws NumericalError where the adjoint
   // solve fails (AdjointSolver).
+  //
+  // With dLdHandleOffsets (model().handles().size() x 3), also adds the step's dL/d(offset) of
+  // each handle's target held over the step (Simulator::driveHandle): an attachment row adds
+  // h^2 k (x_j - x_hat_j) to G, so -z . dG/d offset = h^2 k sum_j (z + wbar)_j, summed over the
+  // pieces of a split step (ParameterPartials' handle term at unit knot weight).
   void step(int n, const NodeMatrix& dLdx1, const NodeMatrix& dLdv1, NodeMatrix& dLdx0,
-            NodeMatrix& dLdv0, Eigen::VectorXd& gradient);
+            NodeMatrix& dLdv0, Eigen::VectorXd& gradient, NodeMatrix* dLdHandleOffsets = nullptr);
   // The initial state's own dependence on the parameters (cloths.K.initial_velocity), from
   // dL/dv_0: added once, after step 0.
   void addInitial(const NodeMatrix& dLdv0, Eigen::VectorXd& gradient) const;
@@ -66,6 +71,7 @@ class StepBackward {
   AdjointGrowth growth_;
   NodeMatrix rhs_, z_, wbar_, dLdv_, forceLike_, dLdxPiece_, dLdxPieceNext_, dLdvNext_;
   Eigen::MatrixX3d y_;
+  NodeMatrix* handleSink_ = nullptr;  // step()'s dLdHandleOffsets while it runs
   double deltaPSeconds_ = 0.0, deltaRSeconds_ = 0.0;
 };
 

@@ -24,6 +24,15 @@ class ExternalForce;
 class ObstacleShape;
 class ProjectiveConstraint;
 
+// A handle (an attachment of kind "handle"): its nodes, in the order of the handles
+// constraint's rows, which take the handles in scene order (cloth, then attachment).
+struct HandleGroup {
+  int cloth = 0;
+  int attachment = 0;      // index in the cloth's attachments
+  std::vector<int> nodes;  // global node indices
+  double stiffness = 0.0;  // per node (PD attachment weight)
+};
+
 class Model {
  public:
   // Compiles `scene` (a validated scene from the scene loader; the model keeps its own copy).
@@ -60,6 +69,8 @@ class Model {
   bool hasContact() const { return !scene_.obstacles.empty() || scene_.hasSelfCollision(); }
   // Every node's velocity at t = 0 (its cloth's initial_velocity).
   const NodeMatrix& initialVelocities() const { return parts_->initialVelocities; }
+  // The scene's handles in scene order (empty without handles).
+  const std::vector<HandleGroup>& handles() const { return parts_->handles; }
 
  private:
   // What the scene compiles to, independent of its time step.
@@ -69,6 +80,7 @@ class Model {
     std::vector<std::unique_ptr<ExternalForce>> forces;
     std::vector<std::shared_ptr<const ObstacleShape>> obstacleShapes;
     NodeMatrix initialVelocities;
+    std::vector<HandleGroup> handles;
     ~Parts();
   };
   Model(Scene scene, std::shared_ptr<const Parts> parts);

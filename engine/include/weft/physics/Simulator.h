@@ -27,6 +27,7 @@
 namespace weft {
 
 // The engine's internals the simulator owns (private headers of the engine).
+class AttachmentConstraint;
 class ExternalForce;
 class FrictionalContact;
 class ModuleTimer;
@@ -67,6 +68,13 @@ class Simulator {
   // (finite differences of dL/dx_n); contact warm starts are not carried over, so use it where
   // the forward solve is converged tightly enough not to depend on its start.
   void restart(int step, const NodeMatrix& x, const NodeMatrix& v);
+
+  // Drives handle `handle` (in model().handles()' order): from the next step on, its nodes'
+  // targets are their initial positions + offset (a translation held over the whole step, each
+  // piece of a split step included) until it is driven again; its trajectory no longer applies.
+  // What a policy acting between steps sets (DiffCloth Sec. 6.5, the end effectors' next
+  // positions). Throws std::out_of_range for a handle the scene does not have.
+  void driveHandle(int handle, const Vec3& offset);
 
   // Modules built for this scene, in a fixed order, with their accumulated seconds.
   const std::vector<std::string>& moduleNames() const;
@@ -111,6 +119,7 @@ class Simulator {
   double h_;
   std::unique_ptr<ModuleTimer> timer_;
   std::vector<std::unique_ptr<ProjectiveConstraint>> constraints_;
+  AttachmentConstraint* handles_ = nullptr;  // the handles family in constraints_, if any
   std::vector<int> constraintModule_;
   std::vector<int> forceModule_;  // the timing module of each of the model's forces
   int solverModule_ = -1;
