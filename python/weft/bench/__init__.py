@@ -1,0 +1,1 @@
+"""Python benchmarks (python3 -m weft.bench NAME)."""
