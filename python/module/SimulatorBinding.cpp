@@ -15,11 +15,14 @@
 #include <weft/diff/StepBackward.h>
 #include <weft/physics/Model.h>
 #include <weft/physics/Simulator.h>
+#include <weft/record/StepContacts.h>
 #include <weft/record/Trajectory.h>
 
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace weft::python {
 
@@ -145,6 +148,40 @@ void setState(SteppedRun& run, const DoubleArray& x, const DoubleArray& v) {
   run.backward.reset();
 }
 
+// The last step's contacts (record/ContactPoint.h) as arrays, one row per contact.
+py::dict contactArrays(const SteppedRun& run) {
+  static const StepContacts none;
+  const StepContacts& last = run.trajectory.contacts.empty() ? none : run.trajectory.contacts.back();
+  const std::size_t k = last.points.size();
+  std::vector<int> node(k), partner(k), obstacle(k);
+  std::vector<std::uint8_t> branch(k);
+  std::vector<double> friction(k);
+  NodeMatrix normal(static_cast<Eigen::Index>(k), 3), impulse(static_cast<Eigen::Index>(k), 3),
+      velocity(static_cast<Eigen::Index>(k), 3);
+  for (std::size_t i = 0; i < k; ++i) {
+    const ContactPoint& c = last.points[i];
+    const auto r = static_cast<Eigen::Index>(i);
+    node[i] = c.node;
+    partner[i] = c.partner;
+    obstacle[i] = c.obstacle;
+    branch[i] = static_cast<std::uint8_t>(c.branch);
+    friction[i] = c.friction;
+    normal.row(r) = c.normal.transpose();
+    impulse.row(r) = c.impulse.transpose();
+    velocity.row(r) = c.velocity.transpose();
+  }
+  py::dict out;
+  out["node"] = vectorArray(node);
+  out["partner"] = vectorArray(partner);
+  out["obstacle"] = vectorArray(obstacle);
+  out["branch"] = vectorArray(branch);
+  out["friction"] = vectorArray(friction);
+  out["normal"] = nodeArray(normal);
+  out["impulse"] = nodeArray(impulse);
+  out["velocity"] = nodeArray(velocity);
+  return out;
+}
+
 py::list handleList(const SteppedRun& run) {
   py::list out;
   const NodeMatrix& rest = run.sim->cloth().rest.vertices;
@@ -197,6 +234,8 @@ void bindSimulator(py::module_& m) {
            "Drives every handle to its anchors + offsets[h] from the next step on.")
       .def("set_state", &setState, py::arg("positions"), py::arg("velocities"),
            "Replaces the current state.")
+      .def_property_readonly("contacts", &contactArrays,
+                             "The last step's contacts as arrays, one row per contact.")
       .def_property_readonly(
           "handles", &handleList,
           "The scene's handles: cloth, attachment, vertices, anchors, stiffness.")

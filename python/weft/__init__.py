@@ -259,6 +259,18 @@ class Simulator:
         return StepGradient(r["dL_dx"], r["dL_dv"], dict(r["dL_dparams"]), r["dL_dhandles"])
 
     @property
+    def contacts(self):
+        """The last step's contacts (none before the first step or without contact), one row
+        per contact, as a dict of arrays: `node` (the cloth vertex; the lower of a
+        self-collision pair), `partner` (the pair's other vertex, else -1), `obstacle` (the
+        scene obstacle, else -1), `branch` (DiffCloth Eq. 8: 1 take-off, 2 stick, 3 slip, as in
+        contact_branches.npy), `friction`, and [k, 3] arrays `normal` (unit, out of the
+        obstacle or from partner to node), `impulse` (N s on `node`; the mean force is
+        impulse / dt) and `velocity` (the velocity the law holds for, m/s)."""
+        with self._lock:
+            return self._sim.contacts
+
+    @property
     def handles(self):
         """The scene's handles (attachments of kind "handle") in scene order: a list of dicts
         with `cloth`, `attachment` (its index in the cloth's attachments), `vertices` (global

@@ -74,6 +74,26 @@ def chain(sim, weights, params=()):
     return per_step, total, dx, dv
 
 
+class ContactArraysTest(unittest.TestCase):
+    def test_contacts_match_the_step_statistics(self):
+        import os
+        source = os.environ.get("WEFT_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+        sim = weft.Simulator(os.path.join(source, "assets", "scenes", "sphere.json"))
+        self.assertEqual(len(sim.contacts["node"]), 0)  # before the first step
+        seen = 0
+        while sim.step_index < 60:
+            stats = sim.step()
+            c = sim.contacts
+            for branch, name in ((1, "takeoff"), (2, "stick"), (3, "slip")):
+                self.assertEqual(int((c["branch"] == branch).sum()), stats[name])
+            self.assertEqual(c["normal"].shape, (len(c["node"]), 3))
+            if len(c["node"]):
+                np.testing.assert_allclose(np.linalg.norm(c["normal"], axis=1), 1.0, atol=1e-12)
+                self.assertTrue(((c["obstacle"] == 0) | (c["partner"] >= 0)).all())
+            seen += len(c["node"])
+        self.assertGreater(seen, 0)
+
+
 class DriveHandlesTest(unittest.TestCase):
     def setUp(self):
         self.weights = np.random.default_rng(11).uniform(-1, 1, (36, 3))

@@ -55,11 +55,13 @@ def _communicator():
     return comm if comm.Get_size() > 1 else None
 
 
-def train_adam(task, policy, epochs, starts_per_epoch=20, lr=3e-3, seed=1, log=None):
+def train_adam(task, policy, epochs, starts_per_epoch=20, lr=3e-3, seed=1, log=None,
+               distribute=True):
     """Adam on the mean L over `starts_per_epoch` random starts per epoch. Returns one record per
     epoch: epoch, simulated_steps (forward steps so far, each with its backward step),
-    train_loss (the epoch's mean L, before its update), seconds."""
-    comm = _communicator()
+    train_loss (the epoch's mean L, before its update), seconds. Under mpirun the rollouts are
+    spread over the ranks unless `distribute` is false."""
+    comm = _communicator() if distribute else None
     rank, size = (comm.Get_rank(), comm.Get_size()) if comm else (0, 1)
     optimizer = _torch.optim.Adam(policy.parameters(), lr=lr)
     params = list(policy.parameters())
