@@ -1,7 +1,8 @@
 """`python3 -m weft.bench hat_controller`: the Hat controller trained through the simulator (Adam)
 against PPO on the same task (DiffCloth Sec. 6.5, Fig. 12), evaluated from 20 fixed test starts.
 
-Writes into --out (default bench-out/hat_controller): curve.csv (training loss against simulated
+Writes into --out (default bench-out/hat_controller): adam_policy.pt (the trained weights,
+torch.save of the Policy's state_dict, written as soon as Adam is done), curve.csv (training loss against simulated
 steps, both methods), test.csv (each test start: elevation, azimuth, L, success, mean distance to
 the target), summary.json and summary.md (the figures docs/python.md quotes), curve.png (L
 against simulated steps, log scale: Adam blue, PPO orange, PPO's running mean of 5 batches in
@@ -20,7 +21,7 @@ import numpy as np
 import torch
 
 from weft.bench.canvas import Axes, Canvas
-from weft.hat.adam import evaluate, train_adam
+from weft.hat.adam import evaluate, train_adam, wait_politely
 from weft.hat.policy import Policy
 from weft.hat.ppo import evaluate_ppo, train_ppo
 from weft.hat.task import HatTask, elevation_azimuth_deg, hemisphere_starts
@@ -107,6 +108,17 @@ def draw_trajectories(path, task, directions, results):
     canvas.save(path)
 
 
+def end_together():
+    """Under mpirun: every rank waits here, with sleeps, until rank 0 is done (mpi4py's
+    MPI_Finalize at exit would otherwise keep the other ranks polling a core each)."""
+    try:
+        from mpi4py import MPI
+    except ImportError:
+        return
+    if MPI.COMM_WORLD.Get_size() > 1:
+        wait_politely(MPI.COMM_WORLD.Ibarrier())
+
+
 def main(argv=None):
     args = parse(argv if argv is not None else sys.argv[1:])
     torch.set_num_threads(1)
@@ -125,8 +137,10 @@ def main(argv=None):
                       log=log_line("adam"))
     adam_seconds = time.perf_counter() - began
     if rank != 0:
+        end_together()
         return 0
     os.makedirs(args.out, exist_ok=True)
+    torch.save(policy.state_dict(), os.path.join(args.out, "adam_policy.pt"))
     adam_tests = evaluate(task, policy, tests)
 
     ppo, ppo_tests, ppo_seconds = [], [], 0.0
@@ -211,6 +225,7 @@ def main(argv=None):
                       adam_tests[:10])
     print("\n".join(lines))
     print(f"written to {args.out}")
+    end_together()
     return 0
 
 

@@ -46,6 +46,13 @@ def evaluate(task, policy, directions):
     return results
 
 
+def wait_politely(request):
+    """Waits for a non-blocking MPI request with sleeps instead of MPI's busy polling, so that a
+    rank waiting for the others leaves its core to them (as the C++ layer's waits do)."""
+    while not request.Test():
+        _time.sleep(0.001)
+
+
 def _communicator():
     try:
         from mpi4py import MPI
@@ -80,7 +87,7 @@ def train_adam(task, policy, epochs, starts_per_epoch=20, lr=3e-3, seed=1, log=N
                     p.grad = _torch.zeros_like(p)
             flat = _np.concatenate([p.grad.numpy().ravel() for p in params] + [[total]])
             summed = _np.zeros_like(flat) if rank == 0 else None
-            comm.Reduce(flat, summed, root=0)
+            wait_politely(comm.Ireduce(flat, summed, root=0))
             if rank == 0:
                 offset = 0
                 for p in params:
@@ -92,7 +99,7 @@ def train_adam(task, policy, epochs, starts_per_epoch=20, lr=3e-3, seed=1, log=N
             optimizer.step()
         if comm:
             weights = _np.concatenate([p.detach().numpy().ravel() for p in params])
-            comm.Bcast(weights, root=0)
+            wait_politely(comm.Ibcast(weights, root=0))
             offset = 0
             with _torch.no_grad():
                 for p in params:
