@@ -151,7 +151,8 @@ void setState(SteppedRun& run, const DoubleArray& x, const DoubleArray& v) {
 // The last step's contacts (record/ContactPoint.h) as arrays, one row per contact.
 py::dict contactArrays(const SteppedRun& run) {
   static const StepContacts none;
-  const StepContacts& last = run.trajectory.contacts.empty() ? none : run.trajectory.contacts.back();
+  const StepContacts& last =
+      run.trajectory.contacts.empty() ? none : run.trajectory.contacts.back();
   const std::size_t k = last.points.size();
   std::vector<int> node(k), partner(k), obstacle(k);
   std::vector<std::uint8_t> branch(k);
