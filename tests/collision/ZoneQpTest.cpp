@@ -128,6 +128,44 @@ TEST(CollisionZoneQp, DuplicatedAndDependentRowsGiveTheSameMinimiser) {
   }
 }
 
+// Zone-like QPs: rows -n^T at one node (against a fixed face) or -n^T, +s n^T at two nodes,
+// with normals within 10^-1 ... 10^-10 of one another, up to three times more rows than
+// variables, and h placing a known point p on or inside every row (so feasible, often
+// degenerate). Every solve must converge and satisfy KKT.
+TEST(CollisionZoneQp, NearlyParallelRowsConverge) {
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int maxIterations = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int nodes = 2 + static_cast<int>(rng() % 8);
+    const Eigen::Index n = 3 * nodes;
+    const Eigen::Index m = 1 + static_cast<Eigen::Index>(rng() % static_cast<unsigned>(3 * n));
+    ZoneQp qp;
+    qp.weights.resize(n);
+    for (int i = 0; i < nodes; ++i)
+      qp.weights.segment<3>(3 * i).setConstant(0.3 + std::abs(u(rng)));
+    qp.x = 0.01 * randomVector(rng, n, -1.0, 1.0);
+    const Eigen::VectorXd p = 0.01 * randomVector(rng, n, -1.0, 1.0);
+    const Eigen::Vector3d base = Eigen::Vector3d(0.1 * u(rng), 0.1 * u(rng), 1.0).normalized();
+    const double spread = std::pow(10.0, -1.0 - static_cast<double>(rng() % 10));
+    qp.G.setZero(m, n);
+    qp.h.resize(m);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const Eigen::Vector3d normal =
+          (base + spread * Eigen::Vector3d(u(rng), u(rng), u(rng))).normalized();
+      const int a = static_cast<int>(rng() % static_cast<unsigned>(nodes));
+      const int b = static_cast<int>(rng() % static_cast<unsigned>(nodes));
+      qp.G.block<1, 3>(j, 3 * a) -= normal.transpose();
+      if (b != a) qp.G.block<1, 3>(j, 3 * b) += std::abs(u(rng)) * normal.transpose();
+      qp.h[j] = -qp.G.row(j).dot(p) - (rng() % 3 == 0 ? 0.0 : 1e-3 * std::abs(u(rng)));
+    }
+    const ZoneQpSolution sol = solveZoneQp(qp);
+    expectKkt(qp, sol, 1e-10);
+    maxIterations = std::max(maxIterations, sol.iterations);
+  }
+  EXPECT_LE(maxIterations, 100);
+}
+
 TEST(CollisionZoneQp, InfeasibleQpIsReported) {
   // z_0 >= 1 and z_0 <= 0 (one node, three coordinates).
   ZoneQp qp;

@@ -70,7 +70,7 @@ ZoneQpSolution solveZoneQp(const ZoneQp& qp, const ZoneQpOptions& options) {
 
   Eigen::MatrixXd NA(n, std::min(m, n));
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(n, std::min(m, n));
-  Eigen::VectorXd g(m), tol(m), z(n), v(n), dir(n), r;
+  Eigen::VectorXd g(m), tol(m), z(n), v(n), dir(n), r(std::min(m, n));
   const double inf = std::numeric_limits<double>::infinity();
 
   auto factorActive = [&]() {
@@ -119,17 +119,17 @@ ZoneQpSolution solveZoneQp(const ZoneQp& qp, const ZoneQpOptions& options) {
       // dir: the part of n_p orthogonal to the active normals; r = N_A^+ n_p.
       if (q > 0) {
         v.noalias() = qr.householderQ().adjoint() * np;
-        r = qr.matrixQR().topLeftCorner(q, q).triangularView<Eigen::Upper>().solve(v.head(q));
+        r.head(q) = v.head(q);
+        qr.matrixQR().topLeftCorner(q, q).triangularView<Eigen::Upper>().solveInPlace(r.head(q));
         v.head(q).setZero();
         dir.noalias() = qr.householderQ() * v;
       } else {
-        r.resize(0);
         dir = np;
       }
       // Partial (dual) step: the largest t keeping every active multiplier u - t r >= 0.
       double t1 = inf;
       Eigen::Index k = -1;
-      const double rScale = q > 0 ? r.cwiseAbs().maxCoeff() : 0.0;
+      const double rScale = q > 0 ? r.head(q).cwiseAbs().maxCoeff() : 0.0;
       for (Eigen::Index i = 0; i < q; ++i) {
         if (r[i] <= options.dependenceTolerance * rScale) continue;
         const double ratio = u[active[static_cast<size_t>(i)]] / r[i];
