@@ -1,0 +1,254 @@
+#include <weft/collision/ImpactZones.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace weft::collision {
+
+namespace {
+
+bool isFixed(const Eigen::VectorXd& masses, int node) {
+  return !std::isfinite(masses[node]);
+}
+
+bool hasFreeNode(const Impact& impact, const Eigen::VectorXd& masses) {
+  for (int k = 0; k < 4; ++k) {
+    const int node = impact.nodes[static_cast<size_t>(k)];
+    if (node >= 0 && impact.weights[static_cast<size_t>(k)] != 0.0 && !isFixed(masses, node))
+      return true;
+  }
+  return false;
+}
+
+// thickness - normal . s(x): positive when the impact's constraint is violated.
+double violation(const Impact& impact, const NodeMatrix& x, double thickness) {
+  Vec3 s = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) {
+    const int node = impact.nodes[static_cast<size_t>(k)];
+    if (node >= 0) s += impact.weights[static_cast<size_t>(k)] * x.row(node).transpose();
+  }
+  return thickness - impact.normal.dot(s);
+}
+
+struct Zone {
+  std::vector<int> nodes;  // free nodes
+  std::vector<Impact> impacts;
+  bool dirty = false;  // grew this round: its QP must be solved again
+  bool alive = true;
+  ZoneQp qp;
+  ZoneQpSolution solution;
+};
+
+// Liang Eqs. 8-9 for one zone: x = x1 at its free nodes, W = mass / mean mass per coordinate,
+// one row per impact, G = -w_k normal^T at free node k, h = thickness - sum over fixed nodes of
+// w_k normal . x1_k. localOf maps a node to its position in zone.nodes (-1 elsewhere).
+void buildZoneQp(Zone& zone, const NodeMatrix& x1, const Eigen::VectorXd& masses, double thickness,
+                 std::vector<int>& localOf) {
+  std::sort(zone.nodes.begin(), zone.nodes.end());
+  const Eigen::Index count = static_cast<Eigen::Index>(zone.nodes.size());
+  const Eigen::Index n = 3 * count;
+  const Eigen::Index m = static_cast<Eigen::Index>(zone.impacts.size());
+  ZoneQp& qp = zone.qp;
+  qp.x.resize(n);
+  qp.weights.resize(n);
+  double meanMass = 0.0;
+  for (int node : zone.nodes) meanMass += masses[node];
+  meanMass /= static_cast<double>(std::max<Eigen::Index>(count, 1));
+  for (Eigen::Index i = 0; i < count; ++i) {
+    const int node = zone.nodes[static_cast<size_t>(i)];
+    localOf[static_cast<size_t>(node)] = static_cast<int>(i);
+    qp.x.segment<3>(3 * i) = x1.row(node).transpose();
+    qp.weights.segment<3>(3 * i).setConstant(masses[node] / meanMass);
+  }
+  qp.G.setZero(m, n);
+  qp.h.resize(m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const Impact& impact = zone.impacts[static_cast<size_t>(j)];
+    qp.h[j] = thickness;
+    for (int k = 0; k < 4; ++k) {
+      const int node = impact.nodes[static_cast<size_t>(k)];
+      const double w = impact.weights[static_cast<size_t>(k)];
+      if (node < 0 || w == 0.0) continue;
+      if (isFixed(masses, node)) {
+        qp.h[j] -= w * impact.normal.dot(x1.row(node).transpose());
+      } else {
+        const int local = localOf[static_cast<size_t>(node)];
+        qp.G.block<1, 3>(j, 3 * local) -= w * impact.normal.transpose();
+      }
+    }
+  }
+  for (int node : zone.nodes) localOf[static_cast<size_t>(node)] = -1;
+}
+
+}  // namespace
+
+ImpactZoneResult ImpactZones::apply(const NodeMatrix& x0, const NodeMatrix& x1,
+                                    const Eigen::VectorXd& masses,
+                                    const ImpactDetector& detect) const {
+  const int m = static_cast<int>(x1.rows());
+  ImpactZoneResult result;
+  result.positions = x1;
+  ImpactZoneStats& stats = result.stats;
+  if (x0.rows() != x1.rows() || masses.size() != x1.rows() || (masses.array() <= 0.0).any() ||
+      masses.hasNaN()) {
+    stats.validInput = false;
+    stats.allQpConverged = false;
+    return result;
+  }
+  std::vector<Zone> zones;
+  std::vector<int> zoneOf(static_cast<size_t>(m), -1);
+  std::vector<int> localOf(static_cast<size_t>(m), -1);
+  std::vector<char> claimed(static_cast<size_t>(m), 0);
+  std::vector<Impact> kept;
+  std::vector<int> touching;
+  bool clean = false;
+
+  for (int round = 0;; ++round) {
+    std::vector<Impact> impacts = detect(x0, result.positions);
+    ++stats.rounds;
+    stats.impactsDetected += static_cast<int>(impacts.size());
+    // Impacts between fixed nodes only cannot be resolved by moving anything: counted, ignored.
+    const auto fixedOnly = std::remove_if(impacts.begin(), impacts.end(),
+                                          [&](const Impact& i) { return !hasFreeNode(i, masses); });
+    stats.impactsWithoutFreeNode += static_cast<int>(impacts.end() - fixedOnly);
+    impacts.erase(fixedOnly, impacts.end());
+    if (impacts.empty()) {
+      clean = true;
+      break;
+    }
+    if (round == options_.maxRounds) {
+      stats.roundCapHit = true;
+      for (const Impact& impact : impacts)
+        stats.maxViolation =
+            std::max(stats.maxViolation, violation(impact, result.positions, options_.thickness));
+      break;
+    }
+
+    // Independent impacts: earliest first; one sharing a free node with a kept one waits.
+    std::stable_sort(impacts.begin(), impacts.end(),
+                     [](const Impact& a, const Impact& b) { return a.time < b.time; });
+    kept.clear();
+    std::fill(claimed.begin(), claimed.end(), 0);
+    for (const Impact& impact : impacts) {
+      bool shares = false;
+      for (int k = 0; k < 4; ++k) {
+        const int node = impact.nodes[static_cast<size_t>(k)];
+        if (node >= 0 && !isFixed(masses, node) && claimed[static_cast<size_t>(node)])
+          shares = true;
+      }
+      if (shares) continue;
+      for (int node : impact.nodes)
+        if (node >= 0 && !isFixed(masses, node)) claimed[static_cast<size_t>(node)] = 1;
+      kept.push_back(impact);
+    }
+    stats.impactsKept += static_cast<int>(kept.size());
+
+    // Union-find over free nodes: the impact joins (and merges) the zones of its free nodes.
+    for (const Impact& impact : kept) {
+      touching.clear();
+      for (int node : impact.nodes)
+        if (node >= 0 && !isFixed(masses, node) && zoneOf[static_cast<size_t>(node)] >= 0)
+          touching.push_back(zoneOf[static_cast<size_t>(node)]);
+      std::sort(touching.begin(), touching.end());
+      touching.erase(std::unique(touching.begin(), touching.end()), touching.end());
+      int target;
+      if (touching.empty()) {
+        target = static_cast<int>(zones.size());
+        zones.emplace_back();
+      } else {
+        // Merge into the largest touching zone, relabelling the others' nodes.
+        target = *std::max_element(touching.begin(), touching.end(), [&](int a, int b) {
+          return zones[static_cast<size_t>(a)].nodes.size() <
+                 zones[static_cast<size_t>(b)].nodes.size();
+        });
+        for (int other : touching) {
+          if (other == target) continue;
+          Zone& from = zones[static_cast<size_t>(other)];
+          Zone& to = zones[static_cast<size_t>(target)];
+          for (int node : from.nodes) zoneOf[static_cast<size_t>(node)] = target;
+          to.nodes.insert(to.nodes.end(), from.nodes.begin(), from.nodes.end());
+          to.impacts.insert(to.impacts.end(), from.impacts.begin(), from.impacts.end());
+          from = Zone();
+          from.alive = false;
+        }
+      }
+      Zone& zone = zones[static_cast<size_t>(target)];
+      for (int k = 0; k < 4; ++k) {
+        const int node = impact.nodes[static_cast<size_t>(k)];
+        if (node < 0 || isFixed(masses, node) || zoneOf[static_cast<size_t>(node)] == target)
+          continue;
+        zoneOf[static_cast<size_t>(node)] = target;
+        zone.nodes.push_back(node);
+      }
+      zone.impacts.push_back(impact);
+      zone.dirty = true;
+    }
+
+    // Re-solve the zones that grew, from x1, over all their impacts.
+    for (Zone& zone : zones) {
+      if (!zone.alive || !zone.dirty) continue;
+      zone.dirty = false;
+      buildZoneQp(zone, x1, masses, options_.thickness, localOf);
+      zone.solution = solveZoneQp(zone.qp, options_.qp);
+      ++stats.qpSolves;
+      stats.qpIterationsTotal += zone.solution.iterations;
+      stats.qpIterationsMax = std::max(stats.qpIterationsMax, zone.solution.iterations);
+      if (!zone.solution.converged) {
+        // The zone's nodes keep their positions; the failure shows in the stats.
+        stats.allQpConverged = false;
+        continue;
+      }
+      for (size_t i = 0; i < zone.nodes.size(); ++i)
+        result.positions.row(zone.nodes[i]) =
+            zone.solution.z.segment<3>(3 * static_cast<Eigen::Index>(i)).transpose();
+    }
+  }
+
+  for (Zone& zone : zones) {
+    if (!zone.alive) continue;
+    for (const Impact& impact : zone.impacts)
+      stats.maxViolation =
+          std::max(stats.maxViolation, violation(impact, result.positions, options_.thickness));
+    stats.constraints += static_cast<int>(zone.impacts.size());
+    ImpactZoneRecord record;
+    record.nodes = std::move(zone.nodes);
+    record.impacts = std::move(zone.impacts);
+    record.qp = std::move(zone.qp);
+    record.solution = std::move(zone.solution);
+    result.zones.push_back(std::move(record));
+  }
+  stats.zones = static_cast<int>(result.zones.size());
+  stats.converged = clean && stats.allQpConverged;
+  return result;
+}
+
+ImpactZoneBackward ImpactZones::backward(const ImpactZoneResult& result, const NodeMatrix& dLdz,
+                                         ZoneGradientMethod method) const {
+  ImpactZoneBackward out;
+  out.dLdx1 = dLdz;
+  Eigen::VectorXd g;
+  for (const ImpactZoneRecord& zone : result.zones) {
+    const Eigen::Index count = static_cast<Eigen::Index>(zone.nodes.size());
+    if (!zone.solution.converged) {
+      // Its nodes were left at x1: the map is the identity there.
+      out.ok = false;
+      out.dLdG.push_back(Eigen::MatrixXd::Zero(zone.qp.G.rows(), zone.qp.G.cols()));
+      out.dLdh.push_back(Eigen::VectorXd::Zero(zone.qp.h.size()));
+      continue;
+    }
+    g.resize(3 * count);
+    for (Eigen::Index i = 0; i < count; ++i)
+      g.segment<3>(3 * i) = dLdz.row(zone.nodes[static_cast<size_t>(i)]).transpose();
+    const ZoneQpGradient grad = method == ZoneGradientMethod::Qr
+                                    ? zoneQpGradientQr(zone.qp, zone.solution, g)
+                                    : zoneQpGradientKkt(zone.qp, zone.solution, g);
+    if (!grad.ok) out.ok = false;
+    for (Eigen::Index i = 0; i < count; ++i)
+      out.dLdx1.row(zone.nodes[static_cast<size_t>(i)]) = grad.dLdx.segment<3>(3 * i).transpose();
+    out.dLdG.push_back(grad.dLdG);
+    out.dLdh.push_back(grad.dLdh);
+  }
+  return out;
+}
+
+}  // namespace weft::collision
