@@ -144,6 +144,19 @@ TEST(CollisionCcd, VertexMovingInTheFacesPlaneAllStep) {
   expectConvention(*impact, start, end);
 }
 
+TEST(CollisionCcd, CoplanarAtRest) {
+  // A flat cloth at rest: the vertex 0.5 beside the face, not moving: nothing; the same within
+  // half the thickness of the edge x = 0: an impact at time 0.
+  const PairPositions apart = faceWithVertex(Vec3(-0.5, 0.25, 0.0));
+  EXPECT_FALSE(vertexFaceCcd(apart, apart, kThickness));
+  const PairPositions close = faceWithVertex(Vec3(-0.5 * kThickness, 0.25, 0.0));
+  const auto impact = vertexFaceCcd(close, close, kThickness);
+  ASSERT_TRUE(impact);
+  EXPECT_EQ(impact->time, 0.0);
+  EXPECT_NEAR((impact->normal - Vec3(-1, 0, 0)).norm(), 0.0, 1e-12);
+  expectConvention(*impact, close, close);
+}
+
 // Edge a from (-1, 0, 0) to (1, 0, 0) rising by aLift; edge b along y at x = 0.3, height bz.
 PairPositions crossingEdges(double bStartZ, double aLift = 0.0) {
   const Vec3 up(0, 0, aLift);

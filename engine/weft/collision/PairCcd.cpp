@@ -249,14 +249,6 @@ Detection finish(ImpactKind kind, const Nodes<double>& start, const Nodes<double
   return d;
 }
 
-// Closest approach time in [0, 1] of two linearly moving points (a quadratic's minimum).
-double closestApproachTime(const V<double>& a0, const V<double>& a1, const V<double>& b0,
-                           const V<double>& b1) {
-  const V<double> r = a0 - b0, dv = (a1 - b1) - r;
-  const double vv = dot(dv, dv);
-  return vv > 0.0 ? std::clamp(-dot(r, dv) / vv, 0.0, 1.0) : 0.0;
-}
-
 std::optional<Detection> detect(ImpactKind kind, const PairPositions& startIn,
                                 const PairPositions& endIn, double thickness) {
   const Nodes<double> start = toNodes(startIn), end = toNodes(endIn);
@@ -275,36 +267,38 @@ std::optional<Detection> detect(ImpactKind kind, const PairPositions& startIn,
         return finish(kind, start, end, t, e, ImpactTimeSource::CoplanarityRoot, length);
     }
   } else {
-    // Coplanar all step: the earliest time closer than the thickness, among even samples and
-    // the closest approaches of the node pairs across the two primitives, refined by bisection.
-    constexpr int kSamples = 256;
-    std::array<double, kSamples + 1 + 4> times;
-    int n = 0;
-    for (int i = 0; i <= kSamples; ++i) times[n++] = static_cast<double>(i) / kSamples;
-    if (kind == ImpactKind::VertexFace) {
-      for (int j = 1; j < 4; ++j)
-        times[n++] = closestApproachTime(start[0], end[0], start[j], end[j]);
-    } else {
-      for (int i = 0; i < 2; ++i)
-        for (int j = 2; j < 4; ++j)
-          times[n++] = closestApproachTime(start[i], end[i], start[j], end[j]);
-    }
-    std::sort(times.begin(), times.begin() + n);
-    double previous = 0.0;
-    for (int i = 0; i < n; ++i) {
-      const double t = times[i];
-      if (evaluate(kind, positionsAt(start, end, t)).distance < thickness) {
-        double lo = previous, hi = t;
-        if (i > 0)
-          for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            (evaluate(kind, positionsAt(start, end, mid)).distance < thickness ? hi : lo) = mid;
-          }
+    // Coplanar all step: the earliest time closer than the thickness by conservative
+    // advancement. The distance changes at most at the rate `speed` (the largest relative
+    // displacement of a node of one primitive to a node of the other), so from a time at
+    // distance d it cannot reach the thickness before (d - thickness) / speed later. Steps are at
+    // least kMinStep, so a dip below the thickness shorter than that, at most speed * kMinStep / 2
+    // deep, can be stepped over; the first step that lands within is refined by bisection.
+    constexpr double kMinStep = 1.0 / 4096;
+    const int firstOther = kind == ImpactKind::VertexFace ? 1 : 2;
+    double speed = 0.0;
+    for (int i = 0; i < firstOther; ++i)
+      for (int j = firstOther; j < 4; ++j) {
+        const V<double> relative = (end[i] - start[i]) - (end[j] - start[j]);
+        speed = std::max(speed, std::sqrt(dot(relative, relative)));
+      }
+    double t = 0.0, distance = evaluate(kind, start).distance;
+    if (distance < thickness)
+      return finish(kind, start, end, 0.0, evaluate(kind, start), ImpactTimeSource::CoplanarSweep,
+                    length);
+    while (speed > 0.0 && t < 1.0) {
+      const double next = std::min(1.0, t + std::max((distance - thickness) / speed, kMinStep));
+      const double nextDistance = evaluate(kind, positionsAt(start, end, next)).distance;
+      if (nextDistance < thickness) {
+        double lo = t, hi = next;
+        for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          (evaluate(kind, positionsAt(start, end, mid)).distance < thickness ? hi : lo) = mid;
+        }
         if (hi >= 1.0) break;  // reported below as proximity at the end of the step
         return finish(kind, start, end, hi, evaluate(kind, positionsAt(start, end, hi)),
                       ImpactTimeSource::CoplanarSweep, length);
       }
-      previous = t;
+      t = next, distance = nextDistance;
     }
   }
   const Evaluation atEnd = evaluate(kind, end);

@@ -54,7 +54,7 @@ std::optional<Impact> pairCcd(ImpactKind kind, const PairPositions& start, const
 enum class ImpactTimeSource : int {
   CoplanarityRoot = 0,  // a root of Liang Eq. 5: t varies (timeOfImpactGradient)
   EndProximity = 1,     // closer than the thickness at the end of the step: t = 1 fixed
-  CoplanarSweep = 2,    // the four points coplanar all step: t found by sampling, held fixed
+  CoplanarSweep = 2,    // coplanar all step: t by conservative advancement, held fixed
 };
 
 // d t / d (start, end) at a simple root t of Liang Eq. 5, by implicit differentiation:
