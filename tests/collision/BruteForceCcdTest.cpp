@@ -79,7 +79,7 @@ double tripleProduct(const PairPositions& x) {
 
 struct Tally {
   int pairs = 0, mustReport = 0, reported = 0, missed = 0, late = 0, falsePositives = 0;
-  int nearMissesWithoutCoplanarity = 0, badTime = 0;
+  int nearMissesWithoutCoplanarity = 0, badTime = 0, badNormal = 0;
 };
 
 void examine(ImpactKind kind, const PairPositions& start, const PairPositions& end, Tally& tally) {
@@ -107,6 +107,15 @@ void examine(ImpactKind kind, const PairPositions& start, const PairPositions& e
   if (impact && oracleDistance(kind, lerp(start, end, impact->time)) >= kThickness * (1 + 1e-6))
     tally.badTime++;
   if (!must && !impact && minDistance < 0.9 * kThickness) tally.nearMissesWithoutCoplanarity++;
+  if (impact) {  // Impact.h: a unit normal with normal . s(start) >= 0, weights summing to zero
+    Vec3 separation = Vec3::Zero();
+    double sum = 0.0;
+    for (int k = 0; k < 4; ++k)
+      separation += impact->weights[k] * start[k], sum += impact->weights[k];
+    if (std::abs(impact->normal.norm() - 1.0) > 1e-12 || impact->normal.dot(separation) < -1e-12 ||
+        std::abs(sum) > 1e-12)
+      tally.badNormal++;
+  }
 }
 
 void report(const char* family, const Tally& t, double falsePositiveBound) {
@@ -118,6 +127,7 @@ void report(const char* family, const Tally& t, double falsePositiveBound) {
   EXPECT_EQ(t.missed, 0) << family;
   EXPECT_EQ(t.late, 0) << family;
   EXPECT_EQ(t.badTime, 0) << family;
+  EXPECT_EQ(t.badNormal, 0) << family;
   EXPECT_LE(t.falsePositives, falsePositiveBound * t.pairs) << family;
   // Not vacuous: the family does produce impacts.
   EXPECT_GT(t.mustReport, t.pairs / 10) << family;
@@ -281,6 +291,7 @@ TEST(CollisionCcdBruteForce, NearParallelMotion) {
   EXPECT_EQ(vf.missed, 0);
   EXPECT_EQ(vf.late, 0);
   EXPECT_EQ(vf.badTime, 0);
+  EXPECT_EQ(vf.badNormal, 0);
   EXPECT_EQ(vf.falsePositives, 0);
   EXPECT_GT(vf.nearMissesWithoutCoplanarity, 0);  // the documented limitation does occur
 }

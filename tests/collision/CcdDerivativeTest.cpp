@@ -186,6 +186,42 @@ TEST(CollisionCcdDerivatives, EdgeEdgeAtACoplanarityRoot) {
   EXPECT_GE(outcome.checked, 40);
 }
 
+TEST(CollisionCcdDerivatives, EdgeEndpointBesideAnEdge) {
+  // b's endpoint b0 passes 0.5 thickness beside a's interior when the pair is coplanar: the
+  // closest point of b is clamped to its end (u = 0) and the normal is the separation direction.
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double thickness = 0.1;
+  Outcome outcome;
+  for (int trial = 0; trial < 60; ++trial) {
+    PairPositions start, end;
+    for (int k = 0; k < 2; ++k) {
+      start[k] = randomVec(rng, 1.0);
+      end[k] = start[k] + randomVec(rng, 0.3);
+    }
+    const double tMeet = 0.5, s = 0.3 + 0.4 * u(rng);
+    PairPositions at;
+    for (int k = 0; k < 2; ++k) at[k] = start[k] + tMeet * (end[k] - start[k]);
+    const Vec3 da = (at[1] - at[0]).normalized();
+    const Vec3 side = da.cross(randomVec(rng, 1.0)).normalized();
+    // b lies in the plane of a and side, pointing away from a: b0 = a(s) + 0.5 thickness side.
+    const Vec3 b0 = at[0] + s * (at[1] - at[0]) + 0.5 * thickness * side;
+    const Vec3 b1 = b0 + (0.5 + u(rng)) * (side + 0.3 * da).normalized();
+    const Vec3 v0 = randomVec(rng, 0.5), v1 = randomVec(rng, 0.5);
+    start[2] = b0 - tMeet * v0, end[2] = b0 + (1 - tMeet) * v0;
+    start[3] = b1 - tMeet * v1, end[3] = b1 + (1 - tMeet) * v1;
+    const auto impact = edgeEdgeCcd(start, end, thickness);
+    if (!impact || impact->weights[3] != 0.0) continue;  // another root came first
+    check(ImpactKind::EdgeEdge, pack(start, end), thickness, ImpactTimeSource::CoplanarityRoot,
+          outcome, 1e-7);
+  }
+  std::printf(
+      "edge endpoint beside an edge: %d checked, worst relative error time %.2e, "
+      "normal+weights %.2e\n",
+      outcome.checked, outcome.worstTime, outcome.worstJacobian);
+  EXPECT_GE(outcome.checked, 20);
+}
+
 TEST(CollisionCcdDerivatives, ProximityAtTheEndOfTheStep) {
   std::mt19937 rng(14);
   std::uniform_real_distribution<double> u(0.0, 1.0);

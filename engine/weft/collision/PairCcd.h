@@ -3,13 +3,21 @@
 // al. 2002 and ARCSim): for one vertex-face or edge-edge pair of points moving linearly over a
 // step, the earliest time in [0, 1] at which the four points are coplanar (Liang Eq. 5) and the
 // pair is then closer than the thickness; failing that, whether the pair ends the step closer
-// than the thickness (the impact-zone solve constrains those too, reported at time 1).
+// than the thickness (the impact-zone solve constrains those too, reported at time 1). A pair
+// that comes within the thickness during the step without ever being coplanar, and ends beyond
+// it, crossed nothing and is not an impact. When Eq. 5 vanishes identically (the four points
+// coplanar all step) the earliest time within the thickness is found by conservative advancement.
+//
+// Distances are to the closest points: of the triangle (barycentrics clamped to it, so a vertex
+// crossing the plane just outside an edge but within the thickness is an impact whose weights
+// sit on that edge's corners), and of the two segments (parameters clamped to [0, 1]).
 //
 // Nodes are local (0..3): vertex-face {vertex, face corner 0, 1, 2}, edge-edge {a0, a1, b0, b1};
 // the caller maps them to mesh indices. The Impact follows collision/Impact.h: weights from the
 // closest points at the time of impact, normal the unit separation direction then (the face
 // normal, or the edges' common perpendicular, when the closest points are interior), oriented so
-// that normal . s(start) >= 0 (the approach direction when s(start) . normal vanishes).
+// that normal . s(start) >= 0 (against the approach, normal . (s(end) - s(start)) <= 0, when
+// normal . s(start) vanishes: a pair coplanar at the start).
 //
 // Derivatives (Liang Eq. 6-7, with the sign of Eq. 7 fixed as in notes/algorithms.md Sec. 4):
 // the time of impact and the impact's normal and weights with respect to the 24 coordinates
@@ -27,8 +35,9 @@ using PairGradient = Eigen::Matrix<double, 1, 24>;
 
 // Real roots of a t^3 + b t^2 + c t + d in [lo, hi], ascending and distinct. The interval is
 // split at the cubic's critical points into monotone pieces; each sign change is bracketed and
-// refined by safeguarded Newton; a piece endpoint where |f| <= tolerance * (|a|+|b|+|c|+|d|)
-// (hi^3 etc. scaled) counts as a root, which catches double roots. Lower degrees (a or b
+// refined by safeguarded Newton; a piece endpoint where |f| <= tolerance times the bound
+// |a| m^3 + |b| m^2 + |c| m + |d| (m = max(1, |lo|, |hi|)) counts as a root, which catches
+// double roots (and merges roots closer than about sqrt(tolerance)). Lower degrees (a or b
 // vanishing) need no special case: the critical points come from a stable quadratic formula.
 struct CubicRoots {
   int count = 0;
