@@ -73,6 +73,13 @@ TEST(CollisionCrossings, GridBroadPhaseAgreesWithAllPairs) {
   int total = 0;
   for (int trial = 0; trial < 10; ++trial) {
     TriangleMesh mesh = test::gridMesh(Vec3(0, 0, 0), Vec3(0.2, 0, 0), Vec3(0, 0.2, 0), 5, 5);
+    // And one large triangle through the cloth (its edges cover many grid cells).
+    TriangleMesh large;
+    large.vertices.resize(3, 3);
+    large.vertices << -2, -2, -0.3, 3, -1, 0.2, 0, 3, 0.1;
+    large.triangles.resize(1, 3);
+    large.triangles << 0, 1, 2;
+    mesh.append(large);
     NodeMatrix x = mesh.vertices;
     for (int i = 0; i < x.rows(); ++i)
       for (int c = 0; c < 3; ++c) x(i, c) += noise(rng);

@@ -16,7 +16,7 @@ int orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 }
 
 std::int64_t cellKey(std::int64_t i, std::int64_t j, std::int64_t k) {
-  constexpr std::int64_t kSpan = 1 << 20;  // cells per axis in the key, offset to positive
+  constexpr std::int64_t kSpan = 1 << 20;  // room for the cells per axis, offset to positive
   return ((i + kSpan / 2) * kSpan + (j + kSpan / 2)) * kSpan + (k + kSpan / 2);
 }
 
@@ -58,9 +58,12 @@ EdgeTriangleCrossings findEdgeTriangleCrossings(const TriangleMesh& mesh,
     sceneLower = sceneLower.cwiseMin(lower[t]);
     sceneUpper = sceneUpper.cwiseMax(upper[t]);
   }
-  // At most about 2^19 cells per axis so that the keys do not overflow.
-  const double cell =
-      std::max({meanExtent / nt, (sceneUpper - sceneLower).maxCoeff() / 4.0e5, 1e-300});
+  // Cells no smaller than the scene over 4 cbrt(triangles) + 1, so that a long edge (or a large
+  // triangle) covers a bounded number of cells and the keys stay within range.
+  const double cell = std::max(
+      {meanExtent / nt,
+       (sceneUpper - sceneLower).maxCoeff() / (4.0 * std::cbrt(static_cast<double>(nt)) + 1.0),
+       1e-300});
   auto cellOf = [&](double v, int axis) {
     return static_cast<std::int64_t>(std::floor((v - sceneLower[axis]) / cell));
   };
