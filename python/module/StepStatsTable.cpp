@@ -24,6 +24,12 @@ void forEachField(Visit&& visit) {
   visit("depth", [](const StepStats& s) { return s.depth; });
   visit("substeps", [](const StepStats& s) { return s.substeps; });
   visit("halvings", [](const StepStats& s) { return s.halvings; });
+  visit("impact_rounds", [](const StepStats& s) { return s.impactRounds; });
+  visit("impact_zones", [](const StepStats& s) { return s.impactZones; });
+  visit("impact_constraints", [](const StepStats& s) { return s.impactConstraints; });
+  visit("impact_qp_iterations", [](const StepStats& s) { return s.impactQpIterations; });
+  visit("impacts_resolved", [](const StepStats& s) { return s.impactsResolved; });
+  visit("impact_move", [](const StepStats& s) { return s.impactMove; });
 }
 
 }  // namespace

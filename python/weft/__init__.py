@@ -116,7 +116,9 @@ class Run:
     positions, velocities: float64 [steps + 1, vertices, 3] (state 0 is the initial state)
     stats: the per-step statistics (stats.csv's quantities), a dict of 1-D arrays of length
         steps: step, time, converged, residual, pd_iterations, takeoff, stick, slip,
-        contact_sweeps, late_contacts, depth, substeps, halvings
+        contact_sweeps, late_contacts, depth, substeps, halvings, and the impact zones' (0 and
+        True without them): impact_rounds, impact_zones, impact_constraints,
+        impact_qp_iterations, impacts_resolved, impact_move
     summary: summary.json's fields (without area_ratio), as a dict
     warnings: the engine's warnings, as strings
     """

@@ -56,12 +56,22 @@ TEST(SceneAssets, EverySceneSimulatesTwoSteps) {
     const nlohmann::json scene = nlohmann::json::parse(readFile(file));
     const nlohmann::json modules =
         nlohmann::json::parse(readFile(out + "/summary.json"))["modules"];
-    bool selfCollision = false;
-    for (const auto& cloth : scene["cloths"])
-      selfCollision = selfCollision || cloth.contains("self_collision");
+    bool selfCollision = false, impactZones = false;
+    for (const auto& cloth : scene["cloths"]) {
+      if (!cloth.contains("self_collision")) continue;
+      // self_collision.model: "node" (the default), "impact_zones", or a list of both.
+      const nlohmann::json model =
+          cloth["self_collision"].value("model", nlohmann::json::array({"node"}));
+      const auto names = model.is_array() ? model : nlohmann::json::array({model});
+      for (const auto& name : names) {
+        selfCollision = selfCollision || name == "node";
+        impactZones = impactZones || name == "impact_zones";
+      }
+    }
     const bool obstacles = scene.contains("obstacles") && !scene["obstacles"].empty();
     EXPECT_EQ(modules.contains("contact_detection"), obstacles);
     EXPECT_EQ(modules.contains("self_collision"), selfCollision);
+    EXPECT_EQ(modules.contains("impact_zones"), impactZones);
     EXPECT_EQ(modules.contains("contact_solve"), obstacles || selfCollision);
     EXPECT_EQ(modules.contains("wind"), scene.contains("wind"));
   }
@@ -113,6 +123,12 @@ TEST_P(ContactSceneAsset, ConvergesEveryStepWithoutNodesInsideObstacles) {
   EXPECT_EQ(summary["pd"]["unconverged_steps"], 0);
   const double depth = summary["contacts"]["max_depth"].get<double>();
   EXPECT_LE(depth, 1e-4) << "at step " << summary["contacts"]["max_depth_step"];
+  // Under impact zones (Liang 2019) no edge of a self-colliding cloth passes through a face, at
+  // any state; the count is the independent edge-triangle test's.
+  if (summary.contains("impact_zones")) {
+    EXPECT_EQ(summary["impact_zones"]["unresolved_steps"], 0);
+    EXPECT_EQ(summary["crossings"]["max"], 0) << "at state " << summary["crossings"]["max_state"];
+  }
   std::printf("%s: %d of %d steps converged, %d split (down to dt/%d), deepest %.4f mm\n",
               fs::path(file).stem().string().c_str(), summary["pd"]["converged_steps"].get<int>(),
               steps, summary["pd"]["split_steps"].get<int>(),

@@ -191,9 +191,12 @@ struct MergingScene {
   }
 };
 
+// ARCSim's rule (ImpactZoneOptions::independentImpacts): impacts sharing a free node wait.
 TEST(CollisionImpactZones, ZonesSharingANodeMerge) {
   const MergingScene scene;
-  const ImpactZones zones(options());
+  ImpactZoneOptions o = options();
+  o.independentImpacts = true;
+  const ImpactZones zones(o);
   const ImpactZoneResult result =
       zones.apply(scene.x0, scene.x1, scene.masses, listDetector(scene.candidates));
   const ImpactZoneStats& s = result.stats;
@@ -223,9 +226,46 @@ TEST(CollisionImpactZones, ZonesSharingANodeMerge) {
   for (int v = 4; v < 8; ++v) EXPECT_EQ(result.positions.row(v), scene.x1.row(v));
 }
 
+// By default every impact of a round joins its zone at once: the same final zone, and so the
+// same positions, in one round of responses instead of two; a zone solved sparsely (denseLimit
+// 0) gives them too.
+TEST(CollisionImpactZones, AllImpactsOfARoundJoinAtOnce) {
+  const MergingScene scene;
+  ImpactZoneOptions independent = options();
+  independent.independentImpacts = true;
+  const ImpactZoneResult reference =
+      ImpactZones(independent)
+          .apply(scene.x0, scene.x1, scene.masses, listDetector(scene.candidates));
+  for (int denseLimit : {48, 0}) {
+    SCOPED_TRACE(denseLimit);
+    ImpactZoneOptions o = options();
+    o.denseLimit = denseLimit;
+    const ImpactZoneResult result =
+        ImpactZones(o).apply(scene.x0, scene.x1, scene.masses, listDetector(scene.candidates));
+    const ImpactZoneStats& s = result.stats;
+    EXPECT_TRUE(s.converged);
+    EXPECT_EQ(s.rounds, 2);
+    EXPECT_EQ(s.impactsKept, 3);
+    EXPECT_EQ(s.qpSolves, 1);
+    EXPECT_EQ(s.zones, 1);
+    EXPECT_EQ(s.constraints, 3);
+    ASSERT_EQ(result.zones.size(), 1u);
+    EXPECT_EQ(result.zones[0].sparse, denseLimit == 0);
+    EXPECT_LE((result.positions - reference.positions).cwiseAbs().maxCoeff(), 1e-12);
+    // The backward pass densifies a sparse zone: the same gradient either way.
+    NodeMatrix dLdz = NodeMatrix::Zero(scene.x1.rows(), 3);
+    for (Eigen::Index i = 0; i < dLdz.rows(); ++i) dLdz.row(i) << 0.3 * i, 1.0, -0.2 * i;
+    const ImpactZoneBackward a = ImpactZones(o).backward(result, dLdz);
+    const ImpactZoneBackward b = ImpactZones(independent).backward(reference, dLdz);
+    EXPECT_TRUE(a.ok);
+    EXPECT_LE((a.dLdx1 - b.dLdx1).cwiseAbs().maxCoeff(), 1e-10);
+  }
+}
+
 TEST(CollisionImpactZones, RoundCapIsReported) {
   const MergingScene scene;
   ImpactZoneOptions o = options();
+  o.independentImpacts = true;
   o.maxRounds = 1;
   const ImpactZoneResult result =
       ImpactZones(o).apply(scene.x0, scene.x1, scene.masses, listDetector(scene.candidates));

@@ -327,6 +327,69 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
   expectInputError([&] { test::parse(noTime); }, "<root>", "missing required key 'time'");
 }
 
+// self_collision.model picks DiffCloth's node-node contacts ("node", the default), Liang et al.'s
+// impact zones ("impact_zones"), or both; each model's keys are refused without it.
+TEST(SceneLoader, SelfCollisionModelsAndTheirKeys) {
+  const nlohmann::json good = test::hangingClothScene(1.0, 2, 0.01, 10, 100.0);
+  auto with = [&](const nlohmann::json& selfCollision) {
+    nlohmann::json d = good;
+    d["cloths"][0]["self_collision"] = selfCollision;
+    return test::parse(d);
+  };
+  const Scene node = with({{"radius", 0.004}});
+  ASSERT_TRUE(node.cloths[0].selfCollision);
+  EXPECT_TRUE(node.cloths[0].selfCollision->nodeModel);
+  EXPECT_FALSE(node.cloths[0].selfCollision->impactZones);
+  EXPECT_TRUE(node.hasSelfCollision());
+  EXPECT_FALSE(node.hasImpactZones());
+
+  const Scene zones = with({{"model", "impact_zones"}, {"thickness", 0.002}});
+  EXPECT_FALSE(zones.cloths[0].selfCollision->nodeModel);
+  EXPECT_TRUE(zones.cloths[0].selfCollision->impactZones);
+  EXPECT_EQ(zones.cloths[0].selfCollision->thickness, 0.002);
+  EXPECT_FALSE(zones.hasSelfCollision());  // no node contacts: no contact solve for it
+  EXPECT_TRUE(zones.hasImpactZones());
+  EXPECT_EQ(with({{"model", "impact_zones"}}).cloths[0].selfCollision->thickness,
+            SelfCollision{}.thickness);
+
+  const Scene both =
+      with({{"model", {"node", "impact_zones"}}, {"radius", 0.005}, {"thickness", 0.001}});
+  EXPECT_TRUE(both.hasSelfCollision());
+  EXPECT_TRUE(both.hasImpactZones());
+  EXPECT_EQ(both.cloths[0].selfCollision->radius, 0.005);
+
+  expectInputError(
+      [&] {
+        with({{"model", "ccd"}});
+      },
+      "cloths.0.self_collision.model", "must be one of node, impact_zones");
+  expectInputError(
+      [&] {
+        with({{"model", nlohmann::json::array()}});
+      },
+      "cloths.0.self_collision.model", "an empty list");
+  expectInputError(
+      [&] {
+        with({{"model", {"node", "node"}}, {"radius", 0.004}});
+      },
+      "cloths.0.self_collision.model", "named twice");
+  expectInputError(
+      [&] {
+        with({{"model", "impact_zones"}, {"radius", 0.004}});
+      },
+      "cloths.0.self_collision.radius", "only by the \"node\" model");
+  expectInputError(
+      [&] {
+        with({{"radius", 0.004}, {"thickness", 0.001}});
+      },
+      "cloths.0.self_collision.thickness", "only by the \"impact_zones\" model");
+  expectInputError(
+      [&] {
+        with({{"model", "impact_zones"}, {"thickness", 0}});
+      },
+      "cloths.0.self_collision.thickness", "must be > 0");
+}
+
 TEST(SceneLoader, TaskParametersMustNameNumbersInTheScene) {
   nlohmann::json doc = test::hangingClothScene(1.0, 2, 0.01, 10, 100.0);
   doc["task"] = {{"loss", {{"trajectory", {{"target", "run/positions.npy"}}}}},

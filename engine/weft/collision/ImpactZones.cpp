@@ -36,6 +36,8 @@ struct Zone {
   bool dirty = false;  // grew this round: its QP must be solved again
   bool alive = true;
   ZoneQp qp;
+  bool sparse = false;
+  SparseZoneQp sparseQp;
   ZoneQpSolution solution;
 };
 
@@ -43,7 +45,7 @@ struct Zone {
 // one row per impact, G = -w_k normal^T at free node k, h = thickness - sum over fixed nodes of
 // w_k normal . x1_k. localOf maps a node to its position in zone.nodes (-1 elsewhere).
 void buildZoneQp(Zone& zone, const NodeMatrix& x1, const Eigen::VectorXd& masses, double thickness,
-                 std::vector<int>& localOf) {
+                 int denseLimit, std::vector<int>& localOf) {
   std::sort(zone.nodes.begin(), zone.nodes.end());
   const Eigen::Index count = static_cast<Eigen::Index>(zone.nodes.size());
   const Eigen::Index n = 3 * count;
@@ -60,7 +62,14 @@ void buildZoneQp(Zone& zone, const NodeMatrix& x1, const Eigen::VectorXd& masses
     qp.x.segment<3>(3 * i) = x1.row(node).transpose();
     qp.weights.segment<3>(3 * i).setConstant(masses[node] / meanMass);
   }
-  qp.G.setZero(m, n);
+  zone.sparse = m > denseLimit;
+  std::vector<Eigen::Triplet<double>> triplets;
+  if (zone.sparse) {
+    triplets.reserve(static_cast<size_t>(12 * m));
+    qp.G.resize(0, 0);
+  } else {
+    qp.G.setZero(m, n);
+  }
   qp.h.resize(m);
   for (Eigen::Index j = 0; j < m; ++j) {
     const Impact& impact = zone.impacts[static_cast<size_t>(j)];
@@ -73,11 +82,24 @@ void buildZoneQp(Zone& zone, const NodeMatrix& x1, const Eigen::VectorXd& masses
         qp.h[j] -= w * impact.normal.dot(x1.row(node).transpose());
       } else {
         const int local = localOf[static_cast<size_t>(node)];
-        qp.G.block<1, 3>(j, 3 * local) -= w * impact.normal.transpose();
+        if (zone.sparse)
+          for (int c = 0; c < 3; ++c)
+            triplets.emplace_back(j, 3 * local + c, -w * impact.normal[c]);
+        else
+          qp.G.block<1, 3>(j, 3 * local) -= w * impact.normal.transpose();
       }
     }
   }
   for (int node : zone.nodes) localOf[static_cast<size_t>(node)] = -1;
+  if (zone.sparse) {
+    SparseZoneQp& sq = zone.sparseQp;
+    sq.x = std::move(qp.x);
+    sq.weights = std::move(qp.weights);
+    sq.h = std::move(qp.h);
+    sq.G.resize(m, n);
+    sq.G.setFromTriplets(triplets.begin(), triplets.end());  // (duplicates summed)
+    qp = ZoneQp();
+  }
 }
 
 }  // namespace
@@ -130,6 +152,10 @@ ImpactZoneResult ImpactZones::apply(const NodeMatrix& x0, const NodeMatrix& x1,
     kept.clear();
     std::fill(claimed.begin(), claimed.end(), 0);
     for (const Impact& impact : impacts) {
+      if (!options_.independentImpacts) {
+        kept.push_back(impact);
+        continue;
+      }
       bool shares = false;
       for (int k = 0; k < 4; ++k) {
         const int node = impact.nodes[static_cast<size_t>(k)];
@@ -180,7 +206,17 @@ ImpactZoneResult ImpactZones::apply(const NodeMatrix& x0, const NodeMatrix& x1,
         zoneOf[static_cast<size_t>(node)] = target;
         zone.nodes.push_back(node);
       }
-      zone.impacts.push_back(impact);
+      // A pair found again (the response left it closer than the thickness, or its path still
+      // meets) replaces its older row: the new one is linearised on the current trajectory, and
+      // stacking both would grow the zone by a row per round for every resting pair.
+      const auto same =
+          std::find_if(zone.impacts.begin(), zone.impacts.end(), [&](const Impact& other) {
+            return other.kind == impact.kind && other.nodes == impact.nodes;
+          });
+      if (same != zone.impacts.end())
+        *same = impact;
+      else
+        zone.impacts.push_back(impact);
       zone.dirty = true;
     }
 
@@ -188,8 +224,21 @@ ImpactZoneResult ImpactZones::apply(const NodeMatrix& x0, const NodeMatrix& x1,
     for (Zone& zone : zones) {
       if (!zone.alive || !zone.dirty) continue;
       zone.dirty = false;
-      buildZoneQp(zone, x1, masses, options_.thickness, localOf);
-      zone.solution = solveZoneQp(zone.qp, options_.qp);
+      buildZoneQp(zone, x1, masses, options_.thickness, options_.denseLimit, localOf);
+      zone.solution = zone.sparse ? solveSparseZoneQp(zone.sparseQp, options_.qp)
+                                  : solveZoneQp(zone.qp, options_.qp);
+      if (zone.sparse && !zone.solution.converged &&
+          static_cast<double>(zone.impacts.size()) * static_cast<double>(3 * zone.nodes.size()) <=
+              options_.denseFallbackEntries) {
+        // The augmented Lagrangian can stall at round-off short of the tolerance; the exact
+        // dense method settles it where G still fits in memory.
+        zone.qp = toDense(zone.sparseQp);
+        zone.sparse = false;
+        zone.sparseQp = SparseZoneQp();
+        const int sparseSteps = zone.solution.iterations;
+        zone.solution = solveZoneQp(zone.qp, options_.qp);
+        zone.solution.iterations += sparseSteps;
+      }
       ++stats.qpSolves;
       stats.qpIterationsTotal += zone.solution.iterations;
       stats.qpIterationsMax = std::max(stats.qpIterationsMax, zone.solution.iterations);
@@ -214,6 +263,8 @@ ImpactZoneResult ImpactZones::apply(const NodeMatrix& x0, const NodeMatrix& x1,
     record.nodes = std::move(zone.nodes);
     record.impacts = std::move(zone.impacts);
     record.qp = std::move(zone.qp);
+    record.sparse = zone.sparse;
+    record.sparseQp = std::move(zone.sparseQp);
     record.solution = std::move(zone.solution);
     result.zones.push_back(std::move(record));
   }
@@ -232,16 +283,19 @@ ImpactZoneBackward ImpactZones::backward(const ImpactZoneResult& result, const N
     if (!zone.solution.converged) {
       // Its nodes were left at x1: the map is the identity there.
       out.ok = false;
-      out.dLdG.push_back(Eigen::MatrixXd::Zero(zone.qp.G.rows(), zone.qp.G.cols()));
-      out.dLdh.push_back(Eigen::VectorXd::Zero(zone.qp.h.size()));
+      const Eigen::Index rows = static_cast<Eigen::Index>(zone.impacts.size());
+      out.dLdG.push_back(Eigen::MatrixXd::Zero(rows, 3 * count));
+      out.dLdh.push_back(Eigen::VectorXd::Zero(rows));
       continue;
     }
     g.resize(3 * count);
     for (Eigen::Index i = 0; i < count; ++i)
       g.segment<3>(3 * i) = dLdz.row(zone.nodes[static_cast<size_t>(i)]).transpose();
+    const ZoneQp dense = zone.sparse ? toDense(zone.sparseQp) : ZoneQp();
+    const ZoneQp& qp = zone.sparse ? dense : zone.qp;
     const ZoneQpGradient grad = method == ZoneGradientMethod::Qr
-                                    ? zoneQpGradientQr(zone.qp, zone.solution, g)
-                                    : zoneQpGradientKkt(zone.qp, zone.solution, g);
+                                    ? zoneQpGradientQr(qp, zone.solution, g)
+                                    : zoneQpGradientKkt(qp, zone.solution, g);
     if (!grad.ok) out.ok = false;
     for (Eigen::Index i = 0; i < count; ++i)
       out.dLdx1.row(zone.nodes[static_cast<size_t>(i)]) = grad.dLdx.segment<3>(3 * i).transpose();

@@ -4,13 +4,14 @@
 // little as possible, in the mass-weighted norm, so that no impact (Impact.h) remains closer
 // than the thickness.
 //
-// Rounds: detect impacts from x0 to the current positions; keep independent ones (sorted by
-// time, an impact sharing a free node with an earlier kept one is dropped: both were found on
-// the same pre-response trajectory, so once the earlier one moves the shared node the later
-// one's time, weights and normal are stale; it is found again next round if it persists);
-// merge each kept impact with the zones holding its free nodes (union-find); re-solve every
-// zone that grew, as one ZoneQp over all the impacts accumulated in it, from the candidate
-// positions x1; repeat until the detector finds nothing or the round cap (reported).
+// Rounds: detect impacts from x0 to the current positions; keep them all, or with
+// ImpactZoneOptions::independentImpacts only independent ones (ARCSim: sorted by time, an impact
+// sharing a free node with an earlier kept one is dropped, since once the earlier one moves the
+// shared node the later one's time, weights and normal are stale; it is found again next round
+// if it persists); merge each kept impact with the zones holding its free nodes (union-find);
+// re-solve every zone that grew, as one QP over all the impacts accumulated in it (ZoneQp.h, or
+// SparseZoneQp.h for large zones), from the candidate positions x1; repeat until the detector
+// finds nothing or the round cap (reported).
 //
 // Unlike ARCSim, whose zone solve starts from the current (already projected) positions, each
 // zone's QP targets x1: the final positions of a zone are then one QP of x1 restricted to its
@@ -25,6 +26,7 @@
 // nor the gradients).
 
 #include <weft/collision/Impact.h>
+#include <weft/collision/SparseZoneQp.h>
 #include <weft/collision/ZoneQp.h>
 #include <weft/core/Types.h>
 
@@ -40,6 +42,16 @@ using ImpactDetector =
 struct ImpactZoneOptions {
   double thickness = 1e-4;  // delta: each impact's constraint is normal . s(z) >= thickness
   int maxRounds = 100;      // detection rounds before giving up (reported, not silent)
+  // Zones with more impact constraints than this are solved sparsely (SparseZoneQp.h).
+  int denseLimit = 48;
+  // A sparse solve that stops short of the tolerance is redone densely when G has at most this
+  // many entries (m x n).
+  double denseFallbackEntries = 4e6;
+  // Keep only independent impacts per round (ARCSim: one sharing a free node with an earlier
+  // one waits for the next round). Off by default: every impact of a round is a linear
+  // constraint of the re-solved zone, and cloth layers resting on each other give hundreds of
+  // impacts sharing nodes, which the rule would spread over as many rounds.
+  bool independentImpacts = false;
   ZoneQpOptions qp;
 };
 
@@ -47,8 +59,10 @@ struct ImpactZoneOptions {
 struct ImpactZoneRecord {
   std::vector<int> nodes;       // free nodes, ascending; QP coordinate 3 i + c is nodes[i], c
   std::vector<Impact> impacts;  // row j of qp.G / qp.h is impacts[j]
-  ZoneQp qp;                    // x = x1 at nodes, W, G, h as solved
-  ZoneQpSolution solution;      // z, lambda of the last solve
+  ZoneQp qp;                    // x = x1 at nodes, W, G, h as solved (small zones)
+  bool sparse = false;          // large zone: solved as sparseQp, qp left empty
+  SparseZoneQp sparseQp;
+  ZoneQpSolution solution;  // z, lambda of the last solve
 };
 
 struct ImpactZoneStats {
@@ -56,7 +70,7 @@ struct ImpactZoneStats {
   int zones = 0;                   // zones at the end
   int constraints = 0;             // impact rows over all final zones
   int impactsDetected = 0;         // over all rounds
-  int impactsKept = 0;             // independent impacts added to zones, over all rounds
+  int impactsKept = 0;             // impacts added to zones, over all rounds
   int impactsWithoutFreeNode = 0;  // detected impacts between fixed nodes only (ignored)
   int qpSolves = 0;
   long qpIterationsTotal = 0;

@@ -17,7 +17,7 @@ SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothMode
   distance_.assign(m, 0.0);
   friction_.assign(m, 0.0);
   for (std::size_t c = 0; c < scene.cloths.size(); ++c) {
-    if (!scene.cloths[c].selfCollision) continue;
+    if (!scene.cloths[c].selfCollision || !scene.cloths[c].selfCollision->nodeModel) continue;
     for (int i = model.vertexOffset[c]; i < model.vertexOffset[c + 1]; ++i) {
       distance_[i] = scene.cloths[c].selfCollision->radius;
       friction_[i] = scene.cloths[c].selfCollision->friction;

@@ -60,8 +60,8 @@ SceneParameter resolveSceneParameter(const Scene& scene, const std::string& path
       return p;
     }
     if (n == 4 && parts[2] == "self_collision" && parts[3] == "friction") {
-      if (!scene.cloths[p.cloth].selfCollision)
-        fail("parameter '" + path + "': the cloth has no self-collision");
+      if (!scene.cloths[p.cloth].selfCollision || !scene.cloths[p.cloth].selfCollision->nodeModel)
+        fail("parameter '" + path + "': the cloth has no node-model self-collision");
       p.kind = SceneParameter::Kind::SelfCollisionFriction;
       return p;
     }

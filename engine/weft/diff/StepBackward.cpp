@@ -1,5 +1,6 @@
 #include <weft/diff/StepBackward.h>
 
+#include <weft/core/Error.h>
 #include <weft/diff/AdjointSystem.h>
 #include <weft/diff/ContactAdjoint.h>
 #include <weft/diff/ParameterPartials.h>
@@ -30,6 +31,14 @@ StepBackward::StepBackward(const Trajectory& trajectory, const ParameterSet& par
   if (!trajectory.model)
     throw std::invalid_argument(
         "backpropagate: the trajectory has no model (record it with Simulator::run)");
+  // The impact-zone response (Liang 2019 Sec. 3.4) has no adjoint here yet: a gradient that
+  // ignored it would be the gradient of another simulation, so none is given.
+  const Scene& scene = trajectory.model->scene();
+  for (std::size_t c = 0; c < scene.cloths.size(); ++c)
+    if (scene.cloths[c].selfCollision && scene.cloths[c].selfCollision->impactZones)
+      throw InputError(scene.file, "cloths." + std::to_string(c) + ".self_collision.model",
+                       "gradients through impact zones are not implemented yet; use the \"node\" "
+                       "model for a differentiable run");
   whole_ = std::make_unique<Piece>(trajectory.model, parameters, contacts_);
   solver_ = std::make_unique<AdjointSolver>(settings);
   const int m = trajectory.model->cloth().nodeCount();

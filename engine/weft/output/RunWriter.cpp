@@ -1,5 +1,6 @@
 #include <weft/output/RunWriter.h>
 
+#include <weft/collision/MeshCrossingCheck.h>
 #include <weft/core/Error.h>
 #include <weft/io/Npy.h>
 #include <weft/io/ObjWriter.h>
@@ -41,7 +42,16 @@ RunWriter::RunWriter(std::string folder, const Scene& scene, const ClothModel& m
   }
   areaRatio_.reserve(states);
   steps_.reserve(static_cast<std::size_t>(steps));
+  bool selfColliding = false;
+  for (const Cloth& c : scene.cloths) selfColliding = selfColliding || c.selfCollision.has_value();
+  if (selfColliding) {
+    crossingCheck_ = std::make_unique<collision::MeshCrossingCheck>(
+        collision::CollisionMesh::of(scene, model, false));
+    crossings_.reserve(states);
+  }
 }
+
+RunWriter::~RunWriter() = default;
 
 void RunWriter::addPositions(const NodeMatrix& x) {
   std::size_t k = 0;
@@ -51,6 +61,7 @@ void RunWriter::addPositions(const NodeMatrix& x) {
   // Area of the cloths over their rest area (DiffCloth Fig. 5's area ratio: a contact model
   // that moves nodes without regard to friction makes it jump).
   areaRatio_.push_back(restArea_ > 0.0 ? model_.rest.areaAt(x) / restArea_ : 1.0);
+  if (crossingCheck_) crossings_.push_back(crossingCheck_->count(x));
 }
 
 void RunWriter::addInitialState(const NodeMatrix& x) {
@@ -100,6 +111,8 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
   long long takeoff = 0, stick = 0, slip = 0, iterations = 0;
   int maxIterations = 0, splitSteps = 0, deepestHalvings = 0;
   double maxResidual = 0.0;
+  long long impactRounds = 0, impactZones = 0, impactConstraints = 0, impactIterations = 0;
+  double impactMove = 0.0;
   ConvergenceReport convergence;
   for (const StepStats& s : stepStats) {
     convergence.add(s);
@@ -109,6 +122,9 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
     maxResidual = std::max(maxResidual, s.residual);
     splitSteps += s.substeps > 1;
     deepestHalvings = std::max(deepestHalvings, s.halvings);
+    impactRounds += s.impactRounds, impactZones += s.impactZones;
+    impactConstraints += s.impactConstraints, impactIterations += s.impactQpIterations;
+    impactMove = std::max(impactMove, s.impactMove);
   }
   const int steps = static_cast<int>(stepStats.size());
   nlohmann::json j;
@@ -144,6 +160,14 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
       {"max_halvings", scene.solver.maxHalvings},
       {"remember_halvings", scene.solver.rememberHalvings},
       {"acceleration", scene.solver.acceleration == Acceleration::Anderson ? "anderson" : "none"}};
+  if (scene.hasImpactZones())
+    j["impact_zones"] = {{"rounds_total", impactRounds},
+                         {"zones_total", impactZones},
+                         {"constraints_total", impactConstraints},
+                         {"qp_iterations_total", impactIterations},
+                         {"unresolved_steps", convergence.unresolvedImpactSteps},
+                         {"first_unresolved_step", convergence.firstUnresolvedImpactStep},
+                         {"max_move", impactMove}};
   return j;
 }
 
@@ -162,6 +186,12 @@ void RunWriter::finish(const RunSummary& run) {
         f.get(),
         "step,time,contacts_takeoff,contacts_stick,contacts_slip,pd_iterations,residual,converged,"
         "contact_sweeps,contact_sweep_change,late_contacts,area_ratio,depth,substeps");
+    const bool impacts = scene_.hasImpactZones();
+    if (impacts)
+      std::fprintf(f.get(),
+                   ",impact_rounds,impact_zones,impact_constraints,impact_qp_iterations,"
+                   "impacts_resolved,impact_move");
+    if (crossingCheck_) std::fprintf(f.get(), ",crossings");
     for (const std::string& name : run.moduleNames)
       std::fprintf(f.get(), ",seconds_%s", name.c_str());
     std::fprintf(f.get(), "\n");
@@ -170,6 +200,11 @@ void RunWriter::finish(const RunSummary& run) {
                    s.takeoff, s.stick, s.slip, s.pdIterations, s.residual, s.converged ? 1 : 0,
                    s.contactSweeps, s.contactSweepChange, s.lateContacts, areaRatio_.at(s.step),
                    s.depth, s.substeps);
+      if (impacts)
+        std::fprintf(f.get(), ",%d,%d,%d,%d,%d,%.6e", s.impactRounds, s.impactZones,
+                     s.impactConstraints, s.impactQpIterations, s.impactsResolved ? 1 : 0,
+                     s.impactMove);
+      if (crossingCheck_) std::fprintf(f.get(), ",%d", crossings_.at(s.step));
       for (double sec : s.moduleSeconds) std::fprintf(f.get(), ",%.6e", sec);
       std::fprintf(f.get(), "\n");
     }
@@ -191,6 +226,16 @@ void RunWriter::finish(const RunSummary& run) {
   summaryJson["area_ratio"] = {{"min", *std::min_element(areaRatio_.begin(), areaRatio_.end())},
                                {"max", *std::max_element(areaRatio_.begin(), areaRatio_.end())},
                                {"final", areaRatio_.back()}};
+  if (crossingCheck_) {
+    // Edge-triangle crossings of the self-colliding cloths, over every state (0 = the start).
+    const auto worst = std::max_element(crossings_.begin(), crossings_.end());
+    summaryJson["crossings"] = {
+        {"final", crossings_.back()},
+        {"max", *worst},
+        {"max_state", worst - crossings_.begin()},
+        {"states_with_crossings",
+         std::count_if(crossings_.begin(), crossings_.end(), [](int n) { return n > 0; })}};
+  }
   summary << summaryJson.dump(2) << "\n";
   if (!summary) throw InputError(folder + "/summary.json", "output", "write failed");
 }

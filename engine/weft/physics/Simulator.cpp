@@ -1,5 +1,6 @@
 #include <weft/physics/Simulator.h>
 
+#include <weft/collision/ImpactZoneResponse.h>
 #include <weft/contact/FrictionalContact.h>
 #include <weft/core/Error.h>
 #include <weft/physics/AttachmentConstraint.h>
@@ -65,6 +66,13 @@ Simulator::Simulator(std::shared_ptr<const Model> model)
     // Building the self-collision tables counts as detection.
     timer_->charge(contactDetectionModule_ >= 0 ? contactDetectionModule_ : selfCollisionModule_,
                    ModuleTimer::secondsSince(start));
+  }
+
+  if (scene_.hasImpactZones()) {
+    const auto start = ModuleTimer::Clock::now();
+    impactZones_ = std::make_unique<collision::ImpactZoneResponse>(scene_, model_);
+    impactZoneModule_ = timer_->add("impact_zones");
+    timer_->charge(impactZoneModule_, ModuleTimer::secondsSince(start));
   }
 
   const int m = model_.nodeCount();
@@ -149,7 +157,7 @@ const StepStats& Simulator::step() {
     }
     subdivide(1, std::max(first, 1), time_, total, failedFirst);
   } else {
-    accept(level(0));
+    accept(level(0), total);
   }
   chooseNextStart(first, failedFirst);
   time_ = t1;  // (the pieces' ends add up to it up to rounding)
@@ -192,7 +200,7 @@ void Simulator::subdivide(int halvings, int first, double t0, StepStats& total, 
       subdivide(halvings + 1, first, start, total, failedFirst);
       continue;
     }
-    accept(fine);
+    accept(fine, total);
     Substep piece;
     piece.model = fine.model;
     piece.halvings = halvings;
@@ -294,9 +302,13 @@ const StepStats& Simulator::attempt(Level& level, double t0) {
   return stats;
 }
 
-void Simulator::accept(Level& level) {
+void Simulator::accept(Level& level, StepStats& total) {
   StepContext& ctx = *level.context;
   const double h = level.model->dt();
+  // Impact zones (Liang 2019 Algorithm 1 lines 7-8): the collision response moves the solved
+  // positions, and the velocity follows from the positions it leaves.
+  if (impactZones_)
+    timer_->timed(impactZoneModule_, [&] { impactZones_->apply(x_, ctx.global, total); });
   v_ = (ctx.global - x_) / h;
   x_ = ctx.global;
   warmStart_ = x_ - ctx.y;

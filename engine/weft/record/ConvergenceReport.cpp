@@ -11,6 +11,7 @@ void ConvergenceReport::add(const StepStats& s) {
     if (s.residual > worstResidual) worstResidual = s.residual, worstResidualStep = s.step;
   }
   if (s.depth > maxDepth) maxDepth = s.depth, maxDepthStep = s.step;
+  if (!s.impactsResolved && unresolvedImpactSteps++ == 0) firstUnresolvedImpactStep = s.step;
 }
 
 std::string ConvergenceReport::warning(const SolverSettings& solver) const {
@@ -29,6 +30,13 @@ std::string ConvergenceReport::warning(const SolverSettings& solver) const {
     std::snprintf(line, sizeof line,
                   "warning: a node ended %.3g mm inside an obstacle's contact skin at step %d\n",
                   1e3 * maxDepth, maxDepthStep);
+    text += line;
+  }
+  if (unresolvedImpactSteps > 0) {
+    std::snprintf(line, sizeof line,
+                  "warning: impact zones left impacts unresolved in %d of %d steps (first at step "
+                  "%d): those steps are not collision-free\n",
+                  unresolvedImpactSteps, steps, firstUnresolvedImpactStep);
     text += line;
   }
   return text;

@@ -10,7 +10,13 @@ int Scene::vertexCount() const {
 
 bool Scene::hasSelfCollision() const {
   for (const Cloth& c : cloths)
-    if (c.selfCollision) return true;
+    if (c.selfCollision && c.selfCollision->nodeModel) return true;
+  return false;
+}
+
+bool Scene::hasImpactZones() const {
+  for (const Cloth& c : cloths)
+    if (c.selfCollision && c.selfCollision->impactZones) return true;
   return false;
 }
 

@@ -201,10 +201,35 @@ Cloth readCloth(const JsonReader& r, const std::string& directory,
   }
   if (auto v = r.optional("initial_velocity")) cloth.initialVelocity = v->vec3();
   if (auto sc = r.optional("self_collision")) {
-    sc->allowOnly({"radius", "friction"});
+    sc->allowOnly({"model", "radius", "friction", "thickness"});
     SelfCollision s;
-    s.radius = sc->at("radius").positive();
-    if (auto f = sc->optional("friction")) s.friction = readFriction(*f);
+    if (auto model = sc->optional("model")) {
+      // One model's name, or an array of both.
+      std::vector<std::string> names;
+      if (model->value().is_array()) {
+        if (model->size() == 0) model->fail("an empty list of models");
+        for (std::size_t k = 0; k < model->size(); ++k)
+          names.push_back((*model)[k].choice({"node", "impact_zones"}));
+      } else {
+        names.push_back(model->choice({"node", "impact_zones"}));
+      }
+      s.nodeModel = std::count(names.begin(), names.end(), "node") > 0;
+      s.impactZones = std::count(names.begin(), names.end(), "impact_zones") > 0;
+      if (names.size() != static_cast<std::size_t>(s.nodeModel) + s.impactZones)
+        model->fail("a model is named twice");
+    }
+    if (s.nodeModel) {
+      s.radius = sc->at("radius").positive();
+      if (auto f = sc->optional("friction")) s.friction = readFriction(*f);
+    } else {
+      for (const char* key : {"radius", "friction"})
+        if (auto k = sc->optional(key)) k->fail("used only by the \"node\" model");
+    }
+    if (s.impactZones) {
+      if (auto t = sc->optional("thickness")) s.thickness = t->positive();
+    } else if (auto t = sc->optional("thickness")) {
+      t->fail("used only by the \"impact_zones\" model");
+    }
     cloth.selfCollision = s;
   }
   return cloth;

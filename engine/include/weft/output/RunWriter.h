@@ -17,11 +17,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace weft {
+namespace collision {
+class MeshCrossingCheck;
+}
 
 struct RunSummary {
   double seconds = 0.0;  // wall time of the simulation
@@ -39,6 +43,7 @@ class RunWriter {
   // branches and forces (contact scenes with at least one step).
   RunWriter(std::string folder, const Scene& scene, const ClothModel& model, int steps,
             bool contactArrays);
+  ~RunWriter();
   // State 0, then after every step its state, statistics and (contact scenes) contacts.
   void addInitialState(const NodeMatrix& x);
   void addStep(const NodeMatrix& x, const StepStats& stats, const StepContacts* contacts);
@@ -61,6 +66,9 @@ class RunWriter {
   std::vector<double> row_, branchRow_, forceRow_, strength_;
   std::vector<double> areaRatio_;  // per state
   std::vector<StepStats> steps_;
+  // Scenes with self-collision: edge-triangle crossings of the self-colliding cloths per state.
+  std::unique_ptr<collision::MeshCrossingCheck> crossingCheck_;
+  std::vector<int> crossings_;
 };
 
 // summary.json's fields that depend on the steps only (not area_ratio, which RunWriter adds).

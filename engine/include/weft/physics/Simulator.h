@@ -25,6 +25,9 @@
 #include <vector>
 
 namespace weft {
+namespace collision {
+class ImpactZoneResponse;
+}
 
 // The engine's internals the simulator owns (private headers of the engine).
 class AttachmentConstraint;
@@ -103,7 +106,7 @@ class Simulator {
   // nothing advances. Returns the attempt's stats.
   const StepStats& attempt(Level& level, double t0);
   // Advances the state to the level's last attempt.
-  void accept(Level& level);
+  void accept(Level& level, StepStats& total);
   // Solves [t0, t0 + 2 h] of `halvings` - 1 as two pieces at `halvings` (first split down to
   // `first` without an attempt), each split further while it does not converge and maxHalvings
   // allows; accumulates into `total`. Sets `failedFirst` when a piece at `first` failed.
@@ -125,6 +128,8 @@ class Simulator {
   int solverModule_ = -1;
   std::unique_ptr<FrictionalContact> contact_;
   int contactDetectionModule_ = -1, selfCollisionModule_ = -1, contactSolveModule_ = -1;
+  std::unique_ptr<collision::ImpactZoneResponse> impactZones_;  // self_collision "impact_zones"
+  int impactZoneModule_ = -1;
   StepContacts lastContacts_;
   std::vector<Substep> lastSubsteps_;
   StepStats stepStats_;  // the last step's, over its pieces

@@ -18,6 +18,8 @@ struct ConvergenceReport {
   int worstResidualStep = 0;
   double maxDepth = 0.0;  // m, the deepest node inside an obstacle's skin (StepStats::depth)
   int maxDepthStep = 0;
+  int unresolvedImpactSteps = 0;  // steps whose impact zones stopped at their round limit
+  int firstUnresolvedImpactStep = 0;
 
   void add(const StepStats& s);
   // Depth beyond which a node counts as inside an obstacle in the warning (m).

@@ -29,6 +29,13 @@ struct StepStats {
   // residual, converged and depth are the worst accepted piece's.
   int substeps = 1;
   int halvings = 0;
+  // Impact zones (self_collision.model "impact_zones", Liang 2019 Sec. 3.4), summed over the
+  // step's pieces: detection rounds, zones solved, impact constraints in them, QP iterations;
+  // impactsResolved is false when the round limit left impacts unresolved (then the step is not
+  // collision-free), and impactMove the largest displacement the response made (m).
+  int impactRounds = 0, impactZones = 0, impactConstraints = 0, impactQpIterations = 0;
+  bool impactsResolved = true;
+  double impactMove = 0.0;
   std::vector<double> moduleSeconds;  // aligned with Simulator::moduleNames()
 };
 

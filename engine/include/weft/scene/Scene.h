@@ -98,9 +98,17 @@ struct PointForce {
   Vec3 force = Vec3::Zero();  // N on each listed vertex
 };
 
+// A cloth's collisions with itself and with the other self-colliding cloths, by one or both of
+// two models (scene key `self_collision.model`): DiffCloth's node-node contacts under the
+// Signorini-Coulomb law ("node", the default), and Liang et al. 2019's continuous collision
+// detection with non-rigid impact zones ("impact_zones"), which keeps every vertex-face and
+// edge-edge pair at least `thickness` apart so that no edge passes through a face.
 struct SelfCollision {
-  double radius = 0.004;  // m
-  double friction = 0.3;
+  bool nodeModel = true;
+  bool impactZones = false;
+  double radius = 0.004;     // m, node model: the contact distance between nodes
+  double friction = 0.3;     // node model
+  double thickness = 0.001;  // m, impact zones: the distance kept between surfaces (Liang Eq. 9)
 };
 
 struct Cloth {
@@ -179,7 +187,8 @@ struct Scene {
   std::vector<std::string> warnings;  // repaired or suspicious input, for the user
 
   int vertexCount() const;
-  bool hasSelfCollision() const;
+  bool hasSelfCollision() const;  // node-model self-collision (part of the contact solve)
+  bool hasImpactZones() const;    // some cloth's self_collision.model has "impact_zones"
 };
 
 }  // namespace weft

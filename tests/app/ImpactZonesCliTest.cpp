@@ -1,0 +1,101 @@
+// self_collision.model "impact_zones" (Liang et al. 2019) through the real binary: two cloths
+// landing on each other stay free of edge-triangle crossings at every state, by the independent
+// static check, with every step's impacts resolved; the module report names impact_zones and not
+// the node model's self_collision; stats.csv carries the response's columns; the node model on
+// the same scene is counted by the same check; gradients through impact zones are refused.
+
+#include "CliSupport.h"
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+
+namespace weft {
+namespace {
+
+using test::describe;
+using test::readCsv;
+using test::readFile;
+using test::runWeft;
+using test::TempDir;
+
+const std::string kScene = std::string(WEFT_TEST_DATA_DIR) + "/scenes/two_cloths.json";
+
+nlohmann::json summaryOf(const std::string& out) {
+  return nlohmann::json::parse(readFile(out + "/summary.json"));
+}
+
+// The scene with each cloth's self_collision replaced, written next to the output.
+std::string withSelfCollision(TempDir& dir, const nlohmann::json& selfCollision,
+                              const nlohmann::json& task = nullptr) {
+  nlohmann::json scene = nlohmann::json::parse(readFile(kScene));
+  for (auto& cloth : scene["cloths"]) cloth["self_collision"] = selfCollision;
+  if (!task.is_null()) scene["task"] = task;
+  const std::string path = dir.file("scene.json");
+  std::ofstream(path) << scene.dump(2);
+  return path;
+}
+
+TEST(ImpactZonesCli, TwoClothsLandingOnEachOtherNeverCross) {
+  TempDir dir;
+  const std::string out = dir.file("run");
+  const auto r =
+      runWeft({"simulate", kScene, "--out", out, "--quiet", "--strict", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  const nlohmann::json s = summaryOf(out);
+  // The response acted (the upper cloth lands on the lower one) and left nothing unresolved.
+  EXPECT_GT(s["impact_zones"]["zones_total"].get<int>(), 0);
+  EXPECT_EQ(s["impact_zones"]["unresolved_steps"], 0);
+  EXPECT_EQ(s["crossings"]["max"], 0) << "at state " << s["crossings"]["max_state"];
+  EXPECT_EQ(s["crossings"]["states_with_crossings"], 0);
+  // Nothing was moved far: the response corrects thickness-sized overlaps.
+  EXPECT_LT(s["impact_zones"]["max_move"].get<double>(), 0.01);
+  EXPECT_TRUE(s["modules"].contains("impact_zones"));
+  EXPECT_FALSE(s["modules"].contains("self_collision"));
+  const auto rows = readCsv(out + "/stats.csv");
+  ASSERT_EQ(rows.size(), 61u);
+  for (const char* column :
+       {"impact_rounds", "impact_zones", "impact_constraints", "impact_qp_iterations",
+        "impacts_resolved", "impact_move", "crossings", "seconds_impact_zones"})
+    EXPECT_NE(std::find(rows[0].begin(), rows[0].end(), column), rows[0].end()) << column;
+  const auto resolved = static_cast<std::size_t>(
+      std::find(rows[0].begin(), rows[0].end(), "impacts_resolved") - rows[0].begin());
+  for (std::size_t k = 1; k < rows.size(); ++k) EXPECT_EQ(rows[k][resolved], "1") << "step " << k;
+}
+
+TEST(ImpactZonesCli, TheNodeModelIsCountedByTheSameCheck) {
+  TempDir dir;
+  const std::string scene = withSelfCollision(dir, {{"radius", 0.004}, {"friction", 0.3}});
+  const std::string out = dir.file("run");
+  const auto r = runWeft({"simulate", scene, "--out", out, "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const nlohmann::json s = summaryOf(out);
+  EXPECT_FALSE(s.contains("impact_zones"));
+  EXPECT_TRUE(s["modules"].contains("self_collision"));
+  EXPECT_FALSE(s["modules"].contains("impact_zones"));
+  ASSERT_TRUE(s.contains("crossings"));
+  std::printf("node model on two_cloths: %d crossings at worst (state %d), %d at the end\n",
+              s["crossings"]["max"].get<int>(), s["crossings"]["max_state"].get<int>(),
+              s["crossings"]["final"].get<int>());
+}
+
+TEST(ImpactZonesCli, GradientsThroughImpactZonesAreRefused) {
+  TempDir dir;
+  const nlohmann::json task = {
+      {"loss",
+       {{"keypoints",
+         {{"points", {{{"step", 5}, {"vertices", {0}}, {"positions", {{0.0, 0.4, 0.0}}}}}}}}}},
+      {"parameters", {"cloths.0.material.stretch"}}};
+  const std::string scene =
+      withSelfCollision(dir, {{"model", "impact_zones"}, {"thickness", 0.002}}, task);
+  test::expectBadInput("gradient", {scene, "--set", "time.steps=5"},
+                       "cloths.0.self_collision.model", "not implemented");
+}
+
+}  // namespace
+}  // namespace weft
