@@ -17,22 +17,18 @@
 namespace weft {
 namespace {
 
-using test::describe;
-using test::readCsv;
-using test::readFile;
-using test::runWeft;
-using test::TempDir;
+namespace t = weft::test;
 
 const std::string kScene = std::string(WEFT_TEST_DATA_DIR) + "/scenes/two_cloths.json";
 
 nlohmann::json summaryOf(const std::string& out) {
-  return nlohmann::json::parse(readFile(out + "/summary.json"));
+  return nlohmann::json::parse(t::readFile(out + "/summary.json"));
 }
 
 // The scene with each cloth's self_collision replaced, written next to the output.
-std::string withSelfCollision(TempDir& dir, const nlohmann::json& selfCollision,
+std::string withSelfCollision(t::TempDir& dir, const nlohmann::json& selfCollision,
                               const nlohmann::json& task = nullptr) {
-  nlohmann::json scene = nlohmann::json::parse(readFile(kScene));
+  nlohmann::json scene = nlohmann::json::parse(t::readFile(kScene));
   for (auto& cloth : scene["cloths"]) cloth["self_collision"] = selfCollision;
   if (!task.is_null()) scene["task"] = task;
   const std::string path = dir.file("scene.json");
@@ -41,11 +37,11 @@ std::string withSelfCollision(TempDir& dir, const nlohmann::json& selfCollision,
 }
 
 TEST(ImpactZonesCli, TwoClothsLandingOnEachOtherNeverCross) {
-  TempDir dir;
+  t::TempDir dir;
   const std::string out = dir.file("run");
   const auto r =
-      runWeft({"simulate", kScene, "--out", out, "--quiet", "--strict", "--threads", "1"});
-  ASSERT_EQ(r.exitCode, 0) << describe(r);
+      t::runWeft({"simulate", kScene, "--out", out, "--quiet", "--strict", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << t::describe(r);
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
   const nlohmann::json s = summaryOf(out);
   // The response acted (the upper cloth lands on the lower one) and left nothing unresolved.
@@ -57,7 +53,7 @@ TEST(ImpactZonesCli, TwoClothsLandingOnEachOtherNeverCross) {
   EXPECT_LT(s["impact_zones"]["max_move"].get<double>(), 0.01);
   EXPECT_TRUE(s["modules"].contains("impact_zones"));
   EXPECT_FALSE(s["modules"].contains("self_collision"));
-  const auto rows = readCsv(out + "/stats.csv");
+  const auto rows = t::readCsv(out + "/stats.csv");
   ASSERT_EQ(rows.size(), 61u);
   for (const char* column :
        {"impact_rounds", "impact_zones", "impact_constraints", "impact_qp_iterations",
@@ -69,11 +65,11 @@ TEST(ImpactZonesCli, TwoClothsLandingOnEachOtherNeverCross) {
 }
 
 TEST(ImpactZonesCli, TheNodeModelIsCountedByTheSameCheck) {
-  TempDir dir;
+  t::TempDir dir;
   const std::string scene = withSelfCollision(dir, {{"radius", 0.004}, {"friction", 0.3}});
   const std::string out = dir.file("run");
-  const auto r = runWeft({"simulate", scene, "--out", out, "--quiet", "--threads", "1"});
-  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  const auto r = t::runWeft({"simulate", scene, "--out", out, "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << t::describe(r);
   const nlohmann::json s = summaryOf(out);
   EXPECT_FALSE(s.contains("impact_zones"));
   EXPECT_TRUE(s["modules"].contains("self_collision"));
@@ -85,7 +81,7 @@ TEST(ImpactZonesCli, TheNodeModelIsCountedByTheSameCheck) {
 }
 
 TEST(ImpactZonesCli, GradientsThroughImpactZonesAreRefused) {
-  TempDir dir;
+  t::TempDir dir;
   const nlohmann::json task = {
       {"loss",
        {{"keypoints",
@@ -93,8 +89,8 @@ TEST(ImpactZonesCli, GradientsThroughImpactZonesAreRefused) {
       {"parameters", {"cloths.0.material.stretch"}}};
   const std::string scene =
       withSelfCollision(dir, {{"model", "impact_zones"}, {"thickness", 0.002}}, task);
-  test::expectBadInput("gradient", {scene, "--set", "time.steps=5"},
-                       "cloths.0.self_collision.model", "not implemented");
+  t::expectBadInput("gradient", {scene, "--set", "time.steps=5"}, "cloths.0.self_collision.model",
+                    "not implemented");
 }
 
 }  // namespace
