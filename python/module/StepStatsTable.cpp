@@ -30,6 +30,7 @@ void forEachField(Visit&& visit) {
   visit("impact_qp_iterations", [](const StepStats& s) { return s.impactQpIterations; });
   visit("impacts_resolved", [](const StepStats& s) { return s.impactsResolved; });
   visit("impact_move", [](const StepStats& s) { return s.impactMove; });
+  visit("impact_rigid_zones", [](const StepStats& s) { return s.impactRigidZones; });
 }
 
 }  // namespace

@@ -118,7 +118,7 @@ class Run:
         steps: step, time, converged, residual, pd_iterations, takeoff, stick, slip,
         contact_sweeps, late_contacts, depth, substeps, halvings, and the impact zones' (0 and
         True without them): impact_rounds, impact_zones, impact_constraints,
-        impact_qp_iterations, impacts_resolved, impact_move
+        impact_qp_iterations, impact_rigid_zones, impacts_resolved, impact_move
     summary: summary.json's fields (without area_ratio), as a dict
     warnings: the engine's warnings, as strings
     """

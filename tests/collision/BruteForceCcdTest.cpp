@@ -107,13 +107,19 @@ void examine(ImpactKind kind, const PairPositions& start, const PairPositions& e
   if (impact && oracleDistance(kind, lerp(start, end, impact->time)) >= kThickness * (1 + 1e-6))
     tally.badTime++;
   if (!must && !impact && minDistance < 0.9 * kThickness) tally.nearMissesWithoutCoplanarity++;
-  if (impact) {  // Impact.h: a unit normal with normal . s(start) >= 0, weights summing to zero
-    Vec3 separation = Vec3::Zero();
+  if (impact) {  // Impact.h: a unit normal along s(x(t)) or with normal . s(start) >= 0, weights
+                 // summing to zero
+    Vec3 separation = Vec3::Zero(), atImpact = Vec3::Zero();
+    const PairPositions x = lerp(start, end, impact->time);
     double sum = 0.0;
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < 4; ++k) {
       separation += impact->weights[k] * start[k], sum += impact->weights[k];
-    if (std::abs(impact->normal.norm() - 1.0) > 1e-12 || impact->normal.dot(separation) < -1e-12 ||
-        std::abs(sum) > 1e-12)
+      atImpact += impact->weights[k] * x[k];
+    }
+    const bool alongSeparation =
+        atImpact.norm() > 0.0 && (impact->normal - atImpact.normalized()).norm() < 1e-9;
+    if (std::abs(impact->normal.norm() - 1.0) > 1e-12 ||
+        (!alongSeparation && impact->normal.dot(separation) < -1e-12) || std::abs(sum) > 1e-12)
       tally.badNormal++;
   }
 }

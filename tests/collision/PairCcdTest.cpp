@@ -1,8 +1,8 @@
 // The CCD narrow phase (Liang 2019 Sec. 3.3) on configurations with analytic answers: a vertex
 // falling through a face, beside it, or coming to rest within the thickness; edges crossing,
 // parallel, near-parallel and nearly degenerate. Every impact is checked against Impact.h's
-// convention: weights of the closest points, normal . s(start) >= 0, and normal . s(x(t)) equal
-// to the pair's distance at the time of impact.
+// convention: weights of the closest points, a normal along s(x(t)) or with
+// normal . s(start) >= 0, and normal . s(x(t)) equal to the pair's distance at the time of impact.
 
 #include <weft/collision/PairCcd.h>
 #include <weft/contact/TriangleBvh.h>
@@ -46,8 +46,13 @@ void expectConvention(const Impact& impact, const PairPositions& start, const Pa
   EXPECT_LE(impact.time, 1.0);
   const double sum = impact.weights[0] + impact.weights[1] + impact.weights[2] + impact.weights[3];
   EXPECT_NEAR(sum, 0.0, 1e-12);  // a separation vector: translation invariant
-  EXPECT_GE(impact.normal.dot(separation(impact, start)), -1e-12);
   const PairPositions x = lerp(start, end, impact.time);
+  const Vec3 atImpact = separation(impact, x);
+  const bool alongSeparation =
+      atImpact.norm() > 0.0 && (impact.normal - atImpact.normalized()).norm() < 1e-9;
+  if (!alongSeparation) {
+    EXPECT_GE(impact.normal.dot(separation(impact, start)), -1e-12);
+  }
   EXPECT_NEAR(impact.normal.dot(separation(impact, x)), pairDistance(impact.kind, x), 1e-9);
   for (double w : impact.weights) EXPECT_TRUE(std::isfinite(w));
   EXPECT_TRUE(impact.normal.allFinite());
@@ -181,6 +186,26 @@ TEST(CollisionCcd, EdgeMovingThroughAnEdgeAtTheAnalyticTime) {
   PairPositions beyondStart = start, beyondEnd = end;
   for (int k = 2; k < 4; ++k) beyondStart[k].x() = beyondEnd[k].x() = 1.3;
   EXPECT_FALSE(edgeEdgeCcd(beyondStart, beyondEnd, kThickness));
+}
+
+TEST(CollisionCcd, PointPassingBesideAVertexIsPushedApartTheWayItLies) {
+  // Edge a lies on the x axis; b's end b0 falls through a's height 0.9 mm to its +y side, b
+  // pointing away in +y, so the closest point of b is b0 (clamped) and the pair never crosses.
+  // At the coplanarity time s = (point on a) - b0 is -y: the normal is -y, the way the pair lies
+  // then, although s(start) (b0 0.1 mm to the -y side, 5 mm up) projects onto it negatively.
+  // Two edges from b0 give two impacts of the one point pair; with the normal taken from
+  // s(start)'s side both would point +y and demand a 2.9 mm sideways move through a.
+  const Vec3 from(0, -1e-4, 5e-3), to(0, 1.5e-3, -3e-3);
+  for (const Vec3& direction : {Vec3(0.3, 1, 0), Vec3(-0.3, 1, 0)}) {
+    const PairPositions start = {Vec3(-1, 0, 0), Vec3(1, 0, 0), from, from + direction};
+    const PairPositions end = {Vec3(-1, 0, 0), Vec3(1, 0, 0), to, to + direction};
+    const auto impact = edgeEdgeCcd(start, end, 2e-3);
+    ASSERT_TRUE(impact);
+    EXPECT_NEAR(impact->time, 5.0 / 8.0, 1e-12);
+    EXPECT_NEAR(impact->weights[2], -1.0, 1e-12);  // b0, clamped
+    EXPECT_NEAR((impact->normal + Vec3::UnitY()).norm(), 0.0, 1e-9);
+    expectConvention(*impact, start, end);
+  }
 }
 
 TEST(CollisionCcd, ParallelEdges) {

@@ -9,9 +9,10 @@
 //                closest face point at the time of impact);
 //   edge-edge:   nodes = {a0, a1, b0, b1}, weights = {1 - s, s, -(1 - u), -u} (s, u: the closest
 //                points' parameters on edges a and b at the time of impact);
-// and normal is the unit direction the pair must stay apart along, oriented so that
-// normal . s(x_start) >= 0. The impact constraint is normal . s(z) >= thickness, that is one row
-// of Liang Eq. 9, G z + h <= 0, with G's row -weights[k] normal^T at node k and h = thickness.
+// and normal is the unit direction the pair must stay apart along: the direction of s at the time
+// of impact where that is defined, else oriented so that normal . s(x_start) >= 0 (PairCcd.h). The
+// impact constraint is normal . s(z) >= thickness, that is one row of Liang Eq. 9, G z + h <= 0,
+// with G's row -weights[k] normal^T at node k and h = thickness.
 
 #include <weft/core/Types.h>
 

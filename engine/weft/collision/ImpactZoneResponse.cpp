@@ -62,6 +62,7 @@ void ImpactZoneResponse::apply(const NodeMatrix& start, NodeMatrix& end, StepSta
   stats.impactZones += s.zones;
   stats.impactConstraints += s.constraints;
   stats.impactQpIterations += static_cast<int>(s.qpIterationsTotal);
+  stats.impactRigidZones += s.rigidZones;
   stats.impactsResolved = stats.impactsResolved && s.converged;
   stats.impactMove = std::max(
       stats.impactMove, std::sqrt((result.positions - e.end).rowwise().squaredNorm().maxCoeff()));

@@ -18,6 +18,15 @@
 // nodes, the minimum mass-weighted displacement satisfying all its impacts, and the backward
 // pass is exact through that single QP (with G, h held fixed).
 //
+// The failsafe (Bridson et al. 2002, Harmon et al. 2008: rigid impact zones): a zone whose QP
+// does not converge, whose answer moves it much farther than undoing the step would (more than
+// twice as far plus the thickness, root-mean-square over the zone's mass or at its farthest
+// node: the linearised constraints, taken at different times of the step, disagree with each
+// other), or that still
+// grows after rigidAfterRounds rounds, moves rigidly instead: its nodes go to x0 plus the zone's
+// mass-weighted mean displacement x1 - x0 (momentum kept, rotation not). x0 is collision-free, so a
+// translated zone is too within itself; a rigid zone that merges with another stays rigid.
+//
 // Fixed nodes (infinite mass: obstacles, pinned nodes) do not move and are not QP variables:
 // their columns are excluded and their term -w_k normal . x1_k goes into h, so an impact row is
 // G = -w_k normal^T at each free node k and h = thickness - sum_fixed w_k normal . x1_k. They
@@ -52,6 +61,8 @@ struct ImpactZoneOptions {
   // constraint of the re-solved zone, and cloth layers resting on each other give hundreds of
   // impacts sharing nodes, which the rule would spread over as many rounds.
   bool independentImpacts = false;
+  // Rounds after which a zone that grows again is made rigid (see the failsafe above).
+  int rigidAfterRounds = 20;
   ZoneQpOptions qp;
 };
 
@@ -62,7 +73,9 @@ struct ImpactZoneRecord {
   ZoneQp qp;                    // x = x1 at nodes, W, G, h as solved (small zones)
   bool sparse = false;          // large zone: solved as sparseQp, qp left empty
   SparseZoneQp sparseQp;
-  ZoneQpSolution solution;  // z, lambda of the last solve
+  ZoneQpSolution solution;     // z, lambda of the last solve
+  bool rigid = false;          // moved by the failsafe's translation; qp, solution not used
+  std::vector<double> masses;  // of nodes (the rigid translation's weights)
 };
 
 struct ImpactZoneStats {
@@ -72,15 +85,17 @@ struct ImpactZoneStats {
   int impactsDetected = 0;         // over all rounds
   int impactsKept = 0;             // impacts added to zones, over all rounds
   int impactsWithoutFreeNode = 0;  // detected impacts between fixed nodes only (ignored)
+  int rigidZones = 0;              // final zones moved by the failsafe's translation
   int qpSolves = 0;
   long qpIterationsTotal = 0;
   int qpIterationsMax = 0;
   bool allQpConverged = true;
   bool roundCapHit = false;
+  int qpFailures = 0;      // QP solves that did not converge (their zones were made rigid)
   bool validInput = true;  // false: x0, x1, masses disagree in size or a mass is not > 0
-  bool converged = false;  // the detector found nothing and every QP converged
-  // Largest remaining violation, max(0, thickness - normal . s(z)), over the final zones'
-  // impacts and (when the round cap was hit) the last round's detected impacts.
+  bool converged = false;  // the detector found nothing: the step is collision-free
+  // Largest remaining violation, max(0, thickness - normal . s(z)), over the final non-rigid
+  // zones' impacts and (when the round cap was hit) the last round's detected impacts.
   double maxViolation = 0.0;
 };
 
@@ -112,7 +127,8 @@ class ImpactZones {
                          const ImpactDetector& detect) const;
 
   // dL/dx1 from dL/dz through every final zone's QP with its G and h held fixed (treated as
-  // constants of the step); nodes in no zone, fixed ones included, pass dL/dz through.
+  // constants of the step), or through a rigid zone's mean displacement; nodes in no zone, fixed
+  // ones included, pass dL/dz through.
   ImpactZoneBackward backward(const ImpactZoneResult& result, const NodeMatrix& dLdz,
                               ZoneGradientMethod method = ZoneGradientMethod::Qr) const;
 

@@ -233,10 +233,18 @@ Detection finish(ImpactKind kind, const Nodes<double>& start, const Nodes<double
     if (dot(c, c) > 0.0) d.constantNormal = toVec3(normalized(c));
   }
   V<double> n = normalFor(d.mode, e.w, x, start, end, d.constantNormal);
-  // Orientation: normal . s(start) >= 0; a pair coplanar at the start is oriented against its
-  // approach, normal . (s(end) - s(start)) <= 0 (as ARCSim does for every impact).
+  // Orientation. A separation normal is the pair's own direction at the time of impact and keeps
+  // it: the pair is pushed apart the way it lies then. Oriented by s(start) instead, a point
+  // passing beside a vertex (sideways at the impact, having come along s(start)) gets a sign
+  // decided by a nearly perpendicular projection, and two impacts of one point pair (found
+  // through two edges sharing the vertex) can get opposite normals whose constraints together
+  // push the pair far apart. The other normals (face, edge cross product: s(x(t)) vanishes along
+  // them) take the side the pair started on, normal . s(start) >= 0, and a pair coplanar at the
+  // start is oriented against its approach, normal . (s(end) - s(start)) <= 0 (as ARCSim does).
   const double atStart = dot(n, separation(e.w, start));
-  if (std::abs(atStart) > tiny)
+  if (d.mode == NormalMode::Separation)
+    d.sign = 1.0;
+  else if (std::abs(atStart) > tiny)
     d.sign = atStart > 0.0 ? 1.0 : -1.0;
   else
     d.sign = dot(n, approach) >= 0.0 ? 1.0 : -1.0;

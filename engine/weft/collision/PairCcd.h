@@ -15,8 +15,9 @@
 // Nodes are local (0..3): vertex-face {vertex, face corner 0, 1, 2}, edge-edge {a0, a1, b0, b1};
 // the caller maps them to mesh indices. The Impact follows collision/Impact.h: weights from the
 // closest points at the time of impact, normal the unit separation direction then (the face
-// normal, or the edges' common perpendicular, when the closest points are interior), oriented so
-// that normal . s(start) >= 0 (against the approach, normal . (s(end) - s(start)) <= 0, when
+// normal, or the edges' common perpendicular, when the closest points are interior). A
+// separation normal, s(x(t)) / |s(x(t))|, keeps its direction; the others are oriented so that
+// normal . s(start) >= 0 (against the approach, normal . (s(end) - s(start)) <= 0, when
 // normal . s(start) vanishes: a pair coplanar at the start).
 //
 // Derivatives (Liang Eq. 6-7, with the sign of Eq. 7 fixed as in notes/algorithms.md Sec. 4):

@@ -112,6 +112,8 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
   int maxIterations = 0, splitSteps = 0, deepestHalvings = 0;
   double maxResidual = 0.0;
   long long impactRounds = 0, impactZones = 0, impactConstraints = 0, impactIterations = 0;
+  long long rigidZones = 0;
+  int rigidSteps = 0;
   double impactMove = 0.0;
   ConvergenceReport convergence;
   for (const StepStats& s : stepStats) {
@@ -125,6 +127,8 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
     impactRounds += s.impactRounds, impactZones += s.impactZones;
     impactConstraints += s.impactConstraints, impactIterations += s.impactQpIterations;
     impactMove = std::max(impactMove, s.impactMove);
+    rigidZones += s.impactRigidZones;
+    rigidSteps += s.impactRigidZones > 0;
   }
   const int steps = static_cast<int>(stepStats.size());
   nlohmann::json j;
@@ -165,6 +169,8 @@ nlohmann::json summarize(const Scene& scene, int vertices, const std::vector<Ste
                          {"zones_total", impactZones},
                          {"constraints_total", impactConstraints},
                          {"qp_iterations_total", impactIterations},
+                         {"rigid_zones_total", rigidZones},
+                         {"rigid_steps", rigidSteps},
                          {"unresolved_steps", convergence.unresolvedImpactSteps},
                          {"first_unresolved_step", convergence.firstUnresolvedImpactStep},
                          {"max_move", impactMove}};
@@ -190,7 +196,7 @@ void RunWriter::finish(const RunSummary& run) {
     if (impacts)
       std::fprintf(f.get(),
                    ",impact_rounds,impact_zones,impact_constraints,impact_qp_iterations,"
-                   "impacts_resolved,impact_move");
+                   "impact_rigid_zones,impacts_resolved,impact_move");
     if (crossingCheck_) std::fprintf(f.get(), ",crossings");
     for (const std::string& name : run.moduleNames)
       std::fprintf(f.get(), ",seconds_%s", name.c_str());
@@ -201,9 +207,9 @@ void RunWriter::finish(const RunSummary& run) {
                    s.contactSweeps, s.contactSweepChange, s.lateContacts, areaRatio_.at(s.step),
                    s.depth, s.substeps);
       if (impacts)
-        std::fprintf(f.get(), ",%d,%d,%d,%d,%d,%.6e", s.impactRounds, s.impactZones,
-                     s.impactConstraints, s.impactQpIterations, s.impactsResolved ? 1 : 0,
-                     s.impactMove);
+        std::fprintf(f.get(), ",%d,%d,%d,%d,%d,%d,%.6e", s.impactRounds, s.impactZones,
+                     s.impactConstraints, s.impactQpIterations, s.impactRigidZones,
+                     s.impactsResolved ? 1 : 0, s.impactMove);
       if (crossingCheck_) std::fprintf(f.get(), ",%d", crossings_.at(s.step));
       for (double sec : s.moduleSeconds) std::fprintf(f.get(), ",%.6e", sec);
       std::fprintf(f.get(), "\n");

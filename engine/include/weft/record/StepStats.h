@@ -32,8 +32,11 @@ struct StepStats {
   // Impact zones (self_collision.model "impact_zones", Liang 2019 Sec. 3.4), summed over the
   // step's pieces: detection rounds, zones solved, impact constraints in them, QP iterations;
   // impactsResolved is false when the round limit left impacts unresolved (then the step is not
-  // collision-free), and impactMove the largest displacement the response made (m).
+  // collision-free), impactRigidZones the zones the failsafe translated rigidly (their QP failed,
+  // or asked for a larger move than undoing the step), and impactMove the largest displacement
+  // the response made (m).
   int impactRounds = 0, impactZones = 0, impactConstraints = 0, impactQpIterations = 0;
+  int impactRigidZones = 0;
   bool impactsResolved = true;
   double impactMove = 0.0;
   std::vector<double> moduleSeconds;  // aligned with Simulator::moduleNames()
