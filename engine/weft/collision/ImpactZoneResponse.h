@@ -11,10 +11,18 @@
 #include <weft/record/StepStats.h>
 #include <weft/scene/Scene.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
 namespace weft::collision {
+
+struct ImpactZoneResult;
+
+// Sees the result of every apply() (the zones, their QPs and solutions; nodes numbered as the
+// collision mesh's vertices), before `end` is updated from it. The response keeps no result of
+// its own; a benchmark or a test that needs the zones of a run sets one.
+using ImpactZoneObserver = std::function<void(const ImpactZoneResult&)>;
 
 class ImpactZoneResponse {
  public:
@@ -29,11 +37,17 @@ class ImpactZoneResponse {
   int crossings(const NodeMatrix& positions) const;
 
   int nodeCount() const { return static_cast<int>(nodes_.size()); }
+  // Global node of each collision-mesh vertex.
+  const std::vector<int>& nodes() const { return nodes_; }
+
+  // Replaces the observer (an empty function removes it).
+  void setObserver(ImpactZoneObserver observer) { observer_ = std::move(observer); }
 
  private:
   struct Engine;
   std::vector<int> nodes_;  // global node of each collision-mesh vertex
   std::unique_ptr<Engine> engine_;
+  ImpactZoneObserver observer_;
 };
 
 }  // namespace weft::collision
