@@ -41,12 +41,14 @@ TEST(ImpactZonesBench, SummaryCountsSingularZonesAndComparesOnlyTheOthers) {
     return s;
   };
   // Sizes n + m: 12, 24, 36; ranks 1, 2, 3. The singular zone's difference is not counted.
-  const std::vector<ZoneBackwardSample> samples = {sample(9, 3, 1, 1, 2.0, 1.0, true, 1e-12),
-                                                   sample(18, 6, 3, 2, 4.0, 1.0, false, 1.0),
-                                                   sample(27, 9, 3, 3, 6.0, 1.0, true, 1e-10)};
+  std::vector<ZoneBackwardSample> samples = {sample(9, 3, 1, 1, 2.0, 1.0, true, 1e-12),
+                                             sample(18, 6, 3, 2, 4.0, 1.0, false, 1.0),
+                                             sample(27, 9, 3, 3, 6.0, 1.0, true, 1e-10)};
+  samples[1].tightWithoutMultiplier = 2;
   const bench::ImpactZonesSummary s = summariseZones(samples);
   EXPECT_EQ(s.zones, 3);
   EXPECT_EQ(s.kktSingular, 1);
+  EXPECT_EQ(s.degenerate, 1);
   EXPECT_EQ(s.rankDeficient, 1);
   EXPECT_EQ(s.withoutActive, 0);
   EXPECT_DOUBLE_EQ(s.kktSize.mean, 24.0);

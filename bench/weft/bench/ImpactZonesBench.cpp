@@ -83,6 +83,10 @@ ZoneBackwardSample timeZoneBackward(const collision::ZoneQp& qp,
       secondsPerCall([&] { kkt = collision::zoneQpGradientKkt(qp, solution, dLdz); }, minSeconds);
   s.qrSeconds =
       secondsPerCall([&] { qr = collision::zoneQpGradientQr(qp, solution, dLdz); }, minSeconds);
+  const Eigen::VectorXd g = qp.G * solution.z + qp.h;
+  const Eigen::VectorXd scale = qp.h.cwiseAbs() + qp.G.cwiseAbs() * solution.z.cwiseAbs();
+  for (Eigen::Index j = 0; j < g.size(); ++j)
+    s.tightWithoutMultiplier += solution.lambda[j] == 0.0 && std::abs(g[j]) <= 1e-9 * scale[j];
   s.active = qr.activeConstraints;
   s.rank = qr.rank;
   s.kktOk = kkt.ok && qr.ok;
@@ -224,6 +228,7 @@ ImpactZonesSummary summariseZones(const std::vector<ZoneBackwardSample>& samples
     s.kktSingular += !z.kktOk;
     s.rankDeficient += z.rank < z.active;
     s.withoutActive += z.active == 0;
+    s.degenerate += z.tightWithoutMultiplier > 0;
     if (z.kktOk) {
       s.maxDifferenceDx = std::max(s.maxDifferenceDx, z.differenceDx);
       s.maxDifferenceAll = std::max(s.maxDifferenceAll, z.differenceAll);
@@ -252,11 +257,11 @@ int runImpactZonesBench(const ImpactZonesBenchOptions& options, const std::strin
   // clang-format off
   BenchTable table({"quads", "vertices", "steps", "zone_qps", "sparse_zones", "kkt_size", "qr_size",
                     "kkt_ms", "qr_ms", "size_ratio", "speedup", "median_speedup", "kkt_singular",
-                    "rank_deficient", "no_active_rows", "max_rel_diff_dx", "max_rel_diff_all",
+                    "tight_zero_lambda", "rank_deficient", "no_active_rows", "max_rel_diff_dx", "max_rel_diff_all",
                     "forward_s", "response_s", "unresolved_steps", "split_steps",
                     "states_with_crossings", "max_move_mm", "failed_step"});
   BenchTable zones({"quads", "step", "n", "m", "active", "rank", "kkt_size", "kkt_ms", "qr_ms",
-                    "kkt_ok", "rel_diff_dx", "rel_diff_all"});
+                    "kkt_ok", "rel_diff_dx", "rel_diff_all", "tight_zero_lambda"});
   // clang-format on
   std::vector<PlotSeries> plot;
   const auto start = Clock::now();
@@ -277,6 +282,7 @@ int runImpactZonesBench(const ImpactZonesBenchOptions& options, const std::strin
                formatNumber(s.speedup, 3),
                formatNumber(s.medianSpeedup, 3),
                std::to_string(s.kktSingular),
+               std::to_string(s.degenerate),
                std::to_string(s.rankDeficient),
                std::to_string(s.withoutActive),
                formatNumber(s.maxDifferenceDx, 2),
@@ -297,7 +303,8 @@ int runImpactZonesBench(const ImpactZonesBenchOptions& options, const std::strin
                  std::to_string(z.n + z.m), formatNumber(1e3 * z.kktSeconds),
                  formatNumber(1e3 * z.qrSeconds), z.kktOk ? "1" : "0",
                  z.kktOk ? formatNumber(z.differenceDx, 2) : "",
-                 z.kktOk ? formatNumber(z.differenceAll, 2) : ""});
+                 z.kktOk ? formatNumber(z.differenceAll, 2) : "",
+                 std::to_string(z.tightWithoutMultiplier)});
       kkt.x.push_back(z.n + z.m);
       kkt.y.push_back(1e3 * z.kktSeconds);
       qr.x.push_back(z.n + z.m);
@@ -309,7 +316,7 @@ int runImpactZonesBench(const ImpactZonesBenchOptions& options, const std::strin
   const double seconds = since(start);
 
   const std::string preamble =
-      "Scene " + std::string(kScene) +
+      "Scene assets/" + std::string(kScene) +
       " (a cloth dropped into an upside-down square pyramid, a mesh obstacle) with "
       "cloths.0.self_collision {\"model\": \"impact_zones\", \"thickness\": " +
       formatNumber(kThickness, 6) + "}, the grid overridden to n x n quads, " +
@@ -325,7 +332,10 @@ int runImpactZonesBench(const ImpactZonesBenchOptions& options, const std::strin
       "times in ms per QP backward. size_ratio and speedup: ratios of the means (as the paper's "
       "Table 1); median_speedup: the median over zones of the per-zone ratio. kkt_singular: "
       "zones whose Eq. 13 matrix was singular (their LU time is counted, the QR route still "
-      "gives a gradient); rank_deficient: zones whose active rows are linearly dependent; "
+      "gives a gradient); tight_zero_lambda: zones with a row tight at the solution "
+      "(|G_j z + h_j| <= 1e-9 of its terms) whose multiplier is 0, the degenerate case that "
+      "makes Eq. 13's matrix singular; rank_deficient: zones whose active rows are linearly "
+      "dependent; "
       "max_rel_diff_*: the largest max |QR - KKT| / max |KKT| over the zones where both routes "
       "gave a gradient, over dL/dx alone and over dL/dx, dL/dG, dL/dh. forward_s: the forward "
       "run's wall seconds (without the timings above), response_s the impact-zone response's "

@@ -25,6 +25,9 @@ struct ZoneBackwardSample {
   int rank = 0;    // numerical rank of those rows: the QR route's matrix size
   double kktSeconds = 0.0, qrSeconds = 0.0;  // per call, averaged over repeated calls
   bool kktOk = false;                        // false: Eq. 13's matrix was singular
+  // Rows tight at the solution (|G_j z + h_j| <= 1e-9 (|h_j| + sum_k |G_jk z_k|)) with
+  // lambda_j = 0: the degenerate case, where Eq. 13's row j is zero and its matrix singular.
+  int tightWithoutMultiplier = 0;
   // Where kktOk: max |QR - KKT| / max |KKT| over dL/dx, and over dL/dx, dL/dG, dL/dh together.
   double differenceDx = 0.0, differenceAll = 0.0;
 };
@@ -40,6 +43,7 @@ struct ImpactZonesSummary {
   int kktSingular = 0;
   int rankDeficient = 0;   // zones whose active rows were dependent (rank < active)
   int withoutActive = 0;   // zones with no row at lambda > 0 (nothing to factor)
+  int degenerate = 0;      // zones with a row tight at lambda = 0 (tightWithoutMultiplier > 0)
   MeanSd kktSize, qrSize;  // n + m; rank
   MeanSd kktSeconds, qrSeconds;
   double sizeRatio = 0.0;      // mean KKT size / mean QR size
