@@ -13,6 +13,7 @@
 #include <weft/bench/ContinuityBench.h>
 #include <weft/bench/DistributionBench.h>
 #include <weft/bench/ForwardBench.h>
+#include <weft/bench/ImpactZonesBench.h>
 #include <weft/bench/PaperMeshScenes.h>
 #include <weft/bench/SoakBench.h>
 #include <weft/core/Error.h>
@@ -219,13 +220,16 @@ int benchCommand(const std::vector<std::string>& arguments) {
   for (const char* option : {"--subdivisions", "--resolution"})
     if (cl.has(option) && name != "continuity")
       cl.fail(option, "applies to the continuity benchmark only");
-  for (const char* option : {"--steps", "--evaluations"})
-    if (cl.has(option) && name != "soak") cl.fail(option, "applies to the soak benchmark only");
+  if (cl.has("--steps") && name != "soak" && name != "impact_zones")
+    cl.fail("--steps", "applies to the soak and impact_zones benchmarks only");
+  if (cl.has("--evaluations") && name != "soak")
+    cl.fail("--evaluations", "applies to the soak benchmark only");
   if (cl.has("--calibrate") && name != "backward")
     cl.fail("--calibrate", "applies to the backward benchmark only");
   if (name == "applications") {
     if (cl.has("--resolutions"))
-      cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
+      cl.fail("--resolutions",
+              "applies to the forward, backward, contact and impact_zones benchmarks only");
     if (cl.has("--contact")) cl.fail("--contact", "applies to the contact benchmark only");
     bench::ApplicationsBenchOptions options = applicationsOptions(cl);
     if (launchSize() > 1 && options.jobs > 1)
@@ -262,11 +266,23 @@ int benchCommand(const std::vector<std::string>& arguments) {
     if (cl.has("--contact")) o.contacts = benchNames(cl, "--contact", "", bench::kContactSolves);
     return bench::runContactBench(o, out);
   }
+  if (name == "impact_zones") {
+    if (cl.has("--contact")) cl.fail("--contact", "bench impact_zones runs its scene's own");
+    for (const char* option : {"--scene", "--scenes"})
+      if (cl.has(option)) cl.fail(option, "bench impact_zones runs its own scene (crumple)");
+    bench::ImpactZonesBenchOptions o;
+    o.quick = quick;
+    o.threads = threads;
+    o.resolutions = benchResolutions(cl);
+    o.steps = cl.integer("--steps", 0, 1, 100000);
+    return bench::runImpactZonesBench(o, out);
+  }
   if (cl.has("--contact") && name != "continuity")
     cl.fail("--contact", "applies to the contact and continuity benchmarks only");
   if (name == "soak") {
     if (cl.has("--resolutions"))
-      cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
+      cl.fail("--resolutions",
+              "applies to the forward, backward, contact and impact_zones benchmarks only");
     for (const char* option : {"--scene", "--scenes"})
       if (cl.has(option)) cl.fail(option, "bench soak runs its own two scenes");
     bench::SoakBenchOptions o;
@@ -294,7 +310,8 @@ int benchCommand(const std::vector<std::string>& arguments) {
     return bench::runBackwardBench(o, out);
   }
   if (cl.has("--resolutions"))
-    cl.fail("--resolutions", "applies to the forward, backward and contact benchmarks only");
+    cl.fail("--resolutions",
+            "applies to the forward, backward, contact and impact_zones benchmarks only");
   if (name == "continuity") {
     bench::ContinuityBenchOptions o;
     o.quick = quick;

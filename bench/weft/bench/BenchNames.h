@@ -8,7 +8,7 @@ namespace weft::bench {
 
 inline constexpr const char* kBenchNames[] = {"forward", "backward",     "continuity",
                                               "contact", "applications", "render",
-                                              "soak",    "distribution"};
+                                              "soak",    "distribution", "impact_zones"};
 
 // "forward, backward, ..., render".
 inline std::string benchNameList() {

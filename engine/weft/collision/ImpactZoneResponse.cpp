@@ -57,6 +57,7 @@ void ImpactZoneResponse::apply(const NodeMatrix& start, NodeMatrix& end, StepSta
     return e.broadPhase.findImpacts(a, b, e.thickness);
   };
   const ImpactZoneResult result = e.zones.apply(e.start, e.end, e.mesh.mass, detect);
+  if (observer_) observer_(result);
   const ImpactZoneStats& s = result.stats;
   stats.impactRounds += s.rounds;
   stats.impactZones += s.zones;

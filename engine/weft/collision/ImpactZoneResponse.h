@@ -11,10 +11,18 @@
 #include <weft/record/StepStats.h>
 #include <weft/scene/Scene.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
 namespace weft::collision {
+
+struct ImpactZoneResult;
+
+// Sees the result of every apply() (the zones, their QPs and solutions; nodes numbered as the
+// collision mesh's vertices), before `end` is updated from it. The response keeps no result of
+// its own; a benchmark or a test that needs the zones of a run sets one.
+using ImpactZoneObserver = std::function<void(const ImpactZoneResult&)>;
 
 class ImpactZoneResponse {
  public:
@@ -25,15 +33,18 @@ class ImpactZoneResponse {
   // on the way from `start`; adds the rounds, zones, constraints and QP iterations to `stats`.
   void apply(const NodeMatrix& start, NodeMatrix& end, StepStats& stats) const;
 
-  // Edge-triangle crossings of the collision mesh at `positions` (the independent check).
-  int crossings(const NodeMatrix& positions) const;
-
   int nodeCount() const { return static_cast<int>(nodes_.size()); }
+  // Global node of each collision-mesh vertex.
+  const std::vector<int>& nodes() const { return nodes_; }
+
+  // Replaces the observer (an empty function removes it).
+  void setObserver(ImpactZoneObserver observer) { observer_ = std::move(observer); }
 
  private:
   struct Engine;
   std::vector<int> nodes_;  // global node of each collision-mesh vertex
   std::unique_ptr<Engine> engine_;
+  ImpactZoneObserver observer_;
 };
 
 }  // namespace weft::collision

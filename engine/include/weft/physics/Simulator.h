@@ -88,6 +88,9 @@ class Simulator {
   const std::vector<std::unique_ptr<ExternalForce>>& forces() const { return compiled_->forces(); }
   // The scene's contact, or null when it has no obstacles and no self-collision.
   const FrictionalContact* contact() const { return contact_.get(); }
+  // The impact-zone response (self_collision.model "impact_zones"), or null when the scene has
+  // none; through it a benchmark or a test observes each step's zones (setObserver).
+  collision::ImpactZoneResponse* impactZoneResponse() { return impactZones_.get(); }
   // The contacts of the last step (empty before the first step or without contact); of its last
   // piece when it was split.
   const StepContacts& lastContacts() const { return lastContacts_; }
