@@ -3,6 +3,7 @@
 #include "EditorApp.h"
 #include "EditorSession.h"
 #include "ObstacleTemplates.h"
+#include "SelfCollisionChoice.h"
 
 #include <imgui.h>
 
@@ -69,19 +70,21 @@ void ScenePanel::clothPanel() {
       fields_.number("density (kg/m^2)", base + ".material.density", 0.1);
       fields_.number("stretch (N/m)", base + ".material.stretch", 100.0);
       fields_.number("bend (N m)", base + ".material.bend", 0.0);
-      const bool hasSelf = session_.document().find(base + ".self_collision") != nullptr;
-      bool self = hasSelf;
-      if (ImGui::Checkbox("self-collision", &self)) {
-        if (self)
-          fields_.apply(session_.document().setValue(base + ".self_collision",
-                                                     {{"radius", 0.004}, {"friction", 0.3}}));
-        else
-          fields_.apply(session_.document().removeValue(base + ".self_collision"));
+      const nlohmann::json* selfCollision = session_.document().find(base + ".self_collision");
+      const SelfCollisionChoice choice = selfCollisionChoice(selfCollision);
+      int chosen = static_cast<int>(choice);
+      if (ImGui::Combo("self-collision", &chosen, kSelfCollisionChoiceLabels,
+                       IM_ARRAYSIZE(kSelfCollisionChoiceLabels)) &&
+          chosen != static_cast<int>(choice)) {
+        fields_.apply(chooseSelfCollision(session_.document(), static_cast<int>(c),
+                                          static_cast<SelfCollisionChoice>(chosen)));
       }
-      if (hasSelf) {
+      if (choice == SelfCollisionChoice::Node || choice == SelfCollisionChoice::Both) {
         fields_.number("radius (m)", base + ".self_collision.radius", 0.004);
         fields_.number("friction", base + ".self_collision.friction", 0.3);
       }
+      if (choice == SelfCollisionChoice::ImpactZones || choice == SelfCollisionChoice::Both)
+        fields_.number("thickness (m)##self", base + ".self_collision.thickness", 0.001);
       const nlohmann::json* attachments = session_.document().find(base + ".attachments");
       if (attachments && attachments->is_array()) {
         for (std::size_t a = 0; a < attachments->size(); ++a) {
