@@ -41,6 +41,23 @@ std::string withSelfCollision(t::TempDir& dir, const nlohmann::json& selfCollisi
   return path;
 }
 
+// weft simulate SCENE (one thread) into dir's "run"; its summary.json in `summary`.
+void simulate(t::TempDir& dir, const std::string& scene, nlohmann::json& summary) {
+  const std::string out = dir.file("run");
+  const auto r = t::runWeft({"simulate", scene, "--out", out, "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.exitCode, 0) << t::describe(r);
+  summary = summaryOf(out);
+}
+
+// The impact-zone response acted (more than minZones zones), left no step unresolved, and no
+// state has an edge through a face by the independent check.
+void expectActedWithoutCrossing(const nlohmann::json& s, int minZones) {
+  EXPECT_GT(s["impact_zones"]["zones_total"].get<int>(), minZones);
+  EXPECT_EQ(s["impact_zones"]["unresolved_steps"], 0);
+  EXPECT_EQ(s["crossings"]["max"], 0) << "at state " << s["crossings"]["max_state"];
+  EXPECT_EQ(s["crossings"]["states_with_crossings"], 0);
+}
+
 TEST(ImpactZonesCli, TwoClothsLandingOnEachOtherNeverCross) {
   t::TempDir dir;
   const std::string out = dir.file("run");
@@ -49,11 +66,7 @@ TEST(ImpactZonesCli, TwoClothsLandingOnEachOtherNeverCross) {
   ASSERT_EQ(r.exitCode, 0) << t::describe(r);
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
   const nlohmann::json s = summaryOf(out);
-  // The response acted (the upper cloth lands on the lower one) and left nothing unresolved.
-  EXPECT_GT(s["impact_zones"]["zones_total"].get<int>(), 0);
-  EXPECT_EQ(s["impact_zones"]["unresolved_steps"], 0);
-  EXPECT_EQ(s["crossings"]["max"], 0) << "at state " << s["crossings"]["max_state"];
-  EXPECT_EQ(s["crossings"]["states_with_crossings"], 0);
+  expectActedWithoutCrossing(s, 0);  // the upper cloth lands on the lower one
   // Nothing was moved far: the response corrects thickness-sized overlaps.
   EXPECT_LT(s["impact_zones"]["max_move"].get<double>(), 0.01);
   // Two cloths landing flat need no failsafe: every zone's QP answer is kept.
@@ -89,14 +102,9 @@ TEST(ImpactZonesCli, TheNodeModelIsCountedByTheSameCheck) {
 
 TEST(ImpactZonesCli, TwistedStripCoilsOntoItselfWithoutCrossing) {
   t::TempDir dir;
-  const std::string out = dir.file("run");
-  const auto r = t::runWeft({"simulate", kTwistedStrip, "--out", out, "--quiet", "--threads", "1"});
-  ASSERT_EQ(r.exitCode, 0) << t::describe(r);
-  const nlohmann::json s = summaryOf(out);
-  EXPECT_GT(s["impact_zones"]["zones_total"].get<int>(), 100);  // the strip does touch itself
-  EXPECT_EQ(s["impact_zones"]["unresolved_steps"], 0);
-  EXPECT_EQ(s["crossings"]["max"], 0) << "at state " << s["crossings"]["max_state"];
-  EXPECT_EQ(s["crossings"]["states_with_crossings"], 0);
+  nlohmann::json s;
+  ASSERT_NO_FATAL_FAILURE(simulate(dir, kTwistedStrip, s));
+  expectActedWithoutCrossing(s, 100);  // the strip does touch itself
   // The handle turns 2 cm from the axis and the coil snaps over at up to ~3 cm per step: a
   // response of that order, never metres.
   EXPECT_LT(s["impact_zones"]["max_move"].get<double>(), 0.1);
@@ -111,10 +119,8 @@ TEST(ImpactZonesCli, TwistedStripCoilsOntoItselfWithoutCrossing) {
   t::TempDir nodeDir;
   const std::string scene =
       withSelfCollision(nodeDir, {{"radius", 0.004}, {"friction", 0.3}}, nullptr, kTwistedStrip);
-  const std::string nodeOut = nodeDir.file("run");
-  const auto n = t::runWeft({"simulate", scene, "--out", nodeOut, "--quiet", "--threads", "1"});
-  ASSERT_EQ(n.exitCode, 0) << t::describe(n);
-  const nlohmann::json ns = summaryOf(nodeOut);
+  nlohmann::json ns;
+  ASSERT_NO_FATAL_FAILURE(simulate(nodeDir, scene, ns));
   EXPECT_GT(ns["crossings"]["max"].get<int>(), 0);
   std::printf("twisted strip, node model: %d crossings at worst (state %d), in %d states\n",
               ns["crossings"]["max"].get<int>(), ns["crossings"]["max_state"].get<int>(),
@@ -123,14 +129,9 @@ TEST(ImpactZonesCli, TwistedStripCoilsOntoItselfWithoutCrossing) {
 
 TEST(ImpactZonesCli, ClothFoldedOntoItselfNeverCrosses) {
   t::TempDir dir;
-  const std::string out = dir.file("run");
-  const auto r = t::runWeft({"simulate", kFoldedCloth, "--out", out, "--quiet", "--threads", "1"});
-  ASSERT_EQ(r.exitCode, 0) << t::describe(r);
-  const nlohmann::json s = summaryOf(out);
-  EXPECT_GT(s["impact_zones"]["zones_total"].get<int>(), 50);  // the layers are pressed together
-  EXPECT_EQ(s["impact_zones"]["unresolved_steps"], 0);
-  EXPECT_EQ(s["crossings"]["max"], 0) << "at state " << s["crossings"]["max_state"];
-  EXPECT_EQ(s["crossings"]["states_with_crossings"], 0);
+  nlohmann::json s;
+  ASSERT_NO_FATAL_FAILURE(simulate(dir, kFoldedCloth, s));
+  expectActedWithoutCrossing(s, 50);  // the layers are pressed together
   // The fold is laid down slowly: corrections of the thickness's order, no failsafe.
   EXPECT_LT(s["impact_zones"]["max_move"].get<double>(), 0.01);
   EXPECT_EQ(s["impact_zones"]["rigid_zones_total"], 0);
