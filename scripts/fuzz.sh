@@ -4,7 +4,7 @@
 #   scripts/fuzz.sh TARGET SECONDS [LIBFUZZER-OPTION ...]
 #   scripts/fuzz.sh --list
 #
-# TARGET is scene, mesh_obj, mesh_ply, mesh_gltf, npy or stored_run (tests/fuzz/). Builds the targets with
+# TARGET is scene, mesh_obj, mesh_ply, mesh_gltf, npy, stored_run or editor_script (tests/fuzz/). Builds the targets with
 # clang (WEFT_FUZZ: coverage, AddressSanitizer, UndefinedBehaviorSanitizer) into build-fuzz/ (or
 # $WEFT_FUZZ_BUILD_DIR), grows the corpus build-fuzz/corpus/TARGET from the target's seeds (kept
 # between runs) and writes what it finds (crash-*, leak-*, timeout-*, oom-*) to
@@ -16,7 +16,7 @@ source scripts/ensure-deps.sh
 WEFT_PACKAGES+=(clang)
 weft_ensure_deps
 
-targets=(scene mesh_obj mesh_ply mesh_gltf npy stored_run)
+targets=(scene mesh_obj mesh_ply mesh_gltf npy stored_run editor_script)
 if [ "${1:-}" = "--list" ]; then printf '%s\n' "${targets[@]}"; exit 0; fi
 if [ $# -lt 2 ]; then
   echo "error: scripts/fuzz.sh: usage: scripts/fuzz.sh TARGET SECONDS [LIBFUZZER-OPTION ...]" >&2
@@ -30,7 +30,7 @@ esac
 
 dir=${WEFT_FUZZ_BUILD_DIR:-build-fuzz}
 CC=clang CXX=clang++ cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DWEFT_FUZZ=ON >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DWEFT_FUZZ=ON -DWEFT_RECORD_TASK_TARGETS=OFF >/dev/null
 cmake --build "$dir" -j "$(nproc 2>/dev/null || echo 2)" --target "weft_fuzz_$target"
 
 corpus=$dir/corpus/$target findings=$dir/findings/$target seeds=$dir/seeds/$target
@@ -43,7 +43,7 @@ for s in $(sed -n "s/^$target=//p" "$dir/fuzz-seeds.txt" | tr '|' ' '); do
   find "$s" -maxdepth 1 -type f -size -1024k -exec cp -t "$seeds" {} +
 done
 dict=()
-[ "$target" = scene ] && dict=(-dict="$PWD/tests/fuzz/scene.dict")
+[ -f "tests/fuzz/$target.dict" ] && dict=(-dict="$PWD/tests/fuzz/$target.dict")
 
 export ASAN_OPTIONS="detect_leaks=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0"

@@ -29,9 +29,13 @@ class ProcessFolder {
 
 }  // namespace
 
-std::string writeInput(const std::string& name, const std::uint8_t* data, std::size_t size) {
+const std::string& processFolder() {
   static const ProcessFolder folder;
-  const std::string path = folder.path() + "/" + name;
+  return folder.path();
+}
+
+std::string writeInput(const std::string& name, const std::uint8_t* data, std::size_t size) {
+  const std::string path = processFolder() + "/" + name;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   if (!out) throw std::runtime_error("fuzz: cannot write " + path);

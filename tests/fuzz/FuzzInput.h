@@ -9,6 +9,9 @@
 
 namespace weft::fuzz {
 
+// The process's temporary folder (made on first use).
+const std::string& processFolder();
+
 // Writes `size` bytes to <process temporary folder>/<name> and returns that path.
 std::string writeInput(const std::string& name, const std::uint8_t* data, std::size_t size);
 

@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
   namespace fs = std::filesystem;
   std::vector<fs::path> inputs;
   for (int i = 1; i < argc; ++i) {
-    const fs::path p = argv[i];
+    // Absolute, since a target may change the working directory (editor_script works in its
+    // own folder).
+    const fs::path p = fs::absolute(argv[i]);
     if (fs::is_directory(p)) {
       for (const auto& e : fs::recursive_directory_iterator(p))
         if (e.is_regular_file()) inputs.push_back(e.path());
