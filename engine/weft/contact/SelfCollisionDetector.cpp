@@ -11,8 +11,7 @@
 
 namespace weft {
 
-SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothModel& model)
-    : model_(model) {
+SelfCollisionDetector::SelfCollisionDetector(const Scene& scene, const ClothModel& model) {
   const int m = model.nodeCount();
   distance_.assign(m, 0.0);
   friction_.assign(m, 0.0);

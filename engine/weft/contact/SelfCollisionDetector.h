@@ -51,7 +51,6 @@ class SelfCollisionDetector {
   int lastCandidateCount() const { return lastCandidates_; }
 
  private:
-  const ClothModel& model_;
   std::vector<double>
       distance_;  // per node: the cloth's radius, 0 for cloths without self-collision
   std::vector<double> friction_;  // per node: the cloth's self-collision friction
