@@ -56,12 +56,13 @@ TEST(MpiDistributor, EachItemRunsOnceSomewhereAndEveryRankGetsEveryResult) {
   }
   EXPECT_EQ(static_cast<int>(ranks.size()), workers.size()) << "some rank took no item";
   // Every rank holds the same results: compare a checksum.
-  long long checksum = 0;
+  // (Unsigned: the hash wraps, which is defined for unsigned types only.)
+  unsigned long long checksum = 0;
   for (const WorkItemResult& r : results)
-    for (char c : r.data) checksum = checksum * 31 + c;
-  long long lo = 0, hi = 0;
-  MPI_Allreduce(&checksum, &lo, 1, MPI_LONG_LONG, MPI_MIN, MPI_COMM_WORLD);
-  MPI_Allreduce(&checksum, &hi, 1, MPI_LONG_LONG, MPI_MAX, MPI_COMM_WORLD);
+    for (char c : r.data) checksum = checksum * 31 + static_cast<unsigned char>(c);
+  unsigned long long lo = 0, hi = 0;
+  MPI_Allreduce(&checksum, &lo, 1, MPI_UNSIGNED_LONG_LONG, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(&checksum, &hi, 1, MPI_UNSIGNED_LONG_LONG, MPI_MAX, MPI_COMM_WORLD);
   EXPECT_EQ(lo, hi);
 }
 
