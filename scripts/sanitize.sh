@@ -13,7 +13,7 @@
 # loaded through OMP_TOOL_LIBRARIES, tells TSan about OpenMP's barriers, reductions and tasks;
 # GCC's libgomp is not instrumented), into build-tsan/ (or $WEFT_TSAN_BUILD_DIR); the tests run
 # with two OpenMP threads each (WEFT_TEST_OMP_THREADS=2) so that every parallel loop is checked.
-# Under TSan with Archer a simulation runs 100-250 times slower (every parallel region and
+# Under TSan with Archer a simulation runs hundreds of times slower (every parallel region and
 # barrier is tracked), so by default only the suites about concurrency run (the threaded
 # broad phases and contact collection, determinism across thread counts, the editor's
 # simulation and optimiser threads, the work distributors, the render frame writer; see
