@@ -54,7 +54,8 @@ void EditorDocument::open(const std::string& file) {
   nlohmann::json parsed;
   try {
     parsed = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double's range (1e400).
     throw InputError(file, "-", std::string("not valid JSON: ") + e.what());
   }
   if (!parsed.is_object()) throw InputError(file, "-", "a scene must be a JSON object");

@@ -14,7 +14,8 @@ ScriptRunner::ScriptRunner(const std::string& file) : file_(file) {
   nlohmann::json script;
   try {
     script = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double's range (1e400).
     throw InputError(file, "-", std::string("not valid JSON: ") + e.what());
   }
   if (script.is_object() && script.contains("actions")) script = script["actions"];
