@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 namespace weft::editor {
@@ -50,6 +53,25 @@ Vec3 vec3Of(const nlohmann::json& j, const char* what) {
   if (!j.is_array() || j.size() != 3)
     throw std::invalid_argument(std::string(what) + " must be [x, y, z]");
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+
+int intOf(const nlohmann::json& j) {
+  constexpr double lo = std::numeric_limits<int>::min(), hi = std::numeric_limits<int>::max();
+  const bool whole = j.is_number_integer() ||
+                     (j.is_number_float() && std::trunc(j.get<double>()) == j.get<double>());
+  if (!whole || !(j.get<double>() >= lo && j.get<double>() <= hi))
+    throw std::invalid_argument("expected a whole number from " + std::to_string(int(lo)) + " to " +
+                                std::to_string(int(hi)) + ", got " + j.dump());
+  return j.is_number_integer() ? int(j.get<std::int64_t>()) : int(j.get<double>());
+}
+
+std::vector<int> intsOf(const nlohmann::json& j) {
+  if (!j.is_array())
+    throw std::invalid_argument("expected a list of whole numbers, got " + j.dump());
+  std::vector<int> out;
+  out.reserve(j.size());
+  for (const nlohmann::json& item : j) out.push_back(intOf(item));
+  return out;
 }
 
 nlohmann::json jsonOf(const Vec3& v) {

@@ -14,6 +14,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace weft::editor {
 
@@ -85,6 +86,11 @@ class ScriptCall {
 double scriptClock();
 // [x, y, z] of an action (`what` names it in the error).
 Vec3 vec3Of(const nlohmann::json& j, const char* what);
+// A whole number in int's range (a vertex, a frame, a count), or a list of them; anything else
+// throws std::invalid_argument, which fails the action. (json::get<int> of 5e32 would be an
+// undefined conversion: found by the editor_script fuzzer.)
+int intOf(const nlohmann::json& j);
+std::vector<int> intsOf(const nlohmann::json& j);
 nlohmann::json jsonOf(const Vec3& v);
 // A file a script writes (a screenshot, a state): its folder is made first, as `weft render
 // --out` makes its own, so a script can write into a fresh out/.

@@ -37,7 +37,7 @@ bool deleteKey(ScriptCall& call) {
 }
 
 bool jumpKey(ScriptCall& call) {
-  return done(call, call.session.placement().jumpToKey(call.action.at(call.kind).get<int>()));
+  return done(call, call.session.placement().jumpToKey(intOf(call.action.at(call.kind))));
 }
 
 // Presses the mouse on the gizmo handle a gizmo_drag action names; error text or "".

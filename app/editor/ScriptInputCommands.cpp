@@ -23,7 +23,7 @@ Eigen::Vector2f pointOf(const nlohmann::json& j, const char* what, const EditorA
                                   ": no named item was drawn in the last frame");
     const long n = long(items.size());
     auto it = items.begin();
-    std::advance(it, ((j["item_index"].get<long>() % n) + n) % n);
+    std::advance(it, ((long(intOf(j["item_index"])) % n) + n) % n);
     return Eigen::Vector2f(it->second[0], it->second[1]);
   }
   if (j.is_object() && j.contains("item")) {

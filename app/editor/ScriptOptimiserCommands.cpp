@@ -48,7 +48,7 @@ bool stepOrWait(ScriptCall& call) {
       return false;
     }
     progress.optimizerTarget =
-        run.evaluations() + (step ? std::max(1, call.action.at(call.kind).get<int>()) : 0);
+        run.evaluations() + (step ? std::max(1, intOf(call.action.at(call.kind))) : 0);
     if (step)
       run.step(progress.optimizerTarget - run.evaluations());
     else

@@ -14,7 +14,7 @@ bool simulate(ScriptCall& call) {
   SimulationCache& cache = call.session.cache();
   if (!progress.waitingForSimulation) {
     const nlohmann::json& s = a.at("simulate");
-    const int steps = s.is_number_integer() ? s.get<int>() : -1;
+    const int steps = s.is_number_integer() ? intOf(s) : -1;
     const std::string error = call.session.timeline().simulate(steps);
     if (!error.empty()) {
       call.fail(error);
@@ -66,13 +66,12 @@ bool cancel(ScriptCall& call) {
 }
 
 bool scrub(ScriptCall& call) {
-  call.session.playback().scrub(call.action.at("scrub").get<int>(),
-                                call.session.timeline().frames());
+  call.session.playback().scrub(intOf(call.action.at("scrub")), call.session.timeline().frames());
   return true;
 }
 
 bool step(ScriptCall& call) {
-  call.session.playback().step(call.action.at("step").get<int>(), call.session.timeline().frames());
+  call.session.playback().step(intOf(call.action.at("step")), call.session.timeline().frames());
   return true;
 }
 
@@ -88,7 +87,7 @@ bool pause(ScriptCall& call) {
 
 bool frames(ScriptCall& call) {
   int& wait = call.progress.waitFrames;
-  if (wait == 0) wait = std::max(1, call.action.at("frames").get<int>());
+  if (wait == 0) wait = std::max(1, intOf(call.action.at("frames")));
   return --wait == 0;
 }
 

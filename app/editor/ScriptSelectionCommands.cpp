@@ -8,8 +8,8 @@ namespace weft::editor {
 namespace {
 
 bool select(ScriptCall& call) {
-  const std::string error = call.session.selecting().selectNodes(
-      call.action.at(call.kind).get<std::vector<int>>(), call.kind == "select_add");
+  const std::string error = call.session.selecting().selectNodes(intsOf(call.action.at(call.kind)),
+                                                                 call.kind == "select_add");
   if (!error.empty()) {
     call.fail(error);
     return false;

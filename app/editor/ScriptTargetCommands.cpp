@@ -19,7 +19,7 @@ bool setTargets(ScriptCall& call) {
 
 bool target(ScriptCall& call) {
   const nlohmann::json& a = call.action;
-  return done(call, call.session.targets().setTarget(a.at(call.kind).get<int>(),
+  return done(call, call.session.targets().setTarget(intOf(a.at(call.kind)),
                                                      vec3Of(a.at("position"), "position")));
 }
 
@@ -39,9 +39,8 @@ bool dragTargets(ScriptCall& call) {
 
 bool removeTargets(ScriptCall& call) {
   const nlohmann::json& a = call.action;
-  return done(call, call.session.targets().removeTargets(a.at(call.kind).is_array()
-                                                             ? a[call.kind].get<std::vector<int>>()
-                                                             : std::vector<int>{}));
+  return done(call, call.session.targets().removeTargets(
+                        a.at(call.kind).is_array() ? intsOf(a[call.kind]) : std::vector<int>{}));
 }
 
 bool loadTargetMotion(ScriptCall& call) {

@@ -53,9 +53,9 @@ bool screenshot(ScriptCall& call) {
   }
   int w = app.viewportWidth(), h = app.viewportHeight();
   if (a.contains("size")) {
-    const auto s = a["size"].get<std::vector<int>>();
-    if (s.size() != 2 || s[0] <= 0 || s[1] <= 0)
-      throw std::invalid_argument("size must be [width, height]");
+    const auto s = intsOf(a["size"]);
+    if (s.size() != 2 || s[0] <= 0 || s[1] <= 0 || s[0] > 16384 || s[1] > 16384)
+      throw std::invalid_argument("size must be [width, height], each 1 to 16384 pixels");
     w = s[0], h = s[1];
   }
   render::writePng(outputFile(a.at("screenshot")), app.viewportImage(w, h));
