@@ -20,8 +20,11 @@ std::string shown(const nlohmann::json& value) {
   return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+// An array index: digits only, and at most 18 of them (no array is longer; std::stoull would
+// throw out_of_range past 2^64, found by the scene fuzzer in a task's parameter path).
 bool parseIndex(const std::string& s, std::size_t& out) {
-  if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) return false;
+  if (s.empty() || s.size() > 18 || s.find_first_not_of("0123456789") != std::string::npos)
+    return false;
   out = std::stoull(s);
   return true;
 }
