@@ -2,7 +2,8 @@
 // Importing a mesh file into the scene document: a garment as a new cloth
 // (cloths[].mesh {file, scale, transform, repair}) or a mesh obstacle (obstacles[].mesh {file,
 // scale, transform, smooth_normals}). The file is read with the engine's MeshReader (OBJ through
-// tinyobjloader; glTF, FBX, PLY and the rest through assimp) and the new entry is validated by
+// tinyobjloader; PLY and glTF by Weft itself; FBX and the rest through assimp) and the new entry
+// is validated by
 // the same strict loader as a scene, on its own, before it touches the document: an unreadable
 // file, an empty mesh, degenerate triangles or vertices in no triangle give a message naming
 // the file and the problem, and the document is left as it was. No window: unit tested.

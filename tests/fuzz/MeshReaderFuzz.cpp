@@ -1,6 +1,7 @@
 // Fuzz target: the mesh reader (readMesh) for one file format, chosen at build time by
-// WEFT_FUZZ_MESH_EXTENSION ("obj" goes through tinyobjloader, the others through assimp). A bad
-// mesh must end in InputError; anything else that escapes is a finding.
+// WEFT_FUZZ_MESH_EXTENSION ("obj" goes through tinyobjloader, "ply" and "gltf" through Weft's own
+// readers, any other extension through assimp). A bad mesh must end in InputError; anything else
+// that escapes is a finding.
 
 #include "FuzzInput.h"
 

@@ -3,6 +3,9 @@
 #endif
 #include <weft/io/MeshReader.h>
 
+#include "GltfReader.h"
+#include "PlyReader.h"
+
 #include <weft/core/Error.h>
 
 #include <assimp/postprocess.h>
@@ -93,19 +96,6 @@ TriangleMesh readObj(const std::string& path) {
   return mesh;
 }
 
-// assimp 5.2 loops forever on a PLY file whose header has no `end_header` line (a truncated or
-// hand-edited file), so that case is rejected before assimp sees the file.
-void checkPlyHeader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  if (!std::getline(in, line) || line.compare(0, 3, "ply") != 0) return;  // not PLY
-  while (std::getline(in, line)) {
-    const auto end = line.find_last_not_of(" \t\r");
-    if (end != std::string::npos && line.compare(0, end + 1, "end_header") == 0) return;
-  }
-  throw InputError(path, "mesh", "PLY header has no 'end_header' line (truncated file?)");
-}
-
 // assimp's FBX reader gives every triangle corner its own vertex (it unrolls the file's
 // polygon-vertex list instead of indexing the shared control points), so an FBX cloth would be
 // loose triangles. Corners at bit-identical positions are joined again, in order of first
@@ -141,7 +131,6 @@ void collectPlacements(const aiNode* node, const aiMatrix4x4& parent,
 }
 
 TriangleMesh readWithAssimp(const std::string& path) {
-  checkPlyHeader(path);
   const bool fbx = lowerExtension(path) == ".fbx";
   Assimp::Importer importer;
   // No post-processing that welds, splits or reorders vertices.
@@ -191,7 +180,11 @@ TriangleMesh readWithAssimp(const std::string& path) {
 
 TriangleMesh readMesh(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError(path, "mesh", "no such file");
-  TriangleMesh mesh = lowerExtension(path) == ".obj" ? readObj(path) : readWithAssimp(path);
+  const std::string ext = lowerExtension(path);
+  TriangleMesh mesh = ext == ".obj"                     ? readObj(path)
+                      : ext == ".ply"                   ? readPly(path)
+                      : ext == ".gltf" || ext == ".glb" ? readGltf(path)
+                                                        : readWithAssimp(path);
   if (mesh.vertexCount() == 0) throw InputError(path, "mesh", "the file holds no vertices");
   if (mesh.triangleCount() == 0) throw InputError(path, "mesh", "the file holds no faces");
   return mesh;
