@@ -4,7 +4,8 @@
 #   scripts/fuzz.sh TARGET SECONDS [LIBFUZZER-OPTION ...]
 #   scripts/fuzz.sh --list
 #
-# TARGET is scene, mesh_obj, mesh_ply, mesh_gltf, npy, stored_run or editor_script (tests/fuzz/). Builds the targets with
+# TARGET is scene, mesh_obj, mesh_ply, mesh_gltf, mesh_fbx, npy, stored_run or editor_script
+# (tests/fuzz/). Builds the targets with
 # clang (WEFT_FUZZ: coverage, AddressSanitizer, UndefinedBehaviorSanitizer) into build-fuzz/ (or
 # $WEFT_FUZZ_BUILD_DIR), grows the corpus build-fuzz/corpus/TARGET from the target's seeds (kept
 # between runs) and writes what it finds (crash-*, leak-*, timeout-*, oom-*) to
@@ -16,7 +17,7 @@ source scripts/ensure-deps.sh
 WEFT_PACKAGES+=(clang)
 weft_ensure_deps
 
-targets=(scene mesh_obj mesh_ply mesh_gltf npy stored_run editor_script)
+targets=(scene mesh_obj mesh_ply mesh_gltf mesh_fbx npy stored_run editor_script)
 if [ "${1:-}" = "--list" ]; then printf '%s\n' "${targets[@]}"; exit 0; fi
 if [ $# -lt 2 ]; then
   echo "error: scripts/fuzz.sh: usage: scripts/fuzz.sh TARGET SECONDS [LIBFUZZER-OPTION ...]" >&2

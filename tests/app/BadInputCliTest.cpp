@@ -128,11 +128,11 @@ const BadCase kCases[] = {
      {},
      "cloths.0.mesh.file",
      "line 3: vertex coordinate 'abc' is not a finite number"},
-    {"TruncatedPlyHeader",
+    {"GarbledPlyHeader",
      "bad/unreadable_ply.json",
      {},
      "cloths.0.mesh.file",
-     "PLY header has no 'end_header'"},
+     "PLY: header line 5: unknown keyword 'this'"},
     // Options.
     {"SetUnknownPath",
      kGood,
