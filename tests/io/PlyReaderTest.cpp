@@ -146,6 +146,13 @@ TEST(PlyReader, MalformedFilesAreRefusedNamingTheFault) {
        "property double y\nproperty double z\nend_header\n0123456789",
        "more than the rest of the file can hold"},
       {"huge_list.ply", hugeList, "runs past the end of the file"},
+      // An element without properties takes no bytes: a huge count of it is read past at once
+      // (here the face element after it then fails, proving it was reached).
+      {"empty_element.ply",
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+       "property float z\nelement nothing 700000000\nelement face 1\n"
+       "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n",
+       "vertex index 9 is out of range"},
       {"short.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "ends inside element 'face' 0"},
       {"index.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "vertex index 3 is out of range"},
       {"negative.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n",

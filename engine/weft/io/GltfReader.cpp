@@ -25,6 +25,9 @@ using nlohmann::json;
 // More vertices than this in all placed primitives together is refused: far beyond what Weft
 // simulates, and it bounds what a small file with many instances can make the reader allocate.
 constexpr std::uint64_t kMaxVertices = std::uint64_t{1} << 24;
+// The same for triangles: primitives can share one large index accessor, so the file's size
+// alone does not bound the work.
+constexpr std::uint64_t kMaxTriangles = std::uint64_t{1} << 25;
 
 // glTF 2.0 componentType codes (glTF 2.0 spec, "Accessor Data Types").
 constexpr int kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125, kFloat = 5126;
@@ -32,6 +35,15 @@ constexpr int kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125, 
 // GLB container (glTF 2.0 spec, "Binary glTF Layout").
 constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 constexpr std::uint32_t kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
+
+// A value for a message: a scalar as written, an array or object by its kind (dumping one would
+// recurse as deep as the file nests it).
+std::string describe(const json& v) {
+  if (v.is_array()) return "an array";
+  if (v.is_object()) return "an object";
+  const std::string text = v.dump();
+  return text.size() > 40 ? text.substr(0, 40) + "..." : text;
+}
 
 std::uint32_t littleEndian32(const std::string& bytes, std::size_t at) {
   std::uint32_t v = 0;
@@ -63,7 +75,7 @@ class GltfParser {
     if (const json* required = member(doc_, "extensionsRequired"); required && required->is_array())
       for (const json& name : *required)
         fail("the file requires the extension " +
-             (name.is_string() ? name.get<std::string>() : name.dump()) +
+             (name.is_string() ? name.get<std::string>() : describe(name)) +
              ", which Weft does not read");
     buffers_.resize(arrayOf("buffers").size());
     return assemble();
@@ -111,7 +123,7 @@ class GltfParser {
     }
     if (v->is_number_unsigned() && v->get<std::uint64_t>() <= (std::uint64_t{1} << 53))
       return v->get<std::uint64_t>();
-    fail(where + "." + key + " must be a whole number >= 0, got " + v->dump());
+    fail(where + "." + key + " must be a whole number >= 0, got " + describe(*v));
   }
 
   // `n` finite numbers at object.key, or nothing when absent.
@@ -124,7 +136,7 @@ class GltfParser {
     std::vector<double> out;
     for (const json& x : *v) {
       if (!x.is_number() || !std::isfinite(x.get<double>()))
-        fail(where + "." + key + " must hold finite numbers, got " + x.dump());
+        fail(where + "." + key + " must hold finite numbers, got " + describe(x));
       out.push_back(x.get<double>());
     }
     return out;
@@ -358,7 +370,7 @@ class GltfParser {
                                   const std::string& where) {
       for (auto it = list.rbegin(); it != list.rend(); ++it) {
         if (!it->is_number_unsigned() || it->get<std::uint64_t>() >= nodeCount)
-          fail(where + " names " + it->dump() + ", not a node of the file");
+          fail(where + " names " + describe(*it) + ", not a node of the file");
         stack.emplace_back(it->get<std::uint64_t>(), parent);
       }
     };
@@ -411,7 +423,7 @@ class GltfParser {
     const auto placed = placements(meshes.size());
     TriangleMesh mesh;
     mesh.vertices.resize(0, 3);
-    std::uint64_t total = 0;
+    std::uint64_t total = 0, triangleTotal = 0;
     for (std::size_t k = 0; k < meshes.size(); ++k) {
       const std::string meshWhere = "meshes[" + std::to_string(k) + "]";
       const json& m = item("meshes", k);
@@ -435,6 +447,20 @@ class GltfParser {
         if (total > kMaxVertices)
           fail("more than " + std::to_string(kMaxVertices) +
                " vertices in all, beyond what Weft simulates");
+        // The triangles this primitive will make, counted before its indices are read.
+        const std::uint64_t cornerCount =
+            member(primitive, "indices")
+                ? count(item("accessors", count(primitive, "indices", where)), "count",
+                        where + " indices")
+                : vertexCount;
+        const std::uint64_t perInstance = mode == 4         ? cornerCount / 3
+                                          : cornerCount > 2 ? cornerCount - 2
+                                                            : 0;
+        if (perInstance > kMaxTriangles ||
+            perInstance * instances.size() > kMaxTriangles - triangleTotal)
+          fail("more than " + std::to_string(kMaxTriangles) +
+               " triangles in all, beyond what Weft simulates");
+        triangleTotal += perInstance * instances.size();
         std::vector<double> indices;
         if (member(primitive, "indices")) {
           indices = accessor(count(primitive, "indices", where), "SCALAR", 1,

@@ -107,6 +107,7 @@ class PlyParser {
     std::vector<double> values;
     for (const Element& e : elements_) {
       checkCountFits(e);
+      if (e.properties.empty()) continue;  // an element without properties takes no bytes
       if (&e == vertex) mesh.vertices.resize(static_cast<Eigen::Index>(e.count), 3);
       for (std::uint64_t k = 0; k < e.count; ++k) {
         for (std::size_t p = 0; p < e.properties.size(); ++p) {
