@@ -1,6 +1,7 @@
 #include "EditorApp.h"
 
 #include "EditorGl.h"
+#include "FileBrowserView.h"
 #include "ImGuiAssert.h"
 #include "InspectorPanel.h"
 #include "MeshImportDialog.h"
@@ -22,6 +23,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -199,6 +201,11 @@ const std::array<float, 2>* EditorApp::itemPoint(const std::string& name) const 
 
 void EditorApp::noteItem(const std::string& name, float x, float y) {
   itemPoints_[name] = {x, y};
+}
+
+const FileBrowser* EditorApp::openBrowser() const {
+  if (fileDialog_ != FileDialog::None) return &sceneBrowser_;
+  return importDialog_->browser();
 }
 
 void EditorApp::noteLastItem(const std::string& name) {
@@ -550,15 +557,31 @@ void EditorApp::drawFileDialog() {
     const std::string current = session_.document().file();
     std::snprintf(pathBuffer_, sizeof pathBuffer_, "%s", current.c_str());
     ImGui::OpenPopup(title);
+    if (!sceneBrowser_.showFolderOf(current)) sceneBrowser_.show(".");
   }
   if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::TextUnformatted("Scene file path (absolute, or relative to the working directory):");
     ImGui::SetNextItemWidth(520.0f);
     // The path is what the dialog is for: typing goes into it at once, without a click first.
     if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-    const bool enter = ImGui::InputText("##path", pathBuffer_, sizeof pathBuffer_,
-                                        ImGuiInputTextFlags_EnterReturnsTrue);
+    bool enter = ImGui::InputText("##path", pathBuffer_, sizeof pathBuffer_,
+                                  ImGuiInputTextFlags_EnterReturnsTrue);
+    const FileBrowserEvent browsed = drawFileBrowser(
+        sceneBrowser_, browsePlaces(session_.document().file(), session_.recent().files()),
+        pathBuffer_, *this, 520.0f, 200.0f);
+    if (browsed.kind == FileBrowserEvent::Kind::Picked ||
+        browsed.kind == FileBrowserEvent::Kind::Confirmed) {
+      std::snprintf(pathBuffer_, sizeof pathBuffer_, "%s", browsed.path.c_str());
+      enter |= browsed.kind == FileBrowserEvent::Kind::Confirmed;
+    } else if (browsed.kind == FileBrowserEvent::Kind::Moved && fileDialog_ == FileDialog::SaveAs) {
+      // Save As keeps the name typed and puts it in the folder browsed to.
+      const std::string name = std::filesystem::path(pathBuffer_).filename().string();
+      if (!name.empty())
+        std::snprintf(pathBuffer_, sizeof pathBuffer_, "%s",
+                      (std::filesystem::path(browsed.path) / name).string().c_str());
+    }
     const bool ok = ImGui::Button(fileDialog_ == FileDialog::Open ? "Open" : "Save") || enter;
+    noteLastItem("dialog:confirm");
     ImGui::SameLine();
     const bool cancel = ImGui::Button("Cancel");
     if (ok && pathBuffer_[0]) {

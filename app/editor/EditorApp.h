@@ -7,6 +7,7 @@
 // script feeding ImGui's IO) is the caller's: call the platform's NewFrame, then frame().
 
 #include "EditorSession.h"
+#include "FileBrowser.h"
 #include "MeshImportDialog.h"
 
 #include <weft/render/Image.h>
@@ -90,12 +91,17 @@ class EditorApp {
   // {"item": NAME}): document fields by their path (a point inside the input box, which is the
   // item's left part), the left panel's tabs as "tab:scene", "tab:inspect", "tab:targets",
   // "tab:optimise", the timeline's buttons as "timeline:simulate", "timeline:start",
-  // "timeline:play", "timeline:end" (their centres). Null when not drawn in the last frame.
+  // "timeline:play", "timeline:end" (their centres), a dialog's confirming button as
+  // "dialog:confirm" and its file browser's items (FileBrowserView.h). Null when not drawn in
+  // the last frame.
   const std::array<float, 2>* itemPoint(const std::string& name) const;
   const std::map<std::string, std::array<float, 2>>& itemPoints() const { return itemPoints_; }
   void noteItem(const std::string& name, float x, float y);
   // The last item ImGui drew, noted by `name` at its centre.
   void noteLastItem(const std::string& name);
+
+  // The file browser of the open file or import dialog, null when none is open.
+  const FileBrowser* openBrowser() const;
 
   // The solver's state as the timeline last drew it: its banner ("" for none) and the red
   // ticks of unconverged steps on its slider.
@@ -139,6 +145,7 @@ class EditorApp {
   enum class FileDialog { None, Open, SaveAs };
   FileDialog fileDialog_ = FileDialog::None;
   char pathBuffer_[1024] = {};
+  FileBrowser sceneBrowser_{{".json"}};
   bool closeConfirmed_ = false;
   // The action waiting on the unsaved-changes prompt, and the file it opens. `afterSaveAs_` is
   // the action to go on with once the Save As dialog the prompt's Save opened has saved.

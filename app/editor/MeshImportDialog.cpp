@@ -2,9 +2,11 @@
 
 #include "EditorApp.h"
 #include "EditorSession.h"
+#include "FileBrowserView.h"
 
 #include <imgui.h>
 
+#include <cstdio>
 #include <string>
 
 namespace weft::editor {
@@ -35,8 +37,13 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
   if (requested_) {
     ImGui::OpenPopup(name);
     requested_ = false;
+    // Browse from the file typed last, else the scene's folder, else the working directory.
+    if (!browser_.showFolderOf(path_) && !browser_.showFolderOf(session.document().directory()))
+      browser_.show(".");
   }
+  visible_ = false;
   if (!ImGui::BeginPopupModal(name, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  visible_ = true;
   bool changed = false;
   ImGui::TextUnformatted(
       kind_ == Kind::Garment
@@ -46,9 +53,18 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
   // The path is what the dialog is for: typing goes into it at once, and Enter imports (as the
   // Open and Save As dialogs do). Esc, once the field is let go, cancels.
   if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-  const bool enter =
+  bool enter =
       ImGui::InputText("##file", path_, sizeof path_, ImGuiInputTextFlags_EnterReturnsTrue);
   changed |= ImGui::IsItemEdited();
+  const FileBrowserEvent browsed =
+      drawFileBrowser(browser_, browsePlaces(session.document().file(), session.recent().files()),
+                      path_, app, 520.0f, 160.0f);
+  if (browsed.kind == FileBrowserEvent::Kind::Picked ||
+      browsed.kind == FileBrowserEvent::Kind::Confirmed) {
+    std::snprintf(path_, sizeof path_, "%s", browsed.path.c_str());
+    changed = true;
+    enter |= browsed.kind == FileBrowserEvent::Kind::Confirmed;
+  }
   ImGui::PushItemWidth(260.0f);
   changed |= ImGui::Checkbox("Fit to a size", &options_.fit);
   if (options_.fit) {
@@ -77,6 +93,7 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
   }
   ImGui::SameLine();
   const bool import = ImGui::Button(kind_ == Kind::Garment ? "Import" : "Add") || enter;
+  app.noteLastItem("dialog:confirm");
   ImGui::SameLine();
   const bool cancel =
       ImGui::Button("Cancel") || (!ImGui::IsAnyItemActive() && !ImGui::IsWindowAppearing() &&

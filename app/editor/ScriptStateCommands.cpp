@@ -84,6 +84,12 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
   float rect[4] = {0, 0, 0, 0};
   if (const std::string title = app.modalDialog(rect); !title.empty())
     dialog = {{"title", title}, {"rect", {rect[0], rect[1], rect[2], rect[3]}}};
+  nlohmann::json browser = nullptr;
+  if (const FileBrowser* b = app.openBrowser()) {
+    nlohmann::json entries = nlohmann::json::array();
+    for (const FileEntry& e : b->entries()) entries.push_back(e.folder ? e.name + "/" : e.name);
+    browser = {{"folder", b->folder().string()}, {"entries", entries}, {"error", b->error()}};
+  }
   const ConvergenceReport convergence = session.cache().convergence();
   return {{"file", doc.file()},
           {"dirty", doc.dirty()},
@@ -128,6 +134,7 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"playing", session.playback().playing()},
           {"animating", session.animating()},
           {"dialog", dialog},
+          {"browser", browser},
           {"close_prompt", app.closePromptOpen()},
           {"unsaved_prompt", app.unsavedPrompt().empty() ? nlohmann::json(nullptr)
                                                          : nlohmann::json(app.unsavedPrompt())},

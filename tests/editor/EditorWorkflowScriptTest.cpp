@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -87,6 +88,84 @@ TEST(EditorWorkflow, ImportGarmentAndAddObstacles) {
   EXPECT_EQ(undone["document"]["obstacles"][0]["sphere"]["radius"], 0.3)
       << "undo takes back the last edit";
   EXPECT_TRUE(undone["dirty"]);
+}
+
+nlohmann::json item(const std::string& name) {
+  return {{"item", name}};
+}
+
+// A garment picked, not typed: Ctrl+I opens the import dialog browsing the scene's folder; a
+// click on a folder opens it, a click on the mesh puts its path in the field, Import adds it.
+// The mesh lies where the folder was, clicked at once: not a double click that confirms it.
+TEST(EditorWorkflow, ImportGarmentPickedInTheFileBrowser) {
+  TempDir dir;
+  const std::string scene =
+      writeScene(dir.file("scene.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  fs::create_directories(dir.file("meshes"));
+  dir.write("meshes/strip.obj", stripObj());
+  dir.write("meshes/notes.txt", "not a mesh");
+  const ProcessResult r = runEditor(dir, {{{"open", scene}},
+                                          {{"frames", 2}},
+                                          {{"key", "ctrl+i"}},
+                                          {{"frames", 3}},
+                                          {{"write_state", dir.file("opened.json")}},
+                                          {{"mouse_click", item("browser:entry:meshes")}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("in-meshes.json")}},
+                                          {{"mouse_click", item("browser:entry:strip.obj")}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("picked.json")}},
+                                          {{"mouse_click", item("dialog:confirm")}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("imported.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const nlohmann::json opened = readJson(dir.file("opened.json"));
+  ASSERT_TRUE(opened["browser"].is_object()) << opened["dialog"];
+  EXPECT_EQ(fs::path(opened["browser"]["folder"].get<std::string>()),
+            fs::path(dir.path()).lexically_normal());
+  const auto has = [](const nlohmann::json& list, const std::string& name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
+  EXPECT_TRUE(has(opened["browser"]["entries"], "meshes/")) << opened["browser"];
+  EXPECT_FALSE(has(opened["browser"]["entries"], "scene.json")) << "not a mesh";
+  const nlohmann::json inMeshes = readJson(dir.file("in-meshes.json"));
+  EXPECT_EQ(inMeshes["browser"]["entries"], nlohmann::json::array({"../", "strip.obj"}));
+  const nlohmann::json picked = readJson(dir.file("picked.json"));
+  EXPECT_EQ(picked["dialog"]["title"], "Import garment") << "a single click only picks";
+  EXPECT_EQ(picked["document"]["cloths"].size(), 1u);
+  const nlohmann::json imported = readJson(dir.file("imported.json"));
+  EXPECT_TRUE(imported["dialog"].is_null()) << imported["message"];
+  EXPECT_TRUE(imported["browser"].is_null());
+  ASSERT_EQ(imported["document"]["cloths"].size(), 2u) << imported["message"];
+  EXPECT_EQ(imported["document"]["cloths"][1]["mesh"]["file"], "meshes/strip.obj");
+}
+
+// Open by double click: Ctrl+O browses the scene's folder for scenes (.json only); a double
+// click on one opens it.
+TEST(EditorWorkflow, OpenSceneByDoubleClickInTheFileBrowser) {
+  TempDir dir;
+  const std::string first =
+      writeScene(dir.file("first.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  writeScene(dir.file("second.json"), hangingClothScene(1.0, 3, 0.01, 5, 500.0));
+  dir.write("strip.obj", stripObj());
+  const ProcessResult r = runEditor(dir, {{{"open", first}},
+                                          {{"frames", 2}},
+                                          {{"key", "ctrl+o"}},
+                                          {{"frames", 3}},
+                                          {{"write_state", dir.file("browsing.json")}},
+                                          {{"mouse_click", item("browser:entry:second.json")}},
+                                          {{"mouse_click", item("browser:entry:second.json")}},
+                                          {{"frames", 3}},
+                                          {{"write_state", dir.file("opened.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  // The folder also holds the test's own script.json; the mesh is not listed.
+  EXPECT_EQ(readJson(dir.file("browsing.json"))["browser"]["entries"],
+            nlohmann::json::array({"../", "first.json", "script.json", "second.json"}));
+  const nlohmann::json opened = readJson(dir.file("opened.json"));
+  EXPECT_TRUE(opened["dialog"].is_null()) << opened["message"];
+  EXPECT_EQ(fs::path(opened["file"].get<std::string>()).filename(), "second.json");
+  EXPECT_EQ(opened["document"]["cloths"][0]["mesh"]["grid"]["resolution"],
+            nlohmann::json::array({3, 3}));
 }
 
 // A 0.6 m cloth of 8 x 8 quads dropped onto a sphere (the centre vertex lands on top).
