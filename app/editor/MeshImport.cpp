@@ -5,6 +5,7 @@
 #include <weft/mesh/RigidTransform.h>
 #include <weft/scene/SceneLoader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,8 +16,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Meshes outside this span are almost surely not in metres.
-constexpr double kLargestPlausible = 20.0, kSmallestPlausible = 0.01;
+// Sizes (largest extent, metres) outside these spans are almost surely not in metres: a
+// garment from a glove to a tablecloth, an obstacle from a button to a room.
+struct Span {
+  double lo, hi;
+};
+constexpr Span kGarmentSpan{0.05, 5.0}, kObstacleSpan{0.01, 20.0};
 
 std::string metres(double v) {
   char text[32];
@@ -45,8 +50,8 @@ bool trianglesShareVertices(const TriangleMesh& mesh) {
 // Reads the file, fills the counts and boxes and the "mesh" object. Returns false (with
 // result.error set) when the file cannot be used at all.
 bool readAndPlace(const MeshImportOptions& o, const std::string& documentFile,
-                  const std::string& directory, MeshImport& result, nlohmann::json& mesh,
-                  TriangleMesh& read) {
+                  const std::string& directory, Span plausible, MeshImport& result,
+                  nlohmann::json& mesh, TriangleMesh& read) {
   if (o.file.empty()) {
     result.error = "no file given";
     return false;
@@ -105,14 +110,16 @@ bool readAndPlace(const MeshImportOptions& o, const std::string& documentFile,
   result.lower = placed.colwise().minCoeff().transpose();
   result.upper = placed.colwise().maxCoeff().transpose();
   const double size = (result.upper - result.lower).maxCoeff();
-  if (size > kLargestPlausible)
+  if (size > plausible.hi)
     result.warnings.push_back(
         "the mesh spans " + metres(size) +
-        " m: the file is probably not in metres (set a scale, or fit it to a size)");
-  else if (size < kSmallestPlausible)
+        " m: the file is probably not in metres (pick its unit, set a scale, or fit it to a size)");
+  else if (size < plausible.lo)
     result.warnings.push_back(
         "the mesh spans only " + metres(size) +
-        " m: the file is probably not in metres (set a scale, or fit it to a size)");
+        " m: the file is probably not in metres (pick its unit, set a scale, or fit it to a size)");
+  if (!o.fit && (size > plausible.hi || size < plausible.lo))
+    result.units = plausibleUnits(extent, plausible.lo, plausible.hi);
 
   mesh = {{"file", documentRelativePath(o.file, documentFile, directory)}};
   if (scale != 1.0) mesh["scale"] = scale;
@@ -159,12 +166,33 @@ nlohmann::json defaultGarmentMaterial() {
   return {{"density", 0.2}, {"stretch", 1000.0}, {"bend", 1e-4}};
 }
 
+std::vector<LengthUnit> plausibleUnits(double fileExtent, double lo, double hi) {
+  static const LengthUnit kUnits[] = {{"metres", 1.0},
+                                      {"centimetres", 0.01},
+                                      {"millimetres", 0.001},
+                                      {"inches", 0.0254},
+                                      {"feet", 0.3048}};
+  std::vector<LengthUnit> out;
+  if (!(fileExtent > 0.0) || !std::isfinite(fileExtent)) return out;
+  for (const LengthUnit& u : kUnits) {
+    const double size = fileExtent * u.metres;
+    if (size >= lo && size <= hi) out.push_back(u);
+  }
+  const double middle = 0.5 * std::log(lo * hi);
+  std::stable_sort(out.begin(), out.end(), [&](const LengthUnit& a, const LengthUnit& b) {
+    return std::abs(std::log(fileExtent * a.metres) - middle) <
+           std::abs(std::log(fileExtent * b.metres) - middle);
+  });
+  return out;
+}
+
 MeshImport prepareGarment(const MeshImportOptions& o, const std::string& documentFile,
                           const std::string& documentDirectory) {
   MeshImport result;
   nlohmann::json mesh;
   TriangleMesh read;
-  if (!readAndPlace(o, documentFile, documentDirectory, result, mesh, read)) return result;
+  if (!readAndPlace(o, documentFile, documentDirectory, kGarmentSpan, result, mesh, read))
+    return result;
   if (result.triangles > 1 && !trianglesShareVertices(read))
     result.warnings.push_back("no two triangles share a vertex: as cloth the " +
                               std::to_string(result.triangles) +
@@ -183,7 +211,8 @@ MeshImport prepareMeshObstacle(const MeshImportOptions& o, const std::string& do
   MeshImport result;
   nlohmann::json mesh;
   TriangleMesh read;
-  if (!readAndPlace(o, documentFile, documentDirectory, result, mesh, read)) return result;
+  if (!readAndPlace(o, documentFile, documentDirectory, kObstacleSpan, result, mesh, read))
+    return result;
   if (!o.smoothNormals) mesh["smooth_normals"] = false;
   result.entry = {{"mesh", mesh}, {"friction", 0.3}};
   const nlohmann::json minimal = {

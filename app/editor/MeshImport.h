@@ -30,9 +30,23 @@ struct MeshImportOptions {
   bool smoothNormals = true;  // obstacle: contact normals interpolated across triangles
 };
 
+// A length unit a mesh file may be written in.
+struct LengthUnit {
+  std::string name;  // "metres", "centimetres", "millimetres", "inches", "feet"
+  double metres;     // one unit in metres: the import's scale
+};
+
+// The units under which a file whose largest extent is `fileExtent` (in its own units) spans
+// [lo, hi] metres, the one whose size lies nearest the span's geometric middle first.
+std::vector<LengthUnit> plausibleUnits(double fileExtent, double lo, double hi);
+
 struct MeshImport {
   std::string error;                  // empty when the entry can be added
   std::vector<std::string> warnings;  // the loader's, a unit check, and loose triangles (garments)
+  // When the placed size is implausible for what is imported (a garment outside 0.05-5 m, an
+  // obstacle outside 0.01-20 m) and no fit was asked for: the units that would make it
+  // plausible, for the dialog to offer (plausibleUnits).
+  std::vector<LengthUnit> units;
   int vertices = 0, triangles = 0;
   Vec3 fileLower = Vec3::Zero(), fileUpper = Vec3::Zero();  // bounding box in file units
   Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();          // after scale and transform (m)

@@ -6,6 +6,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -44,7 +45,7 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
   visible_ = false;
   if (!ImGui::BeginPopupModal(name, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
   visible_ = true;
-  bool changed = false;
+  bool changed = false, checkNow = false;
   ImGui::TextUnformatted(
       kind_ == Kind::Garment
           ? "Mesh file (OBJ, glTF, FBX, PLY, ...; absolute or relative to the working directory):"
@@ -63,6 +64,7 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
       browsed.kind == FileBrowserEvent::Kind::Confirmed) {
     std::snprintf(path_, sizeof path_, "%s", browsed.path.c_str());
     changed = true;
+    checkNow = true;  // a picked file is checked at once, so its size and unit show
     enter |= browsed.kind == FileBrowserEvent::Kind::Confirmed;
   }
   ImGui::PushItemWidth(260.0f);
@@ -85,12 +87,13 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
   if (changed) previewed_ = false;
 
   options_.file = path_;
-  if (ImGui::Button("Check")) {
+  const auto check = [&] {
     preview_ = kind_ == Kind::Garment ? session.additions().previewGarment(options_)
                                       : prepareMeshObstacle(options_, session.document().file(),
                                                             session.document().directory());
     previewed_ = true;
-  }
+  };
+  if (ImGui::Button("Check") || checkNow) check();
   ImGui::SameLine();
   const bool import = ImGui::Button(kind_ == Kind::Garment ? "Import" : "Add") || enter;
   app.noteLastItem("dialog:confirm");
@@ -117,6 +120,26 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
       ImGui::PopTextWrapPos();
       ImGui::PopStyleColor();
     }
+    // The units that would give the mesh a plausible size: one click sets the scale.
+    if (!preview_.units.empty()) {
+      const double extent = (preview_.fileUpper - preview_.fileLower).maxCoeff();
+      ImGui::TextUnformatted("The file is in:");
+      const LengthUnit* chosen = nullptr;
+      for (const LengthUnit& u : preview_.units) {
+        ImGui::SameLine();
+        char label[96];
+        std::snprintf(label, sizeof label, "%s (%.3g m)", u.name.c_str(), extent * u.metres);
+        if (ImGui::SmallButton(label)) chosen = &u;
+        app.noteLastItem("units:" + u.name);
+      }
+      if (chosen) {
+        options_.fit = false;
+        options_.scale = chosen->metres;
+        app.report("scale set to " + std::to_string(chosen->metres) + " (" + chosen->name + ")",
+                   false);
+        check();
+      }
+    }
   }
   if (import) {
     const std::string error = kind_ == Kind::Garment
@@ -126,6 +149,9 @@ void MeshImportDialog::draw(EditorSession& session, EditorApp& app) {
       app.report(std::string(kind_ == Kind::Garment ? "imported " : "added mesh obstacle ") +
                      options_.file,
                  false);
+      // The camera frames the scene with what was added (it may lie far from the old view).
+      session.frameCamera(static_cast<float>(app.viewportWidth()) /
+                          static_cast<float>(std::max(app.viewportHeight(), 1)));
       ImGui::CloseCurrentPopup();
     } else {
       // Kept open, showing why: the document is unchanged.

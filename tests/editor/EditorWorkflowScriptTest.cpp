@@ -140,6 +140,45 @@ TEST(EditorWorkflow, ImportGarmentPickedInTheFileBrowser) {
   EXPECT_EQ(imported["document"]["cloths"][1]["mesh"]["file"], "meshes/strip.obj");
 }
 
+// A garment file in centimetres, 5 m to the side of the scene: picked in the browser it is
+// checked at once, the dialog offers the units that give it a garment's size, a click on
+// centimetres sets the scale, and after the import the camera frames the scene with it.
+TEST(EditorWorkflow, ImportOffersTheFilesUnitAndFramesTheNewGarment) {
+  TempDir dir;
+  const std::string scene =
+      writeScene(dir.file("scene.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  dir.write("far-cm.obj",
+            "v 700 0 100\nv 500 0 0\nv 600 0 100\nv 700 0 0\nv 500 0 100\nv 600 0 0\n"
+            "f 2 5 6\nf 6 5 3\nf 6 3 4\nf 4 3 1\n");
+  const ProcessResult r = runEditor(dir, {{{"open", scene}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("before.json")}},
+                                          {{"key", "ctrl+i"}},
+                                          {{"frames", 3}},
+                                          {{"mouse_click", item("browser:entry:far-cm.obj")}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("checked.json")}},
+                                          {{"mouse_click", item("units:centimetres")}},
+                                          {{"frames", 2}},
+                                          {{"mouse_click", item("dialog:confirm")}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("after.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const nlohmann::json checked = readJson(dir.file("checked.json"));
+  ASSERT_TRUE(checked["items"].contains("units:centimetres")) << checked["items"];
+  EXPECT_TRUE(checked["items"].contains("units:millimetres"));
+  const nlohmann::json after = readJson(dir.file("after.json"));
+  ASSERT_EQ(after["document"]["cloths"].size(), 2u) << after["message"];
+  EXPECT_EQ(after["document"]["cloths"][1]["mesh"]["scale"], 0.01);
+  // The strip lies at x = 5..7 m: the camera's target moves from the old cloth toward it.
+  const double before = readJson(dir.file("before.json"))["camera"]["target"][0];
+  const double now = after["camera"]["target"][0];
+  EXPECT_LT(std::abs(before), 0.6);
+  EXPECT_GT(now, 2.5) << after["camera"];
+  EXPECT_GT(after["camera"]["distance"].get<double>(),
+            readJson(dir.file("before.json"))["camera"]["distance"].get<double>());
+}
+
 // Open by double click: Ctrl+O browses the scene's folder for scenes (.json only); a double
 // click on one opens it.
 TEST(EditorWorkflow, OpenSceneByDoubleClickInTheFileBrowser) {

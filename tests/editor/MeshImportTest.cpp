@@ -121,6 +121,29 @@ TEST(MeshImport, FitScalesToTheSizeAndCentresTheMesh) {
   ASSERT_TRUE(unscaled.ok()) << unscaled.error;
   ASSERT_EQ(unscaled.warnings.size(), 1u);
   EXPECT_NE(unscaled.warnings[0].find("not in metres"), std::string::npos) << unscaled.warnings[0];
+  // The units that make 200 file units a garment's size (0.05-5 m), nearest 0.5 m first:
+  // millimetres (0.2 m), centimetres (2 m); not inches (5.08 m) or feet.
+  ASSERT_EQ(unscaled.units.size(), 2u);
+  EXPECT_EQ(unscaled.units[0].name, "millimetres");
+  EXPECT_EQ(unscaled.units[1].name, "centimetres");
+  EXPECT_TRUE(r.units.empty()) << "a fit is the user's choice of size";
+  o.scale = 0.01;
+  EXPECT_TRUE(prepareGarment(o, "", dir.path()).units.empty()) << "2 m is a garment's size";
+}
+
+TEST(MeshImport, PlausibleUnitsSpanTheSizeAskedNearestItsMiddleFirst) {
+  // A T-shirt of 70 file units: centimetres (0.7 m) first, then inches (1.78 m), millimetres
+  // (0.07 m); feet (21 m) and metres (70 m) left out.
+  const std::vector<LengthUnit> shirt = plausibleUnits(70.0, 0.05, 5.0);
+  ASSERT_EQ(shirt.size(), 3u);
+  EXPECT_EQ(shirt[0].name, "centimetres");
+  EXPECT_EQ(shirt[1].name, "inches");
+  EXPECT_EQ(shirt[2].name, "millimetres");
+  EXPECT_DOUBLE_EQ(shirt[1].metres, 0.0254);
+  EXPECT_EQ(plausibleUnits(0.5, 0.05, 5.0)[0].name, "metres");
+  EXPECT_TRUE(plausibleUnits(1e9, 0.05, 5.0).empty());
+  EXPECT_TRUE(plausibleUnits(0.0, 0.05, 5.0).empty());
+  EXPECT_TRUE(plausibleUnits(std::nan(""), 0.05, 5.0).empty());
 }
 
 TEST(MeshImport, UnusableFilesAreMessagesNamingTheFile) {
