@@ -401,7 +401,8 @@ void EditorApp::drawMenuBar() {
     for (const std::string& shape : analyticObstacleShapes()) {
       const std::string label = "Obstacle: " + shape;
       if (ImGui::MenuItem(label.c_str())) {
-        const std::string error = session_.additions().addObstacle(shape);
+        const std::string error =
+            session_.additions().addObstacle(shape, session_.selection().nodes());
         report(error.empty() ? "added a " + shape + " (edit it under Obstacles)" : error,
                !error.empty());
         showTab(PanelTab::Scene);

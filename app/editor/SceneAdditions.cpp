@@ -21,13 +21,27 @@ std::string SceneAdditions::importGarment(const MeshImportOptions& options) {
   });
 }
 
-std::string SceneAdditions::addObstacle(const std::string& shape) {
+std::string SceneAdditions::addObstacle(const std::string& shape,
+                                        const std::vector<int>& selected) {
   nlohmann::json obstacle;
   try {
     obstacle = defaultObstacle(shape);
   } catch (const std::exception& e) {
     return e.what();
   }
+  // The cloths' rest positions, in global node order (ClothNodes.h).
+  NodeMatrix positions(0, 3);
+  if (const Scene* scene = document_.scene()) {
+    Eigen::Index rows = 0;
+    for (const auto& cloth : scene->cloths) rows += cloth.mesh.vertices.rows();
+    positions.resize(rows, 3);
+    Eigen::Index at = 0;
+    for (const auto& cloth : scene->cloths) {
+      positions.middleRows(at, cloth.mesh.vertices.rows()) = cloth.mesh.vertices;
+      at += cloth.mesh.vertices.rows();
+    }
+  }
+  moveObstacleTo(obstacle, newObstaclePlace(obstacle, positions, selected));
   return document_.edit("Add " + shape, [&](nlohmann::json& doc) {
     if (!doc.contains("obstacles") || !doc["obstacles"].is_array())
       doc["obstacles"] = nlohmann::json::array();

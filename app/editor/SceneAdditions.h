@@ -8,6 +8,7 @@
 #include "MeshImport.h"
 
 #include <string>
+#include <vector>
 
 namespace weft::editor {
 
@@ -17,7 +18,9 @@ class SceneAdditions {
 
   MeshImport previewGarment(const MeshImportOptions& options) const;  // what importGarment adds
   std::string importGarment(const MeshImportOptions& options);
-  std::string addObstacle(const std::string& shape);
+  // Placed by newObstaclePlace: centred on the `selected` cloth nodes (global numbers), or
+  // below the cloths when none are.
+  std::string addObstacle(const std::string& shape, const std::vector<int>& selected = {});
   std::string importMeshObstacle(const MeshImportOptions& options);
 
  private:

@@ -207,7 +207,8 @@ void ScenePanel::obstaclePanel() {
   ImGui::TextUnformatted("Add:");
   for (const std::string& shape : analyticObstacleShapes()) {
     ImGui::SameLine();
-    if (ImGui::SmallButton(shape.c_str())) fields_.apply(session_.additions().addObstacle(shape));
+    if (ImGui::SmallButton(shape.c_str()))
+      fields_.apply(session_.additions().addObstacle(shape, session_.selection().nodes()));
   }
   ImGui::SameLine();
   if (ImGui::SmallButton("mesh...")) app_.openImport(MeshImportDialog::Kind::Obstacle);

@@ -36,8 +36,8 @@ bool addMeshObstacle(ScriptCall& call) {
 }
 
 bool addObstacle(ScriptCall& call) {
-  const std::string error =
-      call.session.additions().addObstacle(call.action.at(call.kind).get<std::string>());
+  const std::string error = call.session.additions().addObstacle(
+      call.action.at(call.kind).get<std::string>(), call.session.selection().nodes());
   return call.reportOutcome(error, call.kind + " done");
 }
 

@@ -82,7 +82,15 @@ TEST(EditorWorkflow, ImportGarmentAndAddObstacles) {
   EXPECT_EQ(saved["obstacles"][2]["mesh"]["file"], "meshes/strip.obj");
   EXPECT_DOUBLE_EQ(saved["obstacles"][2]["mesh"]["scale"].get<double>(), 0.5 / 200.0);
   // The saved scene simulates as saved: 25 + 6 cloth vertices.
-  EXPECT_EQ(loadScene(scene).vertexCount(), 31);
+  const Scene loaded = loadScene(scene);
+  EXPECT_EQ(loaded.vertexCount(), 31);
+  // Nothing was selected: the sphere (radius 0.3 m when added) went under the cloths' centre,
+  // its top 2 cm below their lowest vertex, not into the garment at the origin.
+  double lowest = 1e300;
+  for (const auto& cloth : loaded.cloths)
+    lowest = std::min(lowest, cloth.mesh.vertices.col(1).minCoeff());
+  EXPECT_NEAR(saved["obstacles"][0]["sphere"]["center"][1].get<double>(), lowest - 0.02 - 0.3,
+              1e-9);
 
   const nlohmann::json undone = readJson(dir.file("after-undo.json"));
   EXPECT_EQ(undone["document"]["obstacles"][0]["sphere"]["radius"], 0.3)
