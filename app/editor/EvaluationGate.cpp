@@ -43,6 +43,11 @@ void EvaluationGate::cancel() {
   changed_.notify_all();
 }
 
+void EvaluationGate::check() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (cancelled_) throw EvaluationCancelled{};
+}
+
 bool EvaluationGate::paused() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return paused_;

@@ -22,6 +22,9 @@ class EvaluationGate {
   void resume();
   void allow(int evaluations);  // while paused: let this many more evaluations run
   void cancel();
+  // Throws EvaluationCancelled once cancelled: called between the steps of an evaluation, so a
+  // cancel takes effect within one step instead of at the next evaluation.
+  void check() const;
   bool paused() const;
   // True when the worker is blocked in enter() (paused, nothing allowed).
   bool waiting() const;

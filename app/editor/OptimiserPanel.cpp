@@ -166,7 +166,9 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
     ImGui::SameLine();
     if (ImGui::Button("Step")) run.step(1);
     ImGui::SameLine();
+    // Stops within the step under way (the run checks between steps), so the wait is short.
     if (ImGui::Button("Cancel")) run.cancel();
+    app.noteLastItem("optimiser:cancel");
   } else {
     ImGui::BeginDisabled(!scene || chosen.empty());
     if (ImGui::Button("Step")) start(true);  // a new run, paused after its first evaluation
@@ -178,6 +180,19 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
   const std::vector<OptimizerRun::Sample> samples = run.samples();
   ImGui::Text("%s: %s, %zu evaluations", run.method().empty() ? "optimiser" : run.method().c_str(),
               OptimizerRun::statusName(run.status()), samples.size());
+  // Inside the evaluation under way: which pass, which step (a 1,400-vertex garment's evaluation
+  // takes most of a minute).
+  if (const OptimizerRun::Progress p = run.progress(); p.active && p.total > 0) {
+    char overlay[96];
+    if (p.phase == PassPhase::Forward)
+      std::snprintf(overlay, sizeof overlay, "evaluation %d: forward step %d / %d", p.evaluation,
+                    p.done, p.total);
+    else
+      std::snprintf(overlay, sizeof overlay, "evaluation %d: backward pass %d, step %d / %d",
+                    p.evaluation, p.pass, p.done, p.total);
+    ImGui::ProgressBar(static_cast<float>(p.done) / static_cast<float>(p.total), ImVec2(-1, 0),
+                       overlay);
+  }
   if (!run.stopReason().empty()) ImGui::TextDisabled("stopped: %s", run.stopReason().c_str());
   if (!run.error().empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.30f, 1.0f));
@@ -217,6 +232,43 @@ void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
                 best ? best->evaluation : 0);
   plotHistory("##loss", loss, text, 70.0f);
   const std::vector<std::string>& paths = run.parameters();
+  // Every evaluation: its loss, the gradient's estimated error, the forward steps that missed
+  // the tolerance, and the parameter values; the newest first.
+  const int columns = 4 + static_cast<int>(paths.size());
+  if (ImGui::BeginTable("##evaluations", columns,
+                        ImGuiTableFlags_RowBg | ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
+                            ImGuiTableFlags_ScrollX | ImGuiTableFlags_SizingFixedFit,
+                        ImVec2(0.0f, 110.0f))) {
+    ImGui::TableSetupScrollFreeze(1, 1);
+    ImGui::TableSetupColumn("#");
+    ImGui::TableSetupColumn("loss");
+    ImGui::TableSetupColumn("grad. error");
+    ImGui::TableSetupColumn("unconv.");
+    for (const std::string& path : paths) ImGui::TableSetupColumn(path.c_str());
+    ImGui::TableHeadersRow();
+    for (auto s = samples.rbegin(); s != samples.rend(); ++s) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("%d", s->evaluation);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.5g", s->loss);
+      ImGui::TableNextColumn();
+      if (s->hasGradient)
+        ImGui::Text("%.1e", s->gradientError);
+      else
+        ImGui::TextDisabled("-");
+      ImGui::TableNextColumn();
+      if (s->unconvergedSteps > 0)
+        ImGui::TextColored(ImVec4(0.95f, 0.65f, 0.20f, 1.0f), "%d", s->unconvergedSteps);
+      else
+        ImGui::TextDisabled("0");
+      for (double v : s->values) {
+        ImGui::TableNextColumn();
+        ImGui::Text("%.6g", v);
+      }
+    }
+    ImGui::EndTable();
+  }
   for (std::size_t p = 0; p < paths.size(); ++p) {
     std::vector<float> values;
     for (const auto& s : samples) values.push_back(float(s.values[p]));

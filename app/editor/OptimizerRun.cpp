@@ -59,6 +59,7 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
     std::lock_guard<std::mutex> lock(mutex_);
     samples_.clear();
     unconverged_ = 0;
+    progress_ = Progress();
     missingAccuracy_ = 0;
     largestError_ = 0.0;
     error_.clear();
@@ -73,6 +74,11 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
     useWorkerThreads();
     OptimizationCallbacks callbacks;
     callbacks.beforeEvaluation = [this] { gate_->enter(); };
+    callbacks.stepDone = [this](PassPhase phase, int pass, int done, int total) {
+      gate_->check();  // a cancel ends the evaluation here, within a step
+      std::lock_guard<std::mutex> lock(mutex_);
+      progress_ = {true, static_cast<int>(samples_.size()) + 1, phase, pass, done, total};
+    };
     callbacks.evaluated = [this](const LogEntry& e, const Eigen::VectorXd& v) {
       Sample s;
       s.evaluation = e.evaluation;
@@ -87,7 +93,9 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
       const int missing = objective.gradientsMissingAccuracy();
       const double largest = objective.largestGradientError();
       std::lock_guard<std::mutex> lock(mutex_);
+      s.unconvergedSteps = unconverged - unconverged_;
       samples_.push_back(std::move(s));
+      progress_.active = false;
       unconverged_ = unconverged;
       missingAccuracy_ = missing;
       largestError_ = largest;
@@ -97,18 +105,21 @@ std::string OptimizerRun::start(const Scene& scene, const Setup& setup, bool pau
       {
         std::lock_guard<std::mutex> lock(mutex_);
         stopReason_ = outcome.result.stopReason;
+        progress_.active = false;
       }
       status_ = Status::Finished;
     } catch (const EvaluationCancelled&) {
       {
         std::lock_guard<std::mutex> lock(mutex_);
         stopReason_ = "cancelled";
+        progress_.active = false;
       }
       status_ = Status::Cancelled;
     } catch (const std::exception& e) {
       {
         std::lock_guard<std::mutex> lock(mutex_);
         error_ = e.what();
+        progress_.active = false;
       }
       status_ = Status::Failed;
     }
@@ -184,6 +195,11 @@ double OptimizerRun::largestGradientError() const {
 int OptimizerRun::unconvergedForwardSteps() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return unconverged_;
+}
+
+OptimizerRun::Progress OptimizerRun::progress() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return progress_;
 }
 
 std::vector<OptimizerRun::Sample> OptimizerRun::samples() const {

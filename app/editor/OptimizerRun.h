@@ -10,6 +10,7 @@
 #include "EvaluationGate.h"
 
 #include <weft/optim/OptimizationRun.h>
+#include <weft/record/StepProgress.h>
 #include <weft/scene/Scene.h>
 
 #include <atomic>
@@ -41,6 +42,16 @@ class OptimizerRun {
     std::vector<double> values;
     bool hasGradient = false;
     double gradientError = 0.0;  // its estimated relative error, when hasGradient
+    int unconvergedSteps = 0;    // its forward steps that stopped above solver.pd_tolerance
+  };
+
+  // Where the evaluation under way is, step by step (`active` false between evaluations).
+  struct Progress {
+    bool active = false;
+    int evaluation = 0;  // 1-based, the one under way
+    PassPhase phase = PassPhase::Forward;
+    int pass = 1;  // the backward pass of its gradient (error control makes pairs)
+    int done = 0, total = 0;
   };
 
   // The method names makeOptimizer accepts (probed by name, so a method added to the engine
@@ -78,6 +89,7 @@ class OptimizerRun {
   const nlohmann::json& startDocument() const { return startDocument_; }
 
   std::vector<Sample> samples() const;
+  Progress progress() const;
   int evaluations() const;
   std::optional<Sample> best() const;  // the lowest loss so far
   // Forward steps of the run's evaluations so far that stopped at solver.pd_iterations above
@@ -104,6 +116,7 @@ class OptimizerRun {
   mutable std::mutex mutex_;
   std::vector<Sample> samples_;
   int unconverged_ = 0;
+  Progress progress_;
   int missingAccuracy_ = 0;
   double largestError_ = 0.0;
   std::string error_, stopReason_;

@@ -41,11 +41,21 @@ nlohmann::json inspectorState(const EditorSession& session) {
 
 nlohmann::json optimizerState(const EditorSession& session) {
   const OptimizerRun& run = session.optimisation().optimizer();
-  nlohmann::json losses = nlohmann::json::array(), history = nlohmann::json::array();
+  nlohmann::json losses = nlohmann::json::array(), history = nlohmann::json::array(),
+                 unconverged = nlohmann::json::array();
   for (const auto& s : run.samples()) {
     losses.push_back(s.loss);
     history.push_back(s.values);
+    unconverged.push_back(s.unconvergedSteps);
   }
+  const OptimizerRun::Progress p = run.progress();
+  const nlohmann::json progress =
+      p.active ? nlohmann::json{{"evaluation", p.evaluation},
+                                {"phase", p.phase == PassPhase::Forward ? "forward" : "backward"},
+                                {"pass", p.pass},
+                                {"done", p.done},
+                                {"total", p.total}}
+               : nlohmann::json(nullptr);
   const auto best = run.best();
   return {{"status", OptimizerRun::statusName(run.status())},
           {"method", run.method()},
@@ -58,6 +68,8 @@ nlohmann::json optimizerState(const EditorSession& session) {
           {"best_values", best ? nlohmann::json(best->values) : nlohmann::json(nullptr)},
           {"stop_reason", run.stopReason()},
           {"unconverged_forward_steps", run.unconvergedForwardSteps()},
+          {"unconverged_steps", unconverged},
+          {"progress", progress},
           {"error", run.error()}};
 }
 

@@ -105,6 +105,44 @@ TEST(Backpropagation, DifferentiatesTheModelItsTrajectoryCarries) {
                std::invalid_argument);
 }
 
+// The passes report every step (a progress display; SimulationObjective passes it on), in order,
+// and a report that throws abandons the pass (how the editor cancels within an evaluation).
+TEST(Backpropagation, PassesReportEveryStepAndStopWhenTheReportThrows) {
+  TempDir dir;
+  const Scene scene = test::windTaskScene(dir, {"wind.strength"}, 6);
+  std::vector<std::pair<int, int>> forward, backward;
+  const ForwardPass pass =
+      runForwardPass(scene, [&](PassPhase phase, int number, int done, int total) {
+        EXPECT_EQ(phase, PassPhase::Forward);
+        EXPECT_EQ(number, 1);
+        forward.emplace_back(done, total);
+      });
+  const int steps = scene.time.steps;
+  ASSERT_EQ(static_cast<int>(forward.size()), steps);
+  for (int k = 0; k < steps; ++k) EXPECT_EQ(forward[k], std::make_pair(k + 1, steps));
+  const TaskLoss loss(scene);
+  backpropagate(
+      pass.trajectory, loss, ParameterSet::fromTask(scene), scene.solver.backward,
+      [&](PassPhase phase, int number, int done, int total) {
+        EXPECT_EQ(phase, PassPhase::Backward);
+        EXPECT_EQ(number, 2);
+        backward.emplace_back(done, total);
+      },
+      2);
+  ASSERT_EQ(static_cast<int>(backward.size()), steps);
+  for (int k = 0; k < steps; ++k) EXPECT_EQ(backward[k], std::make_pair(k + 1, steps));
+
+  struct Stop {};
+  int heard = 0;
+  EXPECT_THROW(runForwardPass(scene,
+                              [&](PassPhase, int, int done, int) {
+                                ++heard;
+                                if (done == 3) throw Stop{};
+                              }),
+               Stop);
+  EXPECT_EQ(heard, 3) << "no step after the throw";
+}
+
 // dL/dx_n at an intermediate state against central differences: state n's positions moved
 // (velocities held) and the run continued from there by Simulator::restart.
 TEST(Backpropagation, StateGradientMatchesFiniteDifferencesMidRun) {

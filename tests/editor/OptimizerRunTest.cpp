@@ -5,6 +5,7 @@
 #include <OptimizerRun.h>
 
 #include "support/SceneBuilder.h"
+#include "support/TempDir.h"
 
 #include <weft/scene/SceneLoader.h>
 
@@ -116,6 +117,39 @@ TEST(OptimizerRun, CancelStopsAPausedRunAndKeepsItsSamples) {
   EXPECT_EQ(run.status(), OptimizerRun::Status::Cancelled);
   EXPECT_EQ(run.evaluations(), 2);
   EXPECT_EQ(run.parameters(), std::vector<std::string>{"wind.strength"});
+}
+
+// Cancel stops inside the evaluation under way, between two of its steps, instead of waiting
+// for it to end: a 400-step evaluation is cancelled a few steps into its forward pass and no
+// evaluation completes. The progress it reported named that evaluation, phase and step.
+TEST(OptimizerRun, CancelStopsWithinTheEvaluationUnderWay) {
+  test::TempDir dir;
+  nlohmann::json doc = test::hangingClothScene(1.0, 12, 0.01, 400, 500.0);
+  doc["task"] = {
+      {"loss",
+       {{"keypoints",
+         {{"points", {{{"step", 400}, {"vertices", {0}}, {"positions", {{0.0, 0.0, 0.0}}}}}}}}}},
+      {"parameters", {"cloths.0.material.stretch"}}};
+  const Scene scene = loadScene(test::writeScene(dir.file("long.json"), doc));
+  OptimizerRun run;
+  OptimizerRun::Setup setup;
+  setup.parameters = {"cloths.0.material.stretch"};
+  ASSERT_EQ(run.start(scene, setup, false), "");
+  OptimizerRun::Progress seen;
+  for (int i = 0; i < 60000; ++i) {
+    seen = run.progress();
+    if (seen.active && seen.done >= 2) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(seen.active);
+  EXPECT_EQ(seen.evaluation, 1);
+  EXPECT_EQ(seen.phase, PassPhase::Forward);
+  EXPECT_EQ(seen.total, 400);
+  run.cancel();
+  EXPECT_EQ(run.status(), OptimizerRun::Status::Cancelled);
+  EXPECT_EQ(run.evaluations(), 0) << "stopped inside evaluation 1, not after it";
+  EXPECT_FALSE(run.progress().active);
+  EXPECT_EQ(run.stopReason(), "cancelled");
 }
 
 TEST(OptimizerRun, RefusesWhatItCannotRun) {

@@ -32,7 +32,8 @@ GradientErrorEstimate singlePassErrorEstimate(const GradientResult& result,
 }
 
 GradientResult backpropagate(const Trajectory& trajectory, const TaskLoss& loss,
-                             const ParameterSet& parameters, const BackwardSettings& settings) {
+                             const ParameterSet& parameters, const BackwardSettings& settings,
+                             const StepProgress& progress, int pass) {
   const auto start = std::chrono::steady_clock::now();
   StepBackward back(trajectory, parameters, settings);  // throws for a trajectory without model
   const Scene& scene = trajectory.model->scene();
@@ -43,9 +44,11 @@ GradientResult backpropagate(const Trajectory& trajectory, const TaskLoss& loss,
   std::vector<NodeMatrix> dLdx = loss.gradient(trajectory);
   NodeMatrix dLdvNext = NodeMatrix::Zero(m, 3);  // dL/dv_{n+1} through the steps after n+1
   NodeMatrix dLdv(m, 3);
-  for (int n = trajectory.stepCount() - 1; n >= 0; --n) {
+  const int steps = trajectory.stepCount();
+  for (int n = steps - 1; n >= 0; --n) {
     back.step(n, dLdx[n + 1], dLdvNext, dLdx[n], dLdv, result.gradient);
     dLdvNext.swap(dLdv);
+    if (progress) progress(PassPhase::Backward, pass, steps - n, steps);
   }
   result.dLdx0 = dLdx[0];
   result.dLdv0 = dLdvNext;

@@ -8,15 +8,18 @@
 
 namespace weft {
 
-ForwardPass runForwardPass(const Scene& scene) {
-  return runForwardPass(Model::compile(scene));
+ForwardPass runForwardPass(const Scene& scene, const StepProgress& progress) {
+  return runForwardPass(Model::compile(scene), progress);
 }
 
-ForwardPass runForwardPass(std::shared_ptr<const Model> model) {
+ForwardPass runForwardPass(std::shared_ptr<const Model> model, const StepProgress& progress) {
   ForwardPass pass;
   const int steps = model->stepCount();
   Simulator sim(std::move(model));
-  sim.run(steps, pass.trajectory);
+  int done = 0;
+  sim.run(steps, pass.trajectory, [&](const StepStats&) {
+    if (progress) progress(PassPhase::Forward, 1, ++done, steps);
+  });
   for (const StepStats& s : pass.trajectory.steps) {
     if (!s.converged) ++pass.unconvergedSteps;
     pass.maxResidual = std::max(pass.maxResidual, s.residual);

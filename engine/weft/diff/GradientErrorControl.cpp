@@ -11,13 +11,14 @@ namespace weft {
 namespace {
 
 GradientResult pass(const Trajectory& trajectory, const TaskLoss& loss,
-                    const ParameterSet& parameters, BackwardSettings settings, double tolerance) {
+                    const ParameterSet& parameters, BackwardSettings settings, double tolerance,
+                    const StepProgress& progress, int number) {
   if (tolerance > 0.0) {
     settings.tolerance = tolerance;
   } else {
     settings.method = "direct";
   }
-  return backpropagate(trajectory, loss, parameters, settings);
+  return backpropagate(trajectory, loss, parameters, settings, progress, number);
 }
 
 // The estimate for `tight` (solved at `tolerance`, 0: direct) from its difference to `loose`.
@@ -49,13 +50,14 @@ AccurateBackward::AccurateBackward(const BackwardSettings& settings)
     : settings_(settings), start_(settings.tolerance) {}
 
 GradientResult AccurateBackward::differentiate(const Trajectory& trajectory, const TaskLoss& loss,
-                                               const ParameterSet& parameters) {
+                                               const ParameterSet& parameters,
+                                               const StepProgress& progress) {
   if (settings_.accuracy <= 0.0 || settings_.method == "direct")
-    return backpropagate(trajectory, loss, parameters, settings_);
+    return backpropagate(trajectory, loss, parameters, settings_, progress, 1);
   AdjointSolverStats costs;
   double seconds = 0.0;
   double looseTolerance = start_;
-  GradientResult loose = pass(trajectory, loss, parameters, settings_, looseTolerance);
+  GradientResult loose = pass(trajectory, loss, parameters, settings_, looseTolerance, progress, 1);
   addSolverCosts(costs, loose.solver);
   seconds += loose.seconds;
   int passes = 1;
@@ -63,7 +65,8 @@ GradientResult AccurateBackward::differentiate(const Trajectory& trajectory, con
     const double tightTolerance = looseTolerance / kToleranceStep >= kTightestTolerance
                                       ? looseTolerance / kToleranceStep
                                       : 0.0;  // 0: direct
-    GradientResult tight = pass(trajectory, loss, parameters, settings_, tightTolerance);
+    GradientResult tight =
+        pass(trajectory, loss, parameters, settings_, tightTolerance, progress, passes + 1);
     ++passes;
     addSolverCosts(costs, tight.solver);
     seconds += tight.seconds;

@@ -103,6 +103,12 @@ OptimizationOutcome OptimizationRun::run(const OptimizerSettings& settings,
                                          const Eigen::VectorXd& start,
                                          const OptimizationCallbacks& callbacks) {
   optimizer_ = makeOptimizer(method_, settings);
+  // Heard for this run only: the callbacks may not outlive it.
+  struct ProgressScope {
+    SimulationObjective& objective;
+    ~ProgressScope() { objective.setProgress({}); }
+  } progressScope{objective_};
+  objective_.setProgress(callbacks.stepDone);
   if (callbacks.evaluated)
     optimizer_->log().setObserver([this, evaluated = callbacks.evaluated](const LogEntry& e) {
       evaluated(e, space().toValues(e.x));

@@ -22,12 +22,14 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 double SimulationObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& gradient) {
   const auto start = std::chrono::steady_clock::now();
-  const ForwardPass forward = runForwardPass(parameters_.compile(scene_, space_.toValues(z)));
+  const ForwardPass forward =
+      runForwardPass(parameters_.compile(scene_, space_.toValues(z)), progress_);
   unconverged_ += forward.unconvergedSteps;
   const double forwardSeconds = secondsSince(start);
   forwardSeconds_ += forwardSeconds;
   ++forwardPasses_;
-  const GradientResult r = backwardPass_.differentiate(forward.trajectory, loss_, parameters_);
+  const GradientResult r =
+      backwardPass_.differentiate(forward.trajectory, loss_, parameters_, progress_);
   lastError_ = r.error;
   largestError_ = std::max(largestError_, r.error.relative);
   if (!r.error.met) ++missingAccuracy_;
@@ -44,7 +46,8 @@ double SimulationObjective::value(const Eigen::VectorXd& z) {
   // The forward pass and the loss of its trajectory, nothing recorded for a backward pass to use:
   // what a gradient-free method pays per evaluation (time.steps simulated steps).
   const auto start = std::chrono::steady_clock::now();
-  const ForwardPass forward = runForwardPass(parameters_.compile(scene_, space_.toValues(z)));
+  const ForwardPass forward =
+      runForwardPass(parameters_.compile(scene_, space_.toValues(z)), progress_);
   unconverged_ += forward.unconvergedSteps;
   const double loss = loss_.value(forward.trajectory.model->scene(), forward.trajectory);
   const double seconds = secondsSince(start);

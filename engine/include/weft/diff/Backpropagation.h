@@ -15,6 +15,7 @@
 #include <weft/diff/AdjointSolver.h>
 #include <weft/diff/ParameterSet.h>
 #include <weft/diff/TaskLoss.h>
+#include <weft/record/StepProgress.h>
 #include <weft/record/Trajectory.h>
 
 #include <Eigen/Core>
@@ -62,7 +63,9 @@ struct GradientResult {
 // One backward pass: backpropagates `loss` through `trajectory` (recorded by Simulator::run, e.g.
 // through runForwardPass), with the model it carries: the forward's constraints, obstacles and dt.
 // Throws std::invalid_argument for a trajectory without a model (one read from a run folder).
+// `progress` (optional) hears of every step, as backward pass `pass`.
 GradientResult backpropagate(const Trajectory& trajectory, const TaskLoss& loss,
-                             const ParameterSet& parameters, const BackwardSettings& settings);
+                             const ParameterSet& parameters, const BackwardSettings& settings,
+                             const StepProgress& progress = {}, int pass = 1);
 
 }  // namespace weft

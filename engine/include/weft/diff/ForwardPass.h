@@ -3,6 +3,7 @@
 // recorded (the backward pass rebuilds each step's Delta P from the recorded x_{n+1}).
 
 #include <weft/physics/Model.h>
+#include <weft/record/StepProgress.h>
 #include <weft/record/Trajectory.h>
 #include <weft/scene/Scene.h>
 
@@ -17,10 +18,11 @@ struct ForwardPass {
   long long solves = 0;      // solves with P over the run
 };
 
-// The model simulated for its time.steps; the trajectory refers to it.
-ForwardPass runForwardPass(std::shared_ptr<const Model> model);
+// The model simulated for its time.steps; the trajectory refers to it. `progress` (optional)
+// hears of every step.
+ForwardPass runForwardPass(std::shared_ptr<const Model> model, const StepProgress& progress = {});
 // The same for a scene compiled here.
-ForwardPass runForwardPass(const Scene& scene);
+ForwardPass runForwardPass(const Scene& scene, const StepProgress& progress = {});
 
 // The scene with the forward solver tightened for gradients: Newton-PCG (whose quadratic
 // convergence reaches round-off in a few iterations), pd_tolerance = `tolerance` (m/s^2) and a

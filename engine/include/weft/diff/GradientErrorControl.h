@@ -38,8 +38,9 @@ class AccurateBackward {
   // one pass; otherwise the tighter pass of the first pair that agrees to settings.accuracy (or
   // the last tried, with error.met false). `seconds` and the solver's costs cover every pass;
   // its largest residual and growth are the returned pass's.
+  // `progress` (optional) hears of every step of every pass.
   GradientResult differentiate(const Trajectory& trajectory, const TaskLoss& loss,
-                               const ParameterSet& parameters);
+                               const ParameterSet& parameters, const StepProgress& progress = {});
   // The looser tolerance of the pair the next call starts from.
   double startTolerance() const { return start_; }
 

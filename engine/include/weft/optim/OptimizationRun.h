@@ -29,6 +29,9 @@ struct OptimizationCallbacks {
   // Before every evaluation: may block (a paused run) or throw to cancel (the exception leaves
   // run(); the evaluations so far stay in log()).
   std::function<void()> beforeEvaluation;
+  // After every forward and backward step inside an evaluation (SimulationObjective::setProgress):
+  // may throw to cancel within the evaluation. Evaluations other processes run are not heard.
+  StepProgress stepDone;
 };
 
 struct OptimizationOutcome {

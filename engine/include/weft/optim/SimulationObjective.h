@@ -13,6 +13,7 @@
 #include <weft/diff/TaskLoss.h>
 #include <weft/optim/Objective.h>
 #include <weft/optim/ParameterSpace.h>
+#include <weft/record/StepProgress.h>
 
 namespace weft {
 
@@ -31,6 +32,10 @@ class SimulationObjective : public Objective {
   // Counts a value() another process ran for this objective (a population spread over MPI
   // ranks), so that the totals below are the run's, wherever its evaluations ran.
   void countValueRunElsewhere(int unconvergedSteps, double seconds);
+
+  // Heard after every forward and backward step of the evaluations from now on (a progress
+  // display; a throw cancels within the evaluation). Empty: none.
+  void setProgress(StepProgress progress) { progress_ = std::move(progress); }
 
   const ParameterSpace& space() const { return space_; }
   const ParameterSet& parameters() const { return parameters_; }
@@ -58,6 +63,7 @@ class SimulationObjective : public Objective {
   ParameterSpace space_;
   TaskLoss loss_;
   AccurateBackward backwardPass_;
+  StepProgress progress_;
   GradientErrorEstimate lastError_;
   double largestError_ = 0.0;
   int missingAccuracy_ = 0;
