@@ -6,6 +6,7 @@
 #include "PanelStyle.h"
 #include "ViewportTarget.h"
 
+#include <weft/render/Legend.h>
 #include <weft/render/Renderer.h>
 
 #include <imgui.h>
@@ -53,6 +54,23 @@ void ViewportPanel::draw(float left, float top, float width, float height) {
   ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(target_->colorTexture())),
                ImVec2(float(width_), float(height_)), ImVec2(0, 1), ImVec2(1, 0));
   drawList->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+  // The contact legend's labels beside the renderer's swatches (the renderer has no text), noted
+  // as "legend:take-off", "legend:stick", "legend:slip" for scripts.
+  if (style_.legend) {
+    const render::RenderScene* shown = session_.viewport().scene();
+    if (shown && shown->contacts) {
+      const float fontHeight = ImGui::GetFontSize();
+      for (const render::LegendSwatch& w : render::contactLegendSwatches(width_, height_)) {
+        const char* name = render::branchName(w.branch);
+        const ImVec2 text = ImGui::CalcTextSize(name);
+        const ImVec2 at(origin.x + w.left - w.border - 6.0f - text.x,
+                        origin.y + 0.5f * (w.top + w.bottom) - 0.5f * fontHeight);
+        drawList->AddText(at, IM_COL32(40, 40, 46, 255), name);
+        app_.noteItem(std::string("legend:") + name, at.x + 0.5f * text.x,
+                      at.y + 0.5f * fontHeight);
+      }
+    }
+  }
   ImGui::SetCursorScreenPos(origin);
   ImGui::InvisibleButton("viewport-input", ImVec2(float(width_), float(height_)),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |

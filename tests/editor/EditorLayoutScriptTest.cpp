@@ -94,5 +94,37 @@ TEST(EditorLayout, SimulatingMessageGoesWhenTheRunEnds) {
   EXPECT_EQ(done["message"], "");
 }
 
+// The contact branches' swatches are labelled (the renderer draws the colours, the editor the
+// words beside them, in the renderer's layout): none before a contact state is shown, then
+// take-off above stick above slip, each left of its swatch in the viewport's lower right corner.
+TEST(EditorLayout, ContactLegendIsLabelled) {
+  TempDir dir;
+  const ProcessResult r =
+      runEditor(dir, {{{"open", std::string(WEFT_ASSET_DIR) + "/scenes/sphere.json"}},
+                      {{"set", "time.steps"}, {"value", 30}},
+                      {{"frames", 2}},
+                      {{"write_state", dir.file("rest.json")}},
+                      {{"simulate", true}},
+                      {{"scrub", 30}},
+                      {{"frames", 2}},
+                      {{"write_state", dir.file("contact.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const nlohmann::json rest = readJson(dir.file("rest.json"));
+  EXPECT_FALSE(rest["items"].contains("legend:slip")) << "no contact shown, no legend";
+  const nlohmann::json contact = readJson(dir.file("contact.json"));
+  const nlohmann::json& items = contact["items"];
+  ASSERT_TRUE(items.contains("legend:take-off") && items.contains("legend:stick") &&
+              items.contains("legend:slip"))
+      << items;
+  const double takeOff = items["legend:take-off"][1], stick = items["legend:stick"][1],
+               slip = items["legend:slip"][1];
+  EXPECT_LT(takeOff, stick);
+  EXPECT_LT(stick, slip);
+  // In the viewport's lower right quarter (window pixels; the viewport's size from the state).
+  const double x = items["legend:slip"][0];
+  EXPECT_GT(x, 0.5 * 960.0);
+  EXPECT_GT(slip, 0.5 * 600.0);
+}
+
 }  // namespace
 }  // namespace weft::test

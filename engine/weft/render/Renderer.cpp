@@ -3,6 +3,7 @@
 #include <weft/render/ColorMap.h>
 #include <weft/render/GlFunctions.h>
 #include <weft/render/GpuMesh.h>
+#include <weft/render/Legend.h>
 #include <weft/render/RenderError.h>
 #include <weft/render/ShaderProgram.h>
 #include <weft/render/ShapeTessellation.h>
@@ -484,14 +485,12 @@ void Renderer::drawLegend(const RenderScene& scene, const RenderStyle& style, co
                  std::round(y) + 0.5f * border, dark);
   }
   if (scene.contacts) {
-    // Swatches for take-off, stick and slip, bottom to top in the lower right corner.
-    const float size = std::max(8.0f, std::round(16.0f * s)),
-                gap = std::max(3.0f, std::round(8.0f * s));
-    float y = float(f.height) - margin;
-    for (ContactBranch b : {ContactBranch::Slip, ContactBranch::Stick, ContactBranch::TakeOff}) {
-      appendRect(quads, right - size - border, y - size - border, right + border, y + border, dark);
-      appendRect(quads, right - size, y - size, right, y, branchColor(b));
-      y -= size + 2.0f * border + gap;
+    // Swatches for take-off, stick and slip, bottom to top in the lower right corner (Legend.h:
+    // the editor labels them by the same layout).
+    for (const LegendSwatch& w : contactLegendSwatches(f.width, f.height)) {
+      appendRect(quads, w.left - w.border, w.top - w.border, w.right + w.border,
+                 w.bottom + w.border, dark);
+      appendRect(quads, w.left, w.top, w.right, w.bottom, branchColor(w.branch));
     }
   }
   const GlFunctions& gl = r_->gl;
