@@ -52,6 +52,9 @@ void logRecovery(void*, const char* format, ...) {
 
 // GLFW's key codes for letters are their upper-case ASCII codes; ImGui 1.86 indexes
 // io.KeysDown by the platform's codes.
+// The cloth's opacity in the See-through cloth view.
+constexpr float kSeeThroughOpacity = 0.45f;
+
 constexpr int kKeyN = 'N', kKeyO = 'O', kKeyS = 'S', kKeyQ = 'Q', kKeyF = 'F', kKeyI = 'I',
               kKeyK = 'K';
 
@@ -423,6 +426,12 @@ void EditorApp::drawMenuBar() {
     ImGui::MenuItem("Contact branch colours", nullptr, &session_.viewport().contactColours);
     ImGui::MenuItem("Contact force arrows", nullptr, &session_.viewport().forceArrows);
     ImGui::MenuItem("Legend", nullptr, &viewport_->style().legend);
+    ImGui::Separator();
+    // For a garment on a body: what the cloth covers shows through.
+    bool seeThrough = viewport_->style().clothOpacity < 1.0f;
+    if (ImGui::MenuItem("See-through cloth", nullptr, &seeThrough))
+      viewport_->style().clothOpacity = seeThrough ? kSeeThroughOpacity : 1.0f;
+    ImGui::MenuItem("Obstacles in front", nullptr, &viewport_->style().obstaclesInFront);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Panels")) {

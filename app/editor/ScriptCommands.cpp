@@ -58,6 +58,8 @@ std::string scriptActionKind(const nlohmann::json& action) {
                         "panel",
                         "contact_colours",
                         "force_arrows",
+                        "see_through",
+                        "obstacles_in_front",
                         "set_targets",
                         "target",
                         "move_targets",

@@ -80,6 +80,18 @@ bool contactColours(ScriptCall& call) {
   return true;
 }
 
+// {"see_through": true|false}: the View menu's See-through cloth (opacity 0.45 as there).
+bool seeThrough(ScriptCall& call) {
+  call.app.style().clothOpacity = call.action.at(call.kind).get<bool>() ? 0.45f : 1.0f;
+  return true;
+}
+
+// {"obstacles_in_front": true|false}: the View menu's Obstacles in front.
+bool obstaclesInFront(ScriptCall& call) {
+  call.app.style().obstaclesInFront = call.action.at(call.kind).get<bool>();
+  return true;
+}
+
 bool forceArrows(ScriptCall& call) {
   call.session.viewport().forceArrows = call.action.at(call.kind).get<bool>();
   return true;
@@ -94,6 +106,8 @@ void addViewCommands(ScriptCommandTable& table) {
   table["panel"] = panel;
   table["contact_colours"] = contactColours;
   table["force_arrows"] = forceArrows;
+  table["see_through"] = seeThrough;
+  table["obstacles_in_front"] = obstaclesInFront;
 }
 
 }  // namespace weft::editor

@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <utility>
 
 namespace weft::test {
 namespace {
@@ -124,6 +126,48 @@ TEST(Pixels, ImageRowsRunFromTopToBottom) {
   const auto background = bytesOf(style.background);
   EXPECT_FALSE(pixelIs(image, 50, 30, background));  // y = 0.39: inside
   EXPECT_TRUE(pixelIs(image, 50, 70, background));   // y = -0.41: below it
+}
+
+// The see-through views (RenderStyle::clothOpacity, obstaclesInFront) on a cloth square in front
+// of a sphere: opaque, the middle pixel is the cloth's own; translucent cloth, or obstacles drawn
+// in front, give a pixel between the cloth's and the sphere's colours, far from either.
+TEST(Pixels, SeeThroughClothAndObstaclesInFrontShowTheObstacleBehind) {
+  const int size = 100;
+  render::RenderScene cloth, sphere, both;
+  cloth.cloth = flatSquare(4, 1.6f);  // in z = 0, facing the camera
+  render::ObstacleShape ball;
+  ball.kind = render::ObstacleShape::Kind::Sphere;
+  ball.center = render::Vec3f(0.0f, 0.0f, -0.8f);  // behind the cloth
+  ball.radius = 0.5f;
+  sphere.obstacles = {ball};
+  both.cloth = cloth.cloth;
+  both.obstacles = {ball};
+  const render::RenderStyle plain = plainStyle();
+  auto middle = [&](const render::RenderScene& scene, const render::RenderStyle& style) {
+    const render::Image image = osmesaRenderer(size, size).renderImage(scene, orthoFront(), style);
+    const std::uint8_t* p = image.at(size / 2, size / 2);
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  const auto clothOnly = middle(cloth, plain), sphereOnly = middle(sphere, plain);
+  ASSERT_GT(std::abs(clothOnly[2] - sphereOnly[2]), 60) << "the two colours differ";
+  EXPECT_EQ(middle(both, plain), clothOnly) << "opaque cloth hides the sphere";
+  render::RenderStyle seeThrough = plain;
+  seeThrough.clothOpacity = 0.4f;
+  render::RenderStyle inFront = plain;
+  inFront.obstaclesInFront = true;
+  for (const auto& [name, style] :
+       {std::pair<const char*, render::RenderStyle>{"see-through", seeThrough},
+        {"in front", inFront}}) {
+    SCOPED_TRACE(name);
+    const auto mixed = middle(both, style);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GE(mixed[c], std::min(clothOnly[c], sphereOnly[c]) - 2) << c;
+      EXPECT_LE(mixed[c], std::max(clothOnly[c], sphereOnly[c]) + 2) << c;
+    }
+    // Blue differs most between the two: the mix lies well inside, at neither end.
+    EXPECT_GT(std::abs(mixed[2] - clothOnly[2]), 20);
+    EXPECT_GT(std::abs(mixed[2] - sphereOnly[2]), 20);
+  }
 }
 
 TEST(Pixels, BranchColourAppearsOnlyWhereThatBranchHasNodes) {

@@ -17,6 +17,9 @@
 
 namespace weft::render {
 
+// The obstacles' opacity when drawn over the cloth (RenderStyle::obstaclesInFront).
+constexpr float kInFrontOpacity = 0.5f;
+
 bool RendererOptions::defaultCheckEveryDrawPath() {
   const char* env = std::getenv("WEFT_GL_DEBUG");
   if (env && *env) return std::string(env) != "0";
@@ -234,8 +237,9 @@ void Renderer::render(const RenderScene& scene, const Camera& camera, const Rend
   checkpoint("frame set-up");
 
   drawGround(scene, style, f);
-  drawObstacles(scene, style, f);
+  drawObstacles(scene, style, f, false);
   drawCloth(scene, style, f);
+  if (style.obstaclesInFront) drawObstacles(scene, style, f, true);
   drawArrows(scene, style, f);
   drawWireframe(scene, style, f);
   drawCurves(scene, style, f);
@@ -305,7 +309,8 @@ void Renderer::drawGround(const RenderScene& scene, const RenderStyle& style, co
   checkpoint("drawing the ground");
 }
 
-void Renderer::drawObstacles(const RenderScene& scene, const RenderStyle& style, const Frame& f) {
+void Renderer::drawObstacles(const RenderScene& scene, const RenderStyle& style, const Frame& f,
+                             bool inFront) {
   LitMesh& all = cleared(r_->shapes);
   for (const ObstacleShape& o : scene.obstacles)
     if (o.kind != ObstacleShape::Kind::Plane) all.append(tessellateObstacle(o, f.center, 0.0f));
@@ -313,11 +318,22 @@ void Renderer::drawObstacles(const RenderScene& scene, const RenderStyle& style,
   std::vector<float>& vertices = r_->vertices;
   vertices.clear();
   appendSurface(vertices, all);
-  useSurfaceProgram(f, style.obstacle, style.obstacle, 1.0f);
-  r_->gl.Enable(GL_POLYGON_OFFSET_FILL);
+  const GlFunctions& gl = r_->gl;
+  if (inFront) {
+    // Over the cloth, translucent: the depth test off, so what a garment covers shows.
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Enable(GL_BLEND);
+    gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  }
+  useSurfaceProgram(f, style.obstacle, style.obstacle, inFront ? kInFrontOpacity : 1.0f);
+  gl.Enable(GL_POLYGON_OFFSET_FILL);
   r_->surfaceMesh->upload(vertices, all.indices);
   r_->surfaceMesh->draw(GL_TRIANGLES);
-  r_->gl.Disable(GL_POLYGON_OFFSET_FILL);
+  gl.Disable(GL_POLYGON_OFFSET_FILL);
+  if (inFront) {
+    gl.Disable(GL_BLEND);
+    gl.Enable(GL_DEPTH_TEST);
+  }
   checkpoint("drawing obstacles");
 }
 
@@ -345,11 +361,24 @@ void Renderer::drawCloth(const RenderScene& scene, const RenderStyle& style, con
     r_->gl.BindTexture(GL_TEXTURE_2D,
                        r_->colorMaps[scene.scalars->map == ColorMapKind::Sequential ? 0 : 1]);
   }
+  // Translucent cloth writes no depth: what lies behind it (obstacles, markers, contacts) shows.
+  const float opacity = std::clamp(style.clothOpacity, 0.0f, 1.0f);
+  const bool translucent = opacity < 1.0f;
+  if (translucent) {
+    r_->surface->set("opacity", opacity);
+    r_->gl.Enable(GL_BLEND);
+    r_->gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    r_->gl.DepthMask(GL_FALSE);
+  }
   r_->gl.Enable(GL_POLYGON_OFFSET_FILL);
   r_->surfaceMesh->upload(vertices, indices);
   r_->surfaceMesh->draw(GL_TRIANGLES);
   r_->gl.Disable(GL_POLYGON_OFFSET_FILL);
   r_->gl.BindTexture(GL_TEXTURE_2D, 0);
+  if (translucent) {
+    r_->gl.DepthMask(GL_TRUE);
+    r_->gl.Disable(GL_BLEND);
+  }
   checkpoint("drawing the cloth");
 }
 

@@ -23,6 +23,11 @@ struct RenderStyle {
   bool wireframe = false;
   bool groundGrid = true;  // a grid on each plane obstacle, or under the scene when there is none
   bool legend = true;      // colour bar for scalars, swatches for contact branches
+  // See-through views, for a garment on a body: the cloth drawn translucent (1 = opaque; markers
+  // and contacts behind it then show), and the obstacles drawn once more over everything,
+  // translucent, so what a garment hides shows through it.
+  float clothOpacity = 1.0f;
+  bool obstaclesInFront = false;
   float pointSize = 0.0f;  // marker diameter in pixels; 0 scales with the image height
   float lineWidth = 0.0f;  // curve width in pixels; 0 scales with the image height
 };

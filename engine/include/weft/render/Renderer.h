@@ -48,7 +48,9 @@ class Renderer {
   struct Frame;
   void checkpoint(const char* where) const;
   void drawGround(const RenderScene& scene, const RenderStyle& style, const Frame& f);
-  void drawObstacles(const RenderScene& scene, const RenderStyle& style, const Frame& f);
+  // `inFront`: the second, translucent pass over the cloth (RenderStyle::obstaclesInFront).
+  void drawObstacles(const RenderScene& scene, const RenderStyle& style, const Frame& f,
+                     bool inFront);
   void drawCloth(const RenderScene& scene, const RenderStyle& style, const Frame& f);
   void drawWireframe(const RenderScene& scene, const RenderStyle& style, const Frame& f);
   void drawCurves(const RenderScene& scene, const RenderStyle& style, const Frame& f);
