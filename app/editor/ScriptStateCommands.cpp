@@ -144,6 +144,7 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
             {"distance", camera.distance},
             {"target", jsonOf(camera.target.cast<double>())}}},
           {"playing", session.playback().playing()},
+          {"loop", session.playback().loop()},
           {"animating", session.animating()},
           {"dialog", dialog},
           {"browser", browser},

@@ -220,6 +220,10 @@ void Playback::advance(double seconds, double dt, int available, bool growing) {
   const int frames = static_cast<int>(accumulated_ / dt);
   accumulated_ -= frames * dt;
   const int last = available - 1;
+  if (loop_ && !growing && frame_ + frames > last) {
+    frame_ = (frame_ + frames) % available;
+    return;
+  }
   if (frame_ + frames >= last) {
     frame_ = last;
     accumulated_ = 0.0;

@@ -127,13 +127,17 @@ class Playback {
   void play() { playing_ = true; }
   void pause() { playing_ = false; }
   void toggle() { playing_ = !playing_; }
-  // Advances by wall-clock `seconds` while playing; stops at the last available frame unless
-  // more frames are still coming (`growing`). `dt` is the scene's time step.
+  // Looping: playing past the last frame goes on from the first instead of stopping.
+  bool loop() const { return loop_; }
+  void setLoop(bool loop) { loop_ = loop; }
+  // Advances by wall-clock `seconds` while playing; at the last available frame stops, or with
+  // loop() wraps to the first, unless more frames are still coming (`growing`: it waits there).
+  // `dt` is the scene's time step.
   void advance(double seconds, double dt, int available, bool growing);
 
  private:
   int frame_ = 0;
-  bool playing_ = false;
+  bool playing_ = false, loop_ = false;
   double speed_ = 1.0;
   double accumulated_ = 0.0;  // wall-clock seconds not yet turned into frames
 };

@@ -113,6 +113,10 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   ImGui::BeginDisabled(available == 0);
   if (ImGui::Button(playback.playing() ? "Pause" : "Play")) session_.timeline().togglePlayback();
   app_.noteLastItem("timeline:play");
+  ImGui::SameLine();
+  bool loop = playback.loop();
+  if (ImGui::Checkbox("Loop", &loop)) session_.playback().setLoop(loop);
+  app_.noteLastItem("timeline:loop");
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button(">|")) session_.timeline().goToEnd();

@@ -164,5 +164,25 @@ TEST(Playback, PlaysAtTheSceneRateAndStopsAtTheEnd) {
   EXPECT_EQ(p.frame(), 99);
 }
 
+TEST(Playback, LoopWrapsToTheFirstFrameInsteadOfStopping) {
+  Playback p;
+  p.setLoop(true);
+  p.scrub(8, 10);
+  p.play();
+  p.advance(0.035, 0.01, 10, false);  // 8 + 3 = 11: past the last frame (9), on from 0
+  EXPECT_EQ(p.frame(), 1);
+  EXPECT_TRUE(p.playing());
+  p.advance(0.25, 0.01, 10, false);  // 1 + 25 = 26: twice round
+  EXPECT_EQ(p.frame(), 6);
+  p.scrub(8, 10);
+  p.advance(0.05, 0.01, 10, true);  // frames still coming: waits at the last one
+  EXPECT_EQ(p.frame(), 9);
+  EXPECT_TRUE(p.playing());
+  p.setLoop(false);
+  p.advance(0.05, 0.01, 10, false);
+  EXPECT_EQ(p.frame(), 9);
+  EXPECT_FALSE(p.playing()) << "without loop it stops at the end";
+}
+
 }  // namespace
 }  // namespace weft::editor
