@@ -593,7 +593,11 @@ void EditorApp::drawFileDialog() {
     const bool ok = ImGui::Button(fileDialog_ == FileDialog::Open ? "Open" : "Save") || enter;
     noteLastItem("dialog:confirm");
     ImGui::SameLine();
-    const bool cancel = ImGui::Button("Cancel");
+    // Esc cancels once the path field is let go (in it, Esc only leaves the field), as in the
+    // import dialog.
+    const bool cancel = ImGui::Button("Cancel") ||
+                        (!ImGui::IsAnyItemActive() && !ImGui::IsWindowAppearing() &&
+                         ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false));
     if (ok && pathBuffer_[0]) {
       if (fileDialog_ == FileDialog::Open) {
         requestOpen(pathBuffer_);

@@ -14,10 +14,6 @@
 namespace weft::test {
 namespace {
 
-nlohmann::json item(const std::string& name) {
-  return {{"item", name}};
-}
-
 TEST(EditorLayout, StatusAreaKeepsThePanelInPlace) {
   TempDir dir;
   const std::string scene =

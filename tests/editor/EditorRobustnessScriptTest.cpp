@@ -13,10 +13,6 @@
 namespace weft::test {
 namespace {
 
-nlohmann::json item(const std::string& name) {
-  return {{"item", name}};
-}
-
 std::string hangingScene(const TempDir& dir, int steps = 5) {
   return writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, steps, 500.0));
 }

@@ -16,6 +16,11 @@ namespace weft::test {
 ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions,
                         const std::string& size = "960x600");
 
+// The script point {"item": NAME}: where the last frame drew the named item (EditorApp.h).
+inline nlohmann::json item(const std::string& name) {
+  return {{"item", name}};
+}
+
 // The JSON file at `path`; fails the current test (and returns null) when it cannot be read.
 nlohmann::json readJson(const std::string& path);
 

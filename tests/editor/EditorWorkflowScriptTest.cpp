@@ -98,10 +98,6 @@ TEST(EditorWorkflow, ImportGarmentAndAddObstacles) {
   EXPECT_TRUE(undone["dirty"]);
 }
 
-nlohmann::json item(const std::string& name) {
-  return {{"item", name}};
-}
-
 // A garment picked, not typed: Ctrl+I opens the import dialog browsing the scene's folder; a
 // click on a folder opens it, a click on the mesh puts its path in the field, Import adds it.
 // The mesh lies where the folder was, clicked at once: not a double click that confirms it.
@@ -213,6 +209,30 @@ TEST(EditorWorkflow, OpenSceneByDoubleClickInTheFileBrowser) {
   EXPECT_EQ(fs::path(opened["file"].get<std::string>()).filename(), "second.json");
   EXPECT_EQ(opened["document"]["cloths"][0]["mesh"]["grid"]["resolution"],
             nlohmann::json::array({3, 3}));
+}
+
+// Esc closes the Open dialog once its path field is let go (a click in the file list lets it go),
+// as it closes the import dialog; the document stays as it was.
+TEST(EditorWorkflow, EscapeClosesTheOpenDialog) {
+  TempDir dir;
+  const std::string first =
+      writeScene(dir.file("first.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  fs::create_directories(dir.file("sub"));
+  const ProcessResult r = runEditor(dir, {{{"open", first}},
+                                          {{"frames", 2}},
+                                          {{"key", "ctrl+o"}},
+                                          {{"frames", 3}},
+                                          {{"mouse_click", item("browser:entry:sub")}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("open.json")}},
+                                          {{"key", "escape"}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("closed.json")}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_EQ(readJson(dir.file("open.json"))["dialog"]["title"], "Open scene");
+  const nlohmann::json closed = readJson(dir.file("closed.json"));
+  EXPECT_TRUE(closed["dialog"].is_null()) << closed["dialog"];
+  EXPECT_EQ(fs::path(closed["file"].get<std::string>()).filename(), "first.json");
 }
 
 // A 0.6 m cloth of 8 x 8 quads dropped onto a sphere (the centre vertex lands on top).

@@ -2,7 +2,7 @@
 // uses it: vertex order and count kept, node placements, the GLB container, buffers in files,
 // every topology and layout, and a clear InputError for every malformed file (docs/hardening.md).
 
-#include "ScrambledStrip.h"
+#include "MeshFileFixtures.h"
 
 #include <support/TempDir.h>
 #include <weft/core/Error.h>
@@ -243,11 +243,7 @@ TEST(GltfReader, MalformedFilesAreRefusedNamingTheFault) {
     change(doc);
     return doc.dump();
   };
-  const struct {
-    const char* name;
-    std::string text;
-    const char* reason;
-  } cases[] = {
+  const std::vector<test::MalformedFile> cases = {
       {"not_json.gltf", "{\"asset\": ", "not valid JSON"},
       {"array.gltf", "[1, 2]", "not a JSON object"},
       {"no_asset.gltf", "{}", "asset.version is missing"},
@@ -322,17 +318,7 @@ TEST(GltfReader, MalformedFilesAreRefusedNamingTheFault) {
        std::string("glTF\x02\0\0\0\x20\0\0\0\xff\0\0\0JSON\0\0\0\0\0\0\0\0\0\0\0\0", 32),
        "a chunk runs past the end"},
   };
-  for (const auto& c : cases) {
-    SCOPED_TRACE(c.name);
-    try {
-      readMesh(dir.write(c.name, c.text));
-      ADD_FAILURE() << "accepted";
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.path(), "mesh");
-      EXPECT_NE(e.reason().find(c.reason), std::string::npos) << e.what();
-      EXPECT_EQ(e.reason().rfind("glTF: ", 0), 0u) << e.what();
-    }
-  }
+  test::expectRefused(dir, cases, "glTF: ");
 }
 
 }  // namespace

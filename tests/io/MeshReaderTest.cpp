@@ -3,7 +3,7 @@
 // (here), PLY and glTF through Weft's own readers (PlyReaderTest.cpp, GltfReaderTest.cpp), the
 // rest through assimp (tests/editor/MeshImportTest.cpp); every file here is written by the test.
 
-#include "ScrambledStrip.h"
+#include "MeshFileFixtures.h"
 
 #include <support/TempDir.h>
 #include <weft/core/Error.h>
@@ -59,12 +59,7 @@ TEST(MeshReader, ObjPolygonsAreFanTriangulatedWithoutNewVertices) {
                                      "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.5 0 1.5\n"
                                      "f 4 3 5\n"
                                      "f 1 4 3 2\n");
-  const TriangleMesh mesh = readMesh(path);
-  ASSERT_EQ(mesh.vertexCount(), 5);
-  ASSERT_EQ(mesh.triangleCount(), 3);
-  EXPECT_EQ(mesh.triangles.row(0), Eigen::RowVector3i(3, 2, 4));
-  EXPECT_EQ(mesh.triangles.row(1), Eigen::RowVector3i(0, 3, 2));
-  EXPECT_EQ(mesh.triangles.row(2), Eigen::RowVector3i(0, 2, 1));
+  test::expectTriangleAndQuadFan(readMesh(path));
 }
 
 TEST(MeshReader, ObjGroupsShareOneVertexList) {

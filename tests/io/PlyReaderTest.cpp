@@ -2,7 +2,7 @@
 // it: the file's vertex order and count kept, the three encodings, the header's variety, and a
 // clear InputError for every malformed file the fuzzer or a user can make (docs/hardening.md).
 
-#include "ScrambledStrip.h"
+#include "MeshFileFixtures.h"
 
 #include <support/TempDir.h>
 #include <weft/core/Error.h>
@@ -99,14 +99,7 @@ TEST(PlyReader, PolygonsAreFanTriangulatedWithoutNewVertices) {
       "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
       "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
       "0 0 0\n1 0 0\n1 0 1\n0 0 1\n0.5 0 1.5\n3 3 2 4\n4 0 3 2 1\n");
-  const TriangleMesh mesh = readMesh(path);
-  ASSERT_EQ(mesh.vertexCount(), 5);
-  ASSERT_EQ(mesh.triangleCount(), 3);
-  EXPECT_EQ(mesh.triangles.row(0), Eigen::RowVector3i(3, 2, 4));
-  EXPECT_EQ(mesh.triangles.row(1), Eigen::RowVector3i(0, 3, 2));
-  EXPECT_EQ(mesh.triangles.row(2), Eigen::RowVector3i(0, 2, 1));
-  EXPECT_EQ(mesh.vertices(4, 0), 0.5);
-  EXPECT_EQ(mesh.vertices(4, 2), 1.5);
+  test::expectTriangleAndQuadFan(readMesh(path));
 }
 
 // Each malformed file ends in an InputError whose reason names what is wrong, at once: a count
@@ -121,11 +114,7 @@ TEST(PlyReader, MalformedFilesAreRefusedNamingTheFault) {
       "property list uint int vertex_indices\nend_header\n" +
       std::string(36, '\0');
   hugeList += std::string("\xff\xff\xff\xff", 4) + std::string(12, '\0');
-  const struct {
-    const char* name;
-    std::string text;
-    const char* reason;
-  } cases[] = {
+  const std::vector<test::MalformedFile> cases = {
       {"no_end_header.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
        "no 'end_header'"},
       {"not_ply.ply", "this is not a mesh\n", "does not begin with 'ply'"},
@@ -165,17 +154,7 @@ TEST(PlyReader, MalformedFilesAreRefusedNamingTheFault) {
       {"float_count.ply", header + "0 0 0\n1 0 0\n0 1 0\n3.5 0 1 2\n", "not a whole number"},
   };
   TempDir dir;
-  for (const auto& c : cases) {
-    SCOPED_TRACE(c.name);
-    try {
-      readMesh(dir.write(c.name, c.text));
-      ADD_FAILURE() << "accepted";
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.path(), "mesh");
-      EXPECT_NE(e.reason().find(c.reason), std::string::npos) << e.what();
-      EXPECT_EQ(e.reason().rfind("PLY: ", 0), 0u) << e.what();
-    }
-  }
+  test::expectRefused(dir, cases, "PLY: ");
 }
 
 }  // namespace
