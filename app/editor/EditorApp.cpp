@@ -188,6 +188,7 @@ void EditorApp::drawUi() {
   drawFileDialog();
   importDialog_->draw(session_, *this);
   drawUnsavedPrompt();
+  drawRecoveryPrompt();
 }
 
 const std::string& EditorApp::solverBanner() const {
@@ -648,10 +649,58 @@ void EditorApp::drawUnsavedPrompt() {
       else if (fileDialog_ == FileDialog::SaveAs)
         afterSaveAs_ = action;  // a new document has no file yet: Save As first
     } else if (discard) {
+      session_.autosave().discardCurrent();  // dropped on purpose: nothing to recover
       carryOut(action, pendingFile_);
     }
     ImGui::EndPopup();
   }
+}
+
+void EditorApp::drawRecoveryPrompt() {
+  if (!recoveryChecked_) {
+    recoveryChecked_ = true;
+    recoveries_ = session_.autosave().recoveries();
+  }
+  if (recoveries_.empty() || pending_ != PendingAction::None || fileDialog_ != FileDialog::None)
+    return;
+  const char* title = "Recover unsaved work";
+  if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::TextUnformatted("An earlier session ended with unsaved changes, kept by the autosave:");
+  int restore = -1, discard = -1;
+  for (std::size_t k = 0; k < recoveries_.size(); ++k) {
+    const Recovery& r = recoveries_[k];
+    ImGui::PushID(static_cast<int>(k));
+    ImGui::Text("%s (autosaved %s)", r.sceneFile.empty() ? "untitled" : r.sceneFile.c_str(),
+                r.savedAt.c_str());
+    if (ImGui::SmallButton("Restore")) restore = static_cast<int>(k);
+    noteLastItem("recovery:restore:" + std::to_string(k));
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Discard")) discard = static_cast<int>(k);
+    noteLastItem("recovery:discard:" + std::to_string(k));
+    ImGui::PopID();
+  }
+  const bool later = ImGui::Button("Later");
+  ImGui::SameLine();
+  ImGui::TextDisabled("(the files stay in %s)", session_.autosave().folder().c_str());
+  if (restore >= 0) {
+    const Recovery r = recoveries_[static_cast<std::size_t>(restore)];
+    const std::string error = session_.restore(r);
+    if (error.empty()) session_.frameCamera(viewport_->aspect());
+    report(error.empty()
+               ? "restored the unsaved changes of " +
+                     (r.sceneFile.empty() ? std::string("an untitled scene") : r.sceneFile)
+               : error,
+           !error.empty());
+    // One document at a time: the others wait for the next start.
+    recoveries_.clear();
+  } else if (discard >= 0) {
+    Autosave::remove(recoveries_[static_cast<std::size_t>(discard)]);
+    recoveries_.erase(recoveries_.begin() + discard);
+  }
+  if (later) recoveries_.clear();
+  if (recoveries_.empty()) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
 }
 
 }  // namespace weft::editor

@@ -18,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace weft::editor {
 
@@ -122,6 +123,7 @@ class EditorApp {
   void drawScenePanel(float top, float height);
   void drawFileDialog();
   void drawUnsavedPrompt();
+  void drawRecoveryPrompt();
   void handleShortcuts();
 
   void doOpen(const std::string& file);
@@ -159,6 +161,9 @@ class EditorApp {
   std::map<std::string, std::array<float, 2>> itemPoints_;
   int recoveredAssertions_ = 0;
   bool provokeAssertion_ = false;
+  // What an earlier run's autosave left, offered once at start (Restore / Discard / Later).
+  std::vector<Recovery> recoveries_;
+  bool recoveryChecked_ = false;
 };
 
 }  // namespace weft::editor

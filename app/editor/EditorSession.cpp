@@ -5,6 +5,7 @@
 #include <weft/core/Error.h>
 
 #include <algorithm>
+#include <filesystem>
 
 namespace weft::editor {
 
@@ -76,10 +77,27 @@ std::optional<VertexReport> EditorSession::inspect() const {
 bool EditorSession::animating() const {
   return playback_.playing() || cache_.running() ||
          optimisation_.optimizer().status() == OptimizerRun::Status::Running ||
-         gradients_.computing();
+         gradients_.computing() || autosave_.pending(document_);
+}
+
+std::string EditorSession::restore(const Recovery& recovery) {
+  try {
+    std::error_code ec;
+    if (!recovery.sceneFile.empty() && std::filesystem::is_regular_file(recovery.sceneFile, ec))
+      open(recovery.sceneFile);
+    else
+      newDocument();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  const std::string error = document_.edit("Recovered unsaved changes",
+                                           [&](nlohmann::json& doc) { doc = recovery.document; });
+  if (error.empty()) Autosave::remove(recovery);
+  return error;
 }
 
 void EditorSession::tick(double seconds) {
+  autosave_.tick(document_, seconds);
   timeline_.advance(seconds);
   stepSeries_.update(cache_);
   placement_.dropStaleActiveObject();

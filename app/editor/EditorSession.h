@@ -16,6 +16,7 @@
 //   gradients()   the loss gradient of the cached run (StateGradients.h)
 //   optimisation() the task's parameters and the optimiser (ParameterOptimisation.h)
 
+#include "Autosave.h"
 #include "EditorDocument.h"
 #include "ObjectPlacement.h"
 #include "ParameterOptimisation.h"
@@ -91,13 +92,21 @@ class EditorSession {
   const StepStatsSeries& stepSeries() const { return stepSeries_; }
 
   // True while what the window shows changes without any input: playback, or a simulation, an
-  // optimisation or a gradient running on a worker (their results are drawn as they come). The
-  // window waits for input otherwise (main.cpp).
+  // optimisation or a gradient running on a worker (their results are drawn as they come), or
+  // an edit waiting for its autosave (at most Autosave's interval). The window waits for input
+  // otherwise (main.cpp).
   bool animating() const;
 
   // Per-frame bookkeeping: playback advance, clamping the frame to the cache, the solver
-  // series, an active object gone, a finished gradient job.
+  // series, an active object gone, a finished gradient job, the autosave.
   void tick(double seconds);
+
+  // Unsaved work kept on disk (Autosave.h); off until set (main.cpp sets it for windows).
+  Autosave& autosave() { return autosave_; }
+  void setAutosave(Autosave autosave) { autosave_ = std::move(autosave); }
+  // Opens the recovery's scene file (a new document for an untitled one) and puts the recovered
+  // document over it as one undo step, unsaved; the recovery file goes. Returns an error text.
+  std::string restore(const Recovery& recovery);
 
  private:
   void afterDocumentReplaced();
@@ -109,6 +118,7 @@ class EditorSession {
   Selection selection_;
   render::Camera camera_;
   RecentFiles recent_;
+  Autosave autosave_;
   StepStatsSeries stepSeries_;
   ViewportFrame viewport_{document_, cache_, playback_};
   Timeline timeline_{document_, cache_, playback_, viewport_};

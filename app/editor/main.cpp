@@ -41,8 +41,9 @@ using namespace weft;
 using namespace weft::editor;
 
 struct Options {
-  std::string scene, script, recentStore;
-  bool headless = false, recentGiven = false, bench = false;
+  std::string scene, script, recentStore, recoveryDir;
+  bool headless = false, recentGiven = false, recoveryGiven = false, bench = false;
+  double autosaveSeconds = 5.0;
   EditorBenchmarkOptions benchOptions;
   int width = 1280, height = 720;
   render::HeadlessBackend backend = render::HeadlessBackend::Auto;
@@ -51,6 +52,7 @@ struct Options {
 void usage(std::ostream& out) {
   out << "usage: weft-editor [SCENE] [--headless] [--script FILE] [--size WxH]\n"
          "                   [--backend auto|osmesa|egl] [--recent-files FILE]\n"
+         "                   [--recovery-dir DIR] [--autosave-seconds S]\n"
          "       weft-editor [SCENE] --bench [--bench-frames N] [--bench-grid Q] [--bench-steps "
          "S]\n"
          "                   [--bench-out DIR] [--size WxH] [--backend auto|osmesa|egl]\n";
@@ -93,6 +95,16 @@ Options parse(int argc, char** argv) {
     } else if (a == "--recent-files") {
       o.recentStore = value();
       o.recentGiven = true;
+    } else if (a == "--recovery-dir") {
+      o.recoveryDir = value();
+      o.recoveryGiven = true;
+    } else if (a == "--autosave-seconds") {
+      const std::string v = value();
+      char* end = nullptr;
+      const double s = std::strtod(v.c_str(), &end);
+      if (v.empty() || *end != '\0' || !(s >= 0.0) || s > 86400.0)
+        throw InputError("-", a, "expects seconds between 0 and 86400, got " + v);
+      o.autosaveSeconds = s;
     } else if (a == "--help" || a == "-h") {
       usage(std::cout);
       std::exit(0);
@@ -253,6 +265,11 @@ int main(int argc, char** argv) {
                               : script      ? std::string()
                                             : RecentFiles::defaultStoreFile();
     EditorSession session(store);
+    // Autosave likewise: on in a window, off for scripts unless given a folder.
+    const std::string recovery = o.recoveryGiven ? o.recoveryDir
+                                 : script        ? std::string()
+                                                 : Autosave::defaultFolder();
+    session.setAutosave(Autosave(recovery, o.autosaveSeconds));
     if (!o.scene.empty()) session.open(o.scene);
     return o.headless ? runHeadless(o, session, script) : runWindow(o, session, script);
   } catch (const InputError& e) {

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+
 namespace weft::test {
 namespace {
 
@@ -132,6 +134,39 @@ TEST(EditorRobustness, ClickOnAnItemNotDrawnFails) {
                                           {{"mouse_click", item("solver.pd_iterations")}}});
   EXPECT_EQ(r.exitCode, 2) << r.err << r.out;
   EXPECT_NE(r.err.find("solver.pd_iterations was not drawn"), std::string::npos) << r.err;
+}
+
+// Nothing lost when the editor dies: a run that edits and ends without saving (as a crash
+// does) leaves its autosave; the next run offers it, and Restore puts the edit back over the
+// scene file as unsaved changes.
+TEST(EditorRobustness, AnUnsavedEditIsOfferedBackByTheNextRun) {
+  TempDir dir;
+  const std::string scene =
+      writeScene(dir.file("drape.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  const std::vector<std::string> autosave = {"--recovery-dir", dir.file("recovery"),
+                                             "--autosave-seconds", "0"};
+  const ProcessResult first = runEditor(dir,
+                                        {{{"open", scene}},
+                                         {{"set", "cloths.0.material.stretch"}, {"value", 321.0}},
+                                         {{"frames", 2}}},
+                                        "960x600", autosave);
+  ASSERT_EQ(first.exitCode, 0) << first.err << first.out;
+  const ProcessResult second = runEditor(dir,
+                                         {{{"frames", 2}},
+                                          {{"write_state", dir.file("offered.json")}},
+                                          {{"mouse_click", item("recovery:restore:0")}},
+                                          {{"frames", 2}},
+                                          {{"write_state", dir.file("restored.json")}}},
+                                         "960x600", autosave);
+  ASSERT_EQ(second.exitCode, 0) << second.err << second.out;
+  EXPECT_EQ(readJson(dir.file("offered.json"))["dialog"]["title"], "Recover unsaved work");
+  const nlohmann::json restored = readJson(dir.file("restored.json"));
+  EXPECT_TRUE(restored["dialog"].is_null());
+  EXPECT_TRUE(restored["dirty"].get<bool>());
+  EXPECT_EQ(std::filesystem::path(restored["file"].get<std::string>()).filename(), "drape.json");
+  EXPECT_EQ(restored["document"]["cloths"][0]["material"]["stretch"], 321.0);
+  // The scene file itself was never written.
+  EXPECT_EQ(readJson(scene)["cloths"][0]["material"]["stretch"], 500.0);
 }
 
 }  // namespace

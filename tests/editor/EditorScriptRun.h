@@ -8,13 +8,15 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 namespace weft::test {
 
 // Writes {"actions": actions} to dir/script.json and runs the editor headless on it at `size`
-// (window pixels), with `dir` as the working directory.
+// (window pixels), with `dir` as the working directory and any further command-line `options`.
 ProcessResult runEditor(const TempDir& dir, const nlohmann::json& actions,
-                        const std::string& size = "960x600");
+                        const std::string& size = "960x600",
+                        const std::vector<std::string>& options = {});
 
 // The script point {"item": NAME}: where the last frame drew the named item (EditorApp.h).
 inline nlohmann::json item(const std::string& name) {
