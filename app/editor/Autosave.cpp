@@ -61,6 +61,8 @@ bool Autosave::pending(const EditorDocument& document) const {
 void Autosave::tick(const EditorDocument& document, double seconds) {
   if (!enabled()) return;
   sinceWrite_ += seconds;
+  // Nothing written and nothing to write: the common idle case, no path work per frame.
+  if (written_.empty() && !document.dirty()) return;
   const std::string target = fileFor(document.file());
   std::error_code ec;
   if (!written_.empty() && (!document.dirty() || written_ != target)) {
