@@ -132,5 +132,27 @@ TEST(MeshReader, FailuresAreInputErrors) {
   }
 }
 
+// An FBX file (a fuzzer's mutation of assimp's own export of a square) on which Debian's
+// assimp 5.2 dies with a segmentation fault: assimp runs in a child process, so the caller gets
+// an InputError naming what happened and carries on (docs/hardening.md).
+TEST(MeshReader, AFileThatCrashesAssimpIsRefusedAndTheCallerLives) {
+  const std::string path = std::string(WEFT_TEST_DATA_DIR) + "/bad/meshes/assimp_segv.fbx";
+  try {
+    readMesh(path);
+    FAIL() << "read a file assimp cannot read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.path(), "mesh");
+    EXPECT_NE(e.reason().find("assimp's reader"), std::string::npos) << e.what();
+  }
+  // The process still reads meshes through assimp afterwards.
+  TempDir dir;
+  const TriangleMesh mesh = readMesh(dir.write(
+      "triangle.stl",
+      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+      "endloop\nendfacet\nendsolid t\n"));
+  EXPECT_EQ(mesh.triangleCount(), 1);
+}
+
 }  // namespace
 }  // namespace weft

@@ -12,7 +12,8 @@ namespace weft {
 // OBJ goes through tinyobjloader; PLY and glTF 2.0 through Weft's own readers (PlyReader.h,
 // GltfReader.h: Debian's assimp 5.2 hangs on some malformed PLY files and reads past a buffer on
 // some malformed glTF files, docs/hardening.md); every other format (FBX, Collada, STL, ...)
-// through assimp. Polygons are fan-triangulated. Throws InputError(path, "mesh", ...) on failure.
+// through assimp, in a child process so that a crash or hang inside it is an InputError here
+// (AssimpReader.h). Polygons are fan-triangulated. Throws InputError(path, "mesh", ...) on failure.
 TriangleMesh readMesh(const std::string& path);
 
 }  // namespace weft
