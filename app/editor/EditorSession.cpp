@@ -15,6 +15,7 @@ EditorSession::EditorSession(const std::string& recentStore) : recent_(recentSto
 
 void EditorSession::newDocument(nlohmann::json document) {
   cache_.clear();
+  savedRunNote_.clear();
   document_ = EditorDocument(std::move(document));
   afterDocumentReplaced();
 }
@@ -26,6 +27,7 @@ void EditorSession::open(const std::string& file) {
   document_ = std::move(opened);
   recent_.add(file);
   afterDocumentReplaced();
+  restoreRunBeside();
 }
 
 void EditorSession::afterDocumentReplaced() {
@@ -41,10 +43,11 @@ void EditorSession::afterDocumentReplaced() {
 std::string EditorSession::save() {
   if (document_.file().empty())
     throw InputError("untitled", "-", "the document has no file yet: use Save As");
-  const std::string warning = targets_.writeTargets(document_.file());
+  std::string warning = targets_.writeTargets(document_.file());
   document_.save();
   recent_.add(document_.file());
-  return warning;
+  const std::string run = saveRunBeside();
+  return warning.empty() ? run : run.empty() ? warning : warning + "; " + run;
 }
 
 std::string EditorSession::saveAs(const std::string& file) {
@@ -55,7 +58,44 @@ std::string EditorSession::saveAs(const std::string& file) {
   // Rebased references name the same files: the cached run is still the document's own.
   if (current && document_.valid()) cache_.relabel(document_.sharedScene());
   recent_.add(file);
-  return warning;
+  const std::string run = saveRunBeside();
+  return warning.empty() ? run : run.empty() ? warning : warning + "; " + run;
+}
+
+std::string EditorSession::runFolderBeside(const std::string& sceneFile) {
+  return std::filesystem::path(sceneFile).replace_extension(".run").string();
+}
+
+std::string EditorSession::saveRunBeside() {
+  if (cache_.status() != SimulationCache::Status::Done || timeline_.cacheStale() || !cache_.scene())
+    return "";
+  const std::string folder = runFolderBeside(document_.file());
+  try {
+    cache_.save(folder);
+  } catch (const std::exception& e) {
+    return std::string("the simulation was not saved beside the scene: ") + e.what();
+  }
+  savedRunNote_ = "run saved in " + std::filesystem::path(folder).filename().string();
+  return "";
+}
+
+void EditorSession::restoreRunBeside() {
+  savedRunNote_.clear();
+  const std::string folder = runFolderBeside(document_.file());
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) return;
+  const std::string name = std::filesystem::path(folder).filename().string();
+  try {
+    const RunFolder run = loadRunFolder(folder);
+    if (simulatedPart(run.scene.document) != simulatedPart(document_.document())) {
+      savedRunNote_ = name + " is the run of another version of the scene: not loaded";
+      return;
+    }
+    cache_.restore(run);
+    savedRunNote_ = "run reopened from " + name;
+  } catch (const std::exception& e) {
+    savedRunNote_ = name + " cannot be read: " + e.what();
+  }
 }
 
 void EditorSession::frameCamera(float aspect, render::NamedView view) {

@@ -78,10 +78,17 @@ class EditorSession {
   // written because the scene does not validate. Save As into another folder rewrites relative
   // file references to name the same files from there (EditorDocument::saveAs); the targets file
   // the editor owns is written next to the new scene, and a current simulation stays current.
+  // The simulation cache goes with the scene: saving writes a finished, current run to the
+  // run folder beside it (runFolderBeside: `weft simulate`'s format, SimulationCache::save), and
+  // opening reads that folder back when it is the run of the scene as opened
+  // (SimulationCache::restore); savedRunNote() says what happened to it.
   void newDocument(nlohmann::json document = EditorDocument::defaultSceneDocument());
   void open(const std::string& file);
   std::string save();
   std::string saveAs(const std::string& file);
+  const std::string& savedRunNote() const { return savedRunNote_; }
+  // shirt.json -> shirt.run (the extension replaced; added when there is none).
+  static std::string runFolderBeside(const std::string& sceneFile);
 
   // Frames the camera on what the viewport shows, for an image of the given aspect.
   void frameCamera(float aspect, render::NamedView view = render::NamedView::Auto);
@@ -110,6 +117,8 @@ class EditorSession {
 
  private:
   void afterDocumentReplaced();
+  std::string saveRunBeside();  // a warning text, "" when saved or nothing to save
+  void restoreRunBeside();      // sets savedRunNote_
 
   // Declared in the order the parts need one another (each refers to those above it).
   EditorDocument document_;
@@ -128,6 +137,7 @@ class EditorSession {
   TaskTargets targets_{document_, cache_, selection_, viewport_, camera_};
   StateGradients gradients_{document_, cache_, targets_};
   ParameterOptimisation optimisation_{document_, targets_};
+  std::string savedRunNote_;
 };
 
 }  // namespace weft::editor

@@ -110,6 +110,8 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"cache_frames", session.cache().frameCount()},
           {"cache_status", SimulationCache::statusName(session.cache().status())},
           {"cache_stale", session.timeline().cacheStale()},
+          {"cache_restored", session.cache().restored()},
+          {"saved_run_note", session.savedRunNote()},
           {"cache_unconverged_steps", convergence.unconverged},
           {"cache_max_depth", convergence.maxDepth},
           {"solver_banner", app.solverBanner().empty() ? nlohmann::json(nullptr)

@@ -2,10 +2,16 @@
 
 #include "WorkerThreads.h"
 
+#include <weft/core/Error.h>
+#include <weft/io/StagedDirectory.h>
+#include <weft/output/RunWriter.h>
+#include <weft/physics/Model.h>
 #include <weft/physics/Simulator.h>
 #include <weft/record/StepContacts.h>
 
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
 
 namespace weft::editor {
 
@@ -27,6 +33,9 @@ void SimulationCache::start(std::shared_ptr<const Scene> scene, int steps) {
     frames_.reserve(static_cast<std::size_t>(std::max(steps, 0)) + 1);
     scene_ = scene;
     model_.reset();
+    moduleNames_.clear();
+    seconds_ = 0.0;
+    restoredFrom_.clear();
     convergence_ = ConvergenceReport();
     error_.clear();
   }
@@ -48,8 +57,10 @@ void SimulationCache::run(std::shared_ptr<const Scene> scene, int steps) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       model_ = simulator.sharedModel();
+      moduleNames_ = simulator.moduleNames();
       frames_.push_back(std::move(first));
     }
+    const auto begin = std::chrono::steady_clock::now();
     for (int s = 1; s <= steps; ++s) {
       if (cancel_) {
         status_ = Status::Cancelled;
@@ -68,6 +79,7 @@ void SimulationCache::run(std::shared_ptr<const Scene> scene, int steps) {
       std::lock_guard<std::mutex> lock(mutex_);
       convergence_.add(frame->stats);
       frames_.push_back(std::move(frame));
+      seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     }
     status_ = Status::Done;
   } catch (const std::exception& e) {
@@ -93,6 +105,8 @@ void SimulationCache::clear() {
   std::lock_guard<std::mutex> lock(mutex_);
   frames_.clear();
   scene_.reset();
+  model_.reset();
+  restoredFrom_.clear();
   error_.clear();
   requested_ = 0;
   ++runId_;
@@ -169,6 +183,84 @@ nlohmann::json simulatedPart(const nlohmann::json& document) {
   if (part.is_object())
     for (const char* key : {"task", "name", "description"}) part.erase(key);
   return part;
+}
+
+void SimulationCache::save(const std::string& folder) const {
+  if (status() != Status::Done) throw InputError(folder, "run", "no finished run to save");
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!restoredFrom_.empty()) {
+    // The format cannot be rebuilt from restored frames (their contact forces are gone): the
+    // files they came from are copied as they are.
+    namespace fs = std::filesystem;
+    std::error_code same;
+    if (fs::equivalent(restoredFrom_, folder, same)) return;  // already there
+    StagedDirectory out(folder);
+    for (const auto& e : fs::directory_iterator(restoredFrom_))
+      if (e.is_regular_file()) fs::copy_file(e.path(), fs::path(out.path()) / e.path().filename());
+    out.commit();
+    return;
+  }
+  StagedDirectory out(folder);
+  const int steps = static_cast<int>(frames_.size()) - 1;
+  RunWriter writer(out.path(), *scene_, model_->cloth(), steps, model_->hasContact() && steps > 0);
+  const std::size_t nodes = static_cast<std::size_t>(model_->nodeCount());
+  NpyWriter velocities(out.file("velocities.npy"), {frames_.size(), nodes, 3});
+  std::vector<double> row(nodes * 3);
+  for (const auto& f : frames_) {
+    if (f->state == 0)
+      writer.addInitialState(f->positions);
+    else
+      writer.addStep(f->positions, f->stats, &f->contacts);
+    for (std::size_t i = 0; i < nodes; ++i)
+      for (int c = 0; c < 3; ++c) row[i * 3 + std::size_t(c)] = f->velocities(Eigen::Index(i), c);
+    velocities.append(row.data(), row.size());
+  }
+  velocities.close();
+  RunSummary summary;
+  summary.seconds = seconds_;
+  summary.moduleNames = moduleNames_;
+  summary.moduleSeconds.assign(moduleNames_.size(), 0.0);
+  for (const auto& f : frames_)
+    for (std::size_t m = 0; m < f->stats.moduleSeconds.size() && m < moduleNames_.size(); ++m)
+      summary.moduleSeconds[m] += f->stats.moduleSeconds[m];
+  writer.finish(summary);
+  out.commit();
+}
+
+void SimulationCache::restore(const RunFolder& run) {
+  cancel();
+  const double dt = run.scene.time.dt;
+  std::vector<std::shared_ptr<const CachedFrame>> frames;
+  ConvergenceReport convergence;
+  for (std::size_t k = 0; k < run.states.size(); ++k) {
+    auto f = std::make_shared<CachedFrame>();
+    f->state = static_cast<int>(k);
+    f->positions = run.states[k];
+    if (!run.velocities.empty())
+      f->velocities = run.velocities[k];
+    else if (k == 0)  // the scene's initial velocity, which the positions cannot tell
+      f->velocities = Model::compile(run.scene)->initialVelocities();
+    else
+      f->velocities = (run.states[k] - run.states[k - 1]) / dt;
+    if (k > 0 && k <= run.steps.size()) {
+      f->stats = run.steps[k - 1];
+      convergence.add(f->stats);
+    }
+    if (k > 0 && k < run.contacts.branches.size()) f->branches = run.contacts.branches[k];
+    frames.push_back(std::move(f));
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  frames_ = std::move(frames);
+  scene_ = std::make_shared<const Scene>(run.scene);
+  model_.reset();
+  moduleNames_.clear();
+  seconds_ = 0.0;
+  restoredFrom_ = run.path;
+  convergence_ = convergence;
+  error_.clear();
+  requested_ = static_cast<int>(frames_.size());
+  ++runId_;
+  status_ = Status::Done;
 }
 
 const char* SimulationCache::statusName(Status status) {

@@ -6,6 +6,7 @@
 // No GL and no window: unit tested on its own.
 
 #include <weft/core/Types.h>
+#include <weft/output/RunFolder.h>
 #include <weft/record/ConvergenceReport.h>
 #include <weft/record/StepContacts.h>
 #include <weft/record/StepStats.h>
@@ -84,6 +85,18 @@ class SimulationCache {
   // stay current for it. The caller vouches that `scene` simulates as the cached one did. Does
   // nothing on an empty cache.
   void relabel(std::shared_ptr<const Scene> scene);
+  // Writes the finished run (status Done) as a `weft simulate` run folder (RunWriter.h) at
+  // `folder`, with velocities.npy beside positions.npy, replacing what was there only once all
+  // of it is written (StagedDirectory). A reopened run (restored()) is copied from where it came
+  // from. Throws InputError.
+  void save(const std::string& folder) const;
+  // Replaces the cache with a saved run (what save() wrote, or a `weft simulate` folder): status
+  // Done with its positions, velocities (velocities.npy, else (x_k - x_k-1) / dt, DiffCloth
+  // Eq. 4's update), per-node branches and step statistics. The solver's contact records and
+  // sub-steps are not in the format: restored() stays true until the next start() or clear(),
+  // and the backward pass asks for a new simulation. `run.scene` must be the document's.
+  void restore(const RunFolder& run);
+  bool restored() const { return !restoredFrom_.empty(); }
   // Changes with every start() and clear(): lets readers keep what they derived from one run.
   long runId() const { return runId_.load(); }
 
@@ -96,7 +109,10 @@ class SimulationCache {
   mutable std::mutex mutex_;
   std::vector<std::shared_ptr<const CachedFrame>> frames_;
   std::shared_ptr<const Scene> scene_;
-  std::shared_ptr<const Model> model_;  // the worker's, once its simulator is built
+  std::shared_ptr<const Model> model_;    // the worker's, once its simulator is built
+  std::vector<std::string> moduleNames_;  // the worker's simulator's (the frames' module times)
+  double seconds_ = 0.0;                  // wall time of the worker's steps
+  std::string restoredFrom_;  // the folder restore() read, when the frames came from disk
   ConvergenceReport convergence_;
   std::string error_;
   std::atomic<Status> status_{Status::Empty};

@@ -21,6 +21,8 @@ std::string StateGradients::compute() {
   if (cache_.status() != SimulationCache::Status::Done || frames != current->time.steps + 1 ||
       cache_.staleFor(document_.document()))
     return "simulate the scene (all time.steps) first: the gradient is of the cached run";
+  if (cache_.restored())
+    return "the reopened run holds no contact records for the backward pass: simulate again";
   auto trajectory = std::make_shared<const Trajectory>(cache_.trajectory());
   // The loss is built here, while the editor's targets are in their temporary file; the job
   // owns copies of everything it reads.

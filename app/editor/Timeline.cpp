@@ -12,8 +12,11 @@ Timeline::Timeline(const EditorDocument& document, SimulationCache& cache, Playb
 std::string Timeline::simulate(int steps) {
   auto scene = document_.sharedScene();
   if (!scene) return "the scene does not validate: " + document_.validationError();
-  cache_.start(scene, steps >= 0 ? steps : scene->time.steps);
-  playback_.scrub(0, 1);
+  const int count = steps >= 0 ? steps : scene->time.steps;
+  cache_.start(scene, count);
+  // The frame being looked at stays (clamped to the new run): the viewport shows the newest
+  // state until the run reaches it, then that frame of the new run.
+  playback_.scrub(playback_.frame(), count + 1);
   return "";
 }
 

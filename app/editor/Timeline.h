@@ -21,8 +21,9 @@ class Timeline {
   Playback& playback() { return playback_; }
   const Playback& playback() const { return playback_; }
 
-  // Starts simulating the current document (`steps`, or the scene's time.steps when < 0) and
-  // goes to the first state. Returns an error text when the document does not validate.
+  // Starts simulating the current document (`steps`, or the scene's time.steps when < 0),
+  // staying at the playback frame (clamped to the new run's last state). Returns an error text when
+  // the document does not validate.
   std::string simulate(int steps = -1);
   bool cacheStale() const { return cache_.staleFor(document_.document()); }
   int availableFrames() const { return cache_.frameCount(); }  // frames the cache holds

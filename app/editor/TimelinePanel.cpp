@@ -47,9 +47,14 @@ void TimelinePanel::draw(float left, float top, float width, float height) {
   ImGui::EndDisabled();
   ImGui::SameLine();
   const int available = cache.frameCount();
-  char progress[96];
+  // A run reopened with the scene (or one beside it that was not) says so where the status is.
+  const std::string& note = session_.savedRunNote();
+  const bool noted =
+      !note.empty() && (cache.restored() || cache.status() == SimulationCache::Status::Empty);
+  char progress[192];
   std::snprintf(progress, sizeof progress, "%d / %d states (%s)", available,
-                cache.requestedFrames(), SimulationCache::statusName(cache.status()));
+                cache.requestedFrames(),
+                noted ? note.c_str() : SimulationCache::statusName(cache.status()));
   ImGui::ProgressBar(float(cache.progress()), ImVec2(-1, 0), progress);
 
   if (cache.status() == SimulationCache::Status::Failed) {

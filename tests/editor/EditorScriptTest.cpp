@@ -25,6 +25,27 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A designer looking at one moment re-simulates after an edit and still looks at that moment
+// (of the new run); a shorter run puts the frame at its last state.
+TEST(EditorScript, ResimulatingKeepsThePlaybackFrame) {
+  TempDir dir;
+  const std::string scene =
+      writeScene(dir.file("hanging.json"), hangingClothScene(1.0, 6, 0.01, 10, 500.0));
+  const ProcessResult r =
+      runEditor(dir, {{{"open", scene}},
+                      {{"simulate", true}},
+                      {{"scrub", 7}},
+                      {{"set", "cloths.0.material.stretch"}, {"value", 900.0}},
+                      {{"expect", {{"cache_stale", true}, {"frame", 7}}}},
+                      {{"simulate", true}},
+                      {{"expect", {{"cache_stale", false}, {"cache_frames", 11}, {"frame", 7}}}},
+                      {{"set", "time.steps"}, {"value", 4}},
+                      {{"simulate", true}},
+                      {{"expect", {{"cache_frames", 5}, {"frame", 4}}}}});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("script done"), std::string::npos) << r.out;
+}
+
 TEST(EditorScript, SessionEditsPinsSimulatesScrubsAndSaves) {
   TempDir dir;
   const std::string scene =

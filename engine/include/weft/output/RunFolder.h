@@ -4,6 +4,7 @@
 // data when the run recorded it.
 
 #include <weft/core/Types.h>
+#include <weft/record/StepStats.h>
 #include <weft/scene/Scene.h>
 
 #include <cstdint>
@@ -25,6 +26,12 @@ struct RunFolder {
   std::string path;
   Scene scene;
   std::vector<NodeMatrix> states;  // positions.npy: states 0..steps
+  // velocities.npy [states, nodes, 3] (m/s) when the run has it (the editor's saved runs do;
+  // `weft simulate` does not write it); empty otherwise.
+  std::vector<NodeMatrix> velocities;
+  // stats.csv, one row per step (steps 1..states-1), read by column name; module times are not
+  // read back (moduleSeconds stays empty). Empty when the run has no stats.csv.
+  std::vector<StepStats> steps;
   ContactRecord contacts;
 };
 
