@@ -5,6 +5,8 @@
 
 #include <imgui.h>
 
+#include <cstdio>
+
 namespace weft::editor {
 namespace {
 
@@ -73,6 +75,18 @@ bool DocumentFields::vector(const char* label, const std::string& path, const do
   if (ImGui::IsItemDeactivated()) lastEditField_.clear();
   ImGui::PopID();
   return changed;
+}
+
+bool DocumentFields::text(const char* label, const std::string& path, const char* hint) {
+  const nlohmann::json* j = session_.document().find(path);
+  return field(path, j && j->is_string() ? j->get<std::string>() : std::string(),
+               [&](std::string* v) {
+                 char buffer[128];
+                 std::snprintf(buffer, sizeof buffer, "%s", v->c_str());
+                 if (!ImGui::InputTextWithHint(label, hint, buffer, sizeof buffer)) return false;
+                 *v = buffer;
+                 return true;
+               });
 }
 
 void DocumentFields::combo(const char* label, const std::string& path, const char* const* options,

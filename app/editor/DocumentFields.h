@@ -20,6 +20,8 @@ class DocumentFields {
   bool vector(const char* label, const std::string& path, const double* fallback);
   void combo(const char* label, const std::string& path, const char* const* options, int count,
              const char* fallback);
+  // A text field (e.g. a pin group's name); `hint` shows greyed while it is empty.
+  bool text(const char* label, const std::string& path, const char* hint);
   // Reports an edit's error; `field` is the document path of the field that made it ("" for
   // none), whose next change merges into the same undo step.
   void apply(const std::string& error, const std::string& field = "");

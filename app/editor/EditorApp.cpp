@@ -117,6 +117,10 @@ render::RenderStyle& EditorApp::style() {
   return viewport_->style();
 }
 
+const render::RenderStyle& EditorApp::style() const {
+  return viewport_->style();
+}
+
 void EditorApp::report(const std::string& text, bool error) {
   message_ = text;
   messageIsError_ = error;

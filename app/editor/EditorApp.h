@@ -59,6 +59,7 @@ class EditorApp {
   int viewportX() const;
   int viewportY() const;
   render::RenderStyle& style();
+  const render::RenderStyle& style() const;
 
   // Closing, New and Open drop the document: a dirty one asks first (Save / Discard / Cancel;
   // Enter saves, Esc cancels), then the action goes on unless cancelled.

@@ -3,9 +3,14 @@
 #include "EditorApp.h"
 #include "EditorSession.h"
 #include "ObstacleTemplates.h"
+#include "PinGroups.h"
 #include "SelfCollisionChoice.h"
 
+#include <weft/render/ColorMap.h>
+
 #include <imgui.h>
+
+#include <algorithm>
 
 namespace weft::editor {
 
@@ -87,22 +92,50 @@ void ScenePanel::clothPanel() {
         fields_.number("thickness (m)##self", base + ".self_collision.thickness", 0.001);
       const nlohmann::json* attachments = session_.document().find(base + ".attachments");
       if (attachments && attachments->is_array()) {
+        // Pin groups: each fixed attachment with its marker colour (as the viewport draws it),
+        // a name, its size, and buttons to select or remove it.
+        const Scene* scene = session_.document().scene();
+        const std::vector<PinGroup> groups = scene ? pinGroups(*scene) : std::vector<PinGroup>();
         for (std::size_t a = 0; a < attachments->size(); ++a) {
           const nlohmann::json& at = (*attachments)[a];
+          const std::string path = base + ".attachments." + std::to_string(a);
           const std::size_t n =
               at.contains("vertices") && at["vertices"].is_array() ? at["vertices"].size() : 0;
           const std::string kind = at.value("kind", std::string("fixed"));
           ImGui::PushID(int(a));
-          ImGui::Text("attachment %zu: %s, %zu vertices", a, kind.c_str(), n);
           if (kind == "handle") {
+            ImGui::Text("handle %zu: %zu vertices", a, n);
             ImGui::SameLine();
-            placeButton(base + ".attachments." + std::to_string(a));
+            placeButton(path);
+          } else {
+            const auto group = std::find_if(groups.begin(), groups.end(), [&](const PinGroup& g) {
+              return g.cloth == int(c) && g.attachment == int(a);
+            });
+            const render::Rgb rgb =
+                pinGroupColor(group != groups.end() ? group->group : 0, app_.style());
+            ImGui::ColorButton("##colour", ImVec4(rgb.x(), rgb.y(), rgb.z(), 1.0f),
+                               ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop,
+                               ImVec2(14, 14));
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(110.0f);
+            const std::string hint = "pin group " + std::to_string(a);
+            fields_.text("##name", path + ".name", hint.c_str());
+            ImGui::SameLine();
+            ImGui::Text("%zu vertices", n);
+            ImGui::SameLine();
+            if (ImGui::SmallButton("select") && group != groups.end())
+              session_.selection().set(group->nodes);
+            app_.noteLastItem("pins:select:" + path);
           }
           ImGui::SameLine();
-          if (ImGui::SmallButton("remove"))
-            fields_.apply(
-                session_.document().removeValue(base + ".attachments." + std::to_string(a)));
+          const bool remove = ImGui::SmallButton("remove");
+          app_.noteLastItem("pins:remove:" + path);
           ImGui::PopID();
+          if (remove) {
+            // The attachments after it are numbered down: stop listing them this frame.
+            fields_.apply(session_.document().removeValue(path));
+            break;
+          }
         }
       }
       ImGui::TreePop();

@@ -2,7 +2,10 @@
 // and write_state (the whole state as JSON), both reading the same snapshot.
 #include "EditorApp.h"
 #include "EditorSession.h"
+#include "PinGroups.h"
 #include "ScriptCommands.h"
+
+#include <weft/render/ColorMap.h>
 
 #include <fstream>
 
@@ -103,6 +106,16 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
     browser = {{"folder", b->folder().string()}, {"entries", entries}, {"error", b->error()}};
   }
   const ConvergenceReport convergence = session.cache().convergence();
+  nlohmann::json pins = nlohmann::json::array();
+  if (const Scene* scene = doc.scene())
+    for (const PinGroup& g : pinGroups(*scene)) {
+      const render::Rgb rgb = render::pinGroupColor(g.group, app.style());
+      pins.push_back({{"cloth", g.cloth},
+                      {"attachment", g.attachment},
+                      {"name", g.name},
+                      {"nodes", g.nodes},
+                      {"color", {rgb.x(), rgb.y(), rgb.z()}}});
+    }
   return {{"file", doc.file()},
           {"dirty", doc.dirty()},
           {"valid", doc.valid()},
@@ -111,6 +124,7 @@ nlohmann::json stateOf(EditorSession& session, const EditorApp& app) {
           {"cache_status", SimulationCache::statusName(session.cache().status())},
           {"cache_stale", session.timeline().cacheStale()},
           {"cache_restored", session.cache().restored()},
+          {"pin_groups", pins},
           {"saved_run_note", session.savedRunNote()},
           {"cache_unconverged_steps", convergence.unconverged},
           {"cache_max_depth", convergence.maxDepth},

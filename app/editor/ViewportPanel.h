@@ -48,6 +48,7 @@ class ViewportPanel {
   // A gizmo drag is under way (Esc does not take the gizmo off then).
   bool draggingGizmo() const { return draggingGizmo_; }
   render::RenderStyle& style() { return style_; }
+  const render::RenderStyle& style() const { return style_; }
 
  private:
   void render();

@@ -25,6 +25,44 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Pin groups in the Scene tab: named (a document edit), each in its own marker colour, selected
+// and removed by their buttons.
+TEST(EditorScript, PinGroupsAreNamedColouredSelectedAndRemoved) {
+  TempDir dir;
+  const std::string scene =
+      writeScene(dir.file("hanging.json"), hangingClothScene(1.0, 4, 0.01, 5, 500.0));
+  const std::string second = "cloths.0.attachments.1";
+  const ProcessResult r = runEditor(dir,
+                                    {{{"open", scene}},
+                                     {{"select", {20, 24}}},
+                                     {{"pin", true}},
+                                     {{"set", second + ".name"}, {"value", "hem"}},
+                                     {{"frames", 2}},
+                                     {{"write_state", dir.file("named.json")}},
+                                     {{"select", nlohmann::json::array()}},
+                                     {{"mouse_click", item("pins:select:" + second)}},
+                                     {{"frames", 1}},
+                                     {{"write_state", dir.file("selected.json")}},
+                                     {{"mouse_click", item("pins:remove:cloths.0.attachments.0")}},
+                                     {{"frames", 1}},
+                                     {{"write_state", dir.file("removed.json")}}},
+                                    "1280x1000");
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  const nlohmann::json named = readJson(dir.file("named.json"))["pin_groups"];
+  ASSERT_EQ(named.size(), 2u) << named;
+  EXPECT_EQ(named[0]["name"], "");
+  EXPECT_EQ(named[0]["nodes"], nlohmann::json::array({0, 4}));
+  EXPECT_EQ(named[1]["name"], "hem");
+  EXPECT_EQ(named[1]["nodes"], nlohmann::json::array({20, 24}));
+  EXPECT_NE(named[0]["color"], named[1]["color"]) << "each group its own colour";
+  EXPECT_EQ(readJson(dir.file("selected.json"))["selected"], nlohmann::json::array({20, 24}));
+  const nlohmann::json removed = readJson(dir.file("removed.json"))["pin_groups"];
+  ASSERT_EQ(removed.size(), 1u) << removed;
+  EXPECT_EQ(removed[0]["name"], "hem");
+  EXPECT_EQ(removed[0]["attachment"], 0);
+}
+
 // A designer looking at one moment re-simulates after an edit and still looks at that moment
 // (of the new run); a shorter run puts the frame at its last state.
 TEST(EditorScript, ResimulatingKeepsThePlaybackFrame) {

@@ -54,6 +54,29 @@ TEST(FrameBuilder, DescribesObstaclesMarkersAndHandleCurves) {
   EXPECT_GT(frame.curves[0].points.size(), 100u);
 }
 
+// Pin groups: with more than one fixed attachment, each fixed point carries its group (its
+// attachment's number among the scene's fixed ones, handles not counted), for its colour.
+TEST(FrameBuilder, FixedPointsCarryTheirPinGroupWhenThereAreSeveral) {
+  nlohmann::json doc = hangingClothScene(0.5, 4, 0.01, 10, 500.0);  // fixed vertices 0 and 4
+  {
+    const Scene scene = parse(doc);
+    const ClothModel model = buildClothModel(scene);
+    EXPECT_TRUE(FrameBuilder(scene, model).frame(model.rest.vertices, 0).fixedPointGroups.empty())
+        << "one group: the style's colour";
+  }
+  doc["cloths"][0]["attachments"].push_back(
+      {{"vertices", {20}},
+       {"kind", "handle"},
+       {"trajectory", {{"keyframes", {{{"time", 0.0}, {"offset", {0, 0, 0}}}}}}}});
+  doc["cloths"][0]["attachments"].push_back({{"vertices", {22, 23}}, {"name", "hem"}});
+  const Scene scene = parse(doc);
+  const ClothModel model = buildClothModel(scene);
+  const render::RenderScene frame = FrameBuilder(scene, model).frame(model.rest.vertices, 0);
+  ASSERT_EQ(frame.fixedPoints.size(), 4u);
+  EXPECT_EQ(frame.fixedPointGroups, (std::vector<int>{0, 0, 1, 1}));
+  EXPECT_TRUE(frame.fixedPoints[2].isApprox(model.rest.vertices.row(22).transpose().cast<float>()));
+}
+
 TEST(FrameBuilder, MovingObstaclesAreDrawnWhereTheyAreAtEachState) {
   nlohmann::json doc = hangingClothScene(0.5, 2, 0.01, 100, 500.0);
   doc["obstacles"] = nlohmann::json::parse(R"([

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
@@ -168,6 +169,32 @@ TEST(Pixels, SeeThroughClothAndObstaclesInFrontShowTheObstacleBehind) {
     EXPECT_GT(std::abs(mixed[2] - clothOnly[2]), 20);
     EXPECT_GT(std::abs(mixed[2] - sphereOnly[2]), 20);
   }
+}
+
+// Two pin groups' markers: the first in the style's near-black, the second in its own colour
+// (brown: red well above blue); without groups both take the style's colour.
+TEST(Pixels, PinGroupMarkersTakeTheirGroupsColour) {
+  const int size = 100;
+  render::RenderScene s;
+  s.fixedPoints = {render::Vec3f(-0.5f, 0.0f, 0.0f), render::Vec3f(0.5f, 0.0f, 0.0f)};
+  render::RenderStyle style = plainStyle();
+  style.pointSize = 16.0f;
+  const auto centre = [&](const render::Image& image, int k) {
+    const int x = k == 0 ? size / 4 : 3 * size / 4;
+    const std::uint8_t* p = image.at(x, size / 2);
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  const render::Image plain = osmesaRenderer(size, size).renderImage(s, orthoFront(), style);
+  s.fixedPointGroups = {0, 1};
+  const render::Image grouped = osmesaRenderer(size, size).renderImage(s, orthoFront(), style);
+  for (const render::Image* image : {&plain, &grouped}) {
+    const auto first = centre(*image, 0);
+    EXPECT_LT(std::max({first[0], first[1], first[2]}), 90) << "group 0: near-black";
+  }
+  const auto second = centre(plain, 1), brown = centre(grouped, 1);
+  EXPECT_LT(std::max({second[0], second[1], second[2]}), 90) << "no groups: the style's colour";
+  EXPECT_GT(brown[0], brown[2] + 50) << "group 1: brown";
+  EXPECT_GT(brown[0], 90);
 }
 
 TEST(Pixels, BranchColourAppearsOnlyWhereThatBranchHasNodes) {

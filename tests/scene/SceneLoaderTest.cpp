@@ -105,6 +105,15 @@ TEST(SceneLoader, SeveralClothsKeepLocalIndicesAndSceneOrder) {
   expectInputError([&] { test::parse(doc); }, "cloths.0.attachments.0.vertices.0", "out of range");
 }
 
+// A pin group's name (the editor's) is text; the simulation never reads it.
+TEST(SceneLoader, AnAttachmentMayBeNamedWithText) {
+  nlohmann::json doc = test::hangingClothScene(1.0, 2, 0.01, 3, 100.0);
+  doc["cloths"][0]["attachments"][0]["name"] = "shoulders";
+  EXPECT_EQ(test::parse(doc).cloths[0].attachments[0].vertices, (std::vector<int>{0, 2}));
+  doc["cloths"][0]["attachments"][0]["name"] = 5;
+  expectInputError([&] { test::parse(doc); }, "cloths.0.attachments.0.name", "string");
+}
+
 TEST(SceneLoader, MeshFileIsScaledBeforeItIsTransformed) {
   TempDir dir;
   dir.write("tri.obj", "v 1 0 0\nv 2 0 0\nv 1 0 1\nf 1 3 2\n");

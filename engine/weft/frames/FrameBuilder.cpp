@@ -108,12 +108,16 @@ FrameBuilder::FrameBuilder(const Scene& scene, const ClothModel& model,
   }
 
   const double duration = scene.time.steps * scene.time.dt;
+  int group = 0;
   for (std::size_t c = 0; c < scene.cloths.size(); ++c) {
     const Cloth& cloth = scene.cloths[c];
     for (const Attachment& a : cloth.attachments) {
-      for (int v : a.vertices)
+      for (int v : a.vertices) {
         (a.kind == Attachment::Kind::Fixed ? fixed_ : handles_)
             .push_back(model.vertexOffset[c] + v);
+        if (a.kind == Attachment::Kind::Fixed) fixedGroups_.push_back(group);
+      }
+      if (a.kind == Attachment::Kind::Fixed) ++group;
       if (a.kind != Attachment::Kind::Handle || a.vertices.empty()) continue;
       // The path of the handle's centroid over the whole simulation, through every key time.
       Vec3 centroid = Vec3::Zero();
@@ -190,6 +194,8 @@ render::RenderScene FrameBuilder::frame(const NodeMatrix& x, int state) const {
   frame.cloth.positions = toRenderPoints(x);
   frame.cloth.triangles = triangles_;
   for (int v : fixed_) frame.fixedPoints.push_back(f(x.row(v).transpose()));
+  // One group draws in the style's colour; several get a colour each (pinGroupColor).
+  if (!fixedGroups_.empty() && fixedGroups_.back() > 0) frame.fixedPointGroups = fixedGroups_;
   for (int v : handles_) frame.handlePoints.push_back(f(x.row(v).transpose()));
   if (!targetStates_.empty()) {
     const NodeMatrix& target = targetStates_[std::min<std::size_t>(std::size_t(std::max(state, 0)),

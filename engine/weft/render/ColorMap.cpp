@@ -1,4 +1,5 @@
 #include <weft/render/ColorMap.h>
+#include <weft/render/RenderStyle.h>
 
 #include <algorithm>
 #include <array>
@@ -52,6 +53,16 @@ std::vector<std::uint8_t> colorMapTable(ColorMapKind map, int size) {
           static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
   }
   return table;
+}
+
+Rgb pinGroupColor(int group, const RenderStyle& style) {
+  static const Rgb kGroups[] = {{0.55f, 0.33f, 0.12f},
+                                {0.00f, 0.50f, 0.50f},
+                                {0.90f, 0.40f, 0.70f},
+                                {0.45f, 0.50f, 0.05f},
+                                {0.50f, 0.50f, 0.50f}};
+  if (group <= 0) return style.fixedPoint;
+  return kGroups[(group - 1) % 5];
 }
 
 Rgb branchColor(ContactBranch branch) {

@@ -456,7 +456,13 @@ void Renderer::drawPoints(const RenderScene& scene, const RenderStyle& style, co
   auto addMarkers = [&](const std::vector<Vec3f>& points, const Rgb& color) {
     for (const Vec3f& q : points) push(markers, q), push(markers, color);
   };
-  addMarkers(scene.fixedPoints, style.fixedPoint);
+  if (scene.fixedPointGroups.size() == scene.fixedPoints.size()) {
+    for (std::size_t i = 0; i < scene.fixedPoints.size(); ++i)
+      push(markers, scene.fixedPoints[i]),
+          push(markers, pinGroupColor(scene.fixedPointGroups[i], style));
+  } else {
+    addMarkers(scene.fixedPoints, style.fixedPoint);
+  }
   addMarkers(scene.handlePoints, style.handlePoint);
   addMarkers(scene.targetPoints, style.targetPoint);
   draw(markers, markerSize, true);

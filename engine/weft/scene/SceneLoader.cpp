@@ -173,7 +173,9 @@ Cloth readCloth(const JsonReader& r, const std::string& directory,
   if (auto list = r.optional("attachments")) {
     for (std::size_t i = 0; i < list->size(); ++i) {
       const JsonReader a = (*list)[i];
-      a.allowOnly({"vertices", "kind", "stiffness", "trajectory"});
+      a.allowOnly({"vertices", "kind", "stiffness", "trajectory", "name"});
+      // A name for people (the editor's pin groups); the simulation does not read it.
+      if (auto n = a.optional("name")) n->string();
       Attachment att;
       att.vertices = a.at("vertices").indices(m);
       if (att.vertices.empty()) a.at("vertices").fail("must list at least one vertex");

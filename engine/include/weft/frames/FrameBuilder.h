@@ -36,6 +36,7 @@ class FrameBuilder {
   double dt_ = 0.0;
   render::TriangleList triangles_;
   std::vector<int> fixed_, handles_;      // global node indices
+  std::vector<int> fixedGroups_;          // per fixed_ entry: its pin group
   std::vector<NodeMatrix> targetStates_;  // trajectory target: one full state per step
   NodeMatrix finalTarget_;                // final target rows, aligned with finalVertices_
   std::vector<int> finalVertices_;        // empty with a full-mesh final target

@@ -18,4 +18,11 @@ std::vector<std::uint8_t> colorMapTable(ColorMapKind map, int size = 256);
 // tell them apart pixel by pixel. None has no colour (such nodes are not drawn).
 Rgb branchColor(ContactBranch branch);
 
+struct RenderStyle;
+// The marker colour of pin group `group` (the scene's fixed attachments, cloths in order): the
+// style's fixedPoint for the first, then brown, teal, pink, olive and grey, repeating; apart from
+// the branch colours above, the cloth's orange and blue, handles' green, targets' purple and the
+// editor's white selection.
+Rgb pinGroupColor(int group, const RenderStyle& style);
+
 }  // namespace weft::render

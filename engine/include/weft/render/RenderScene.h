@@ -75,7 +75,10 @@ struct RenderScene {
   std::optional<ScalarColoring> scalars;
   std::optional<ContactOverlay> contacts;
   std::vector<ObstacleShape> obstacles;
-  std::vector<Vec3f> fixedPoints;   // fixed attachment vertices
+  std::vector<Vec3f> fixedPoints;  // fixed attachment vertices
+  // Per fixed point, its pin group: the index of its fixed attachment among the scene's, cloths
+  // in order (pinGroupColor); empty draws every fixed point in the style's fixedPoint colour.
+  std::vector<int> fixedPointGroups;
   std::vector<Vec3f> handlePoints;  // moving attachment vertices
   std::vector<Vec3f> targetPoints;  // target vertices (keypoint losses)
   std::vector<Curve> curves;        // handle trajectories
