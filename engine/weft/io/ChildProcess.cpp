@@ -46,6 +46,9 @@ bool writeAll(int fd, const char* data, std::size_t size) {
 #else
   (void)memoryLimitBytes;
 #endif
+  // A fault in the child ends the child: the handlers the parent installed (a sanitizer's, a
+  // fuzzer's, an application's) are the parent's business and do not run here.
+  for (const int sig : {SIGSEGV, SIGBUS, SIGILL, SIGFPE}) ::signal(sig, SIG_DFL);
   // What the child would print (a sanitizer's report of the crash it is there to contain) is not
   // the caller's output: the outcome carries what happened.
   const int devNull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);

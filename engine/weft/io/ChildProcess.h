@@ -20,8 +20,9 @@ struct ChildOutcome {
 // crash, a hang or a runaway allocation inside third-party code (assimp's readers,
 // docs/hardening.md) ends that child, not the caller. The child's address space is limited to
 // `memoryLimitBytes` (not under the sanitizers, whose shadow memory needs more) and it is killed
-// after `timeoutSeconds`; its standard error is discarded. Only the calling thread exists in the
-// child, so `call` must not wait on another thread of the caller's or on a lock one may hold
+// after `timeoutSeconds`; its standard error is discarded, and a fault (SIGSEGV, SIGBUS, SIGILL,
+// SIGFPE) kills it at once, whatever handlers the caller installed. Only the calling thread exists
+// in the child, so `call` must not wait on another thread of the caller's or on a lock one may hold
 // (glibc's allocator is safe after fork).
 ChildOutcome runInChildProcess(const std::function<std::string()>& call, double timeoutSeconds,
                                long long memoryLimitBytes);
