@@ -37,8 +37,12 @@ void ScenePanel::timePanel() {
 }
 
 void ScenePanel::clothPanel() {
-  const nlohmann::json* cloths = session_.document().find("cloths");
-  if (!cloths || !cloths->is_array()) {
+  // Copies, here and below: a field edit replaces the document, and a pointer into it would
+  // dangle for the rows drawn after the edit.
+  const nlohmann::json* found = session_.document().find("cloths");
+  const nlohmann::json clothList = found ? *found : nlohmann::json();
+  const nlohmann::json* cloths = &clothList;
+  if (!cloths->is_array()) {
     ImGui::TextDisabled("no cloths");
     return;
   }
@@ -90,8 +94,10 @@ void ScenePanel::clothPanel() {
       }
       if (choice == SelfCollisionChoice::ImpactZones || choice == SelfCollisionChoice::Both)
         fields_.number("thickness (m)##self", base + ".self_collision.thickness", 0.001);
-      const nlohmann::json* attachments = session_.document().find(base + ".attachments");
-      if (attachments && attachments->is_array()) {
+      const nlohmann::json* listed = session_.document().find(base + ".attachments");
+      const nlohmann::json attachmentList = listed ? *listed : nlohmann::json();
+      const nlohmann::json* attachments = &attachmentList;
+      if (attachments->is_array()) {
         // Pin groups: each fixed attachment with its marker colour (as the viewport draws it),
         // a name, its size, and buttons to select or remove it.
         const Scene* scene = session_.document().scene();
@@ -184,7 +190,10 @@ void ScenePanel::effectsPanel() {
 
 void ScenePanel::obstaclePanel() {
   EditorDocument& doc = session_.document();
-  const nlohmann::json* obstacles = doc.find("obstacles");
+  // A copy, as in clothPanel: a field edit replaces the document.
+  const nlohmann::json* found = doc.find("obstacles");
+  const nlohmann::json obstacleList = found ? *found : nlohmann::json();
+  const nlohmann::json* obstacles = &obstacleList;
   const std::size_t count = obstacles && obstacles->is_array() ? obstacles->size() : 0;
   for (std::size_t i = 0; i < count; ++i) {
     const nlohmann::json& o = (*obstacles)[i];

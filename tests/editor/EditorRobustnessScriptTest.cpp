@@ -19,6 +19,32 @@ std::string hangingScene(const TempDir& dir, int steps = 5) {
   return writeScene(dir.file("hang.json"), hangingClothScene(1.0, 4, 0.01, steps, 500.0));
 }
 
+// A field edit replaces the document; the Scene tab used to go on drawing the next cloth (and
+// the next attachment or obstacle) through a pointer into the replaced one, a use after free
+// that AddressSanitizer reports. Typing into the first of two cloths must leave the second drawn.
+TEST(EditorRobustness, TypingIntoTheFirstOfTwoClothsLeavesTheSecondDrawn) {
+  TempDir dir;
+  nlohmann::json scene = hangingClothScene(1.0, 4, 0.01, 5, 500.0);
+  nlohmann::json second = scene["cloths"][0];
+  second["mesh"]["transform"]["translate"] = {0.0, 1.0, 1.0};
+  second["attachments"].push_back({{"vertices", {2}}, {"name", "middle"}});
+  scene["cloths"].push_back(second);
+  const ProcessResult r = runEditor(dir,
+                                    {{{"open", writeScene(dir.file("two.json"), scene)}},
+                                     {{"frames", 2}},
+                                     {{"mouse_click", item("cloths.0.material.density")}},
+                                     {{"type", "0.3"}},
+                                     {{"key", "enter"}},
+                                     {{"frames", 2}},
+                                     {{"write_state", dir.file("state.json")}}},
+                                    "1280x1000");
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const nlohmann::json state = readJson(dir.file("state.json"));
+  EXPECT_EQ(state["document"]["cloths"][0]["material"]["density"], 0.3);
+  EXPECT_TRUE(state["items"].contains("cloths.1.material.density")) << "the second cloth is drawn";
+  EXPECT_TRUE(state["items"].contains("pins:select:cloths.1.attachments.1"));
+}
+
 // The sequence: the import dialog refusing a file (its error showing) and closed, the
 // Scene tab clicked, number fields edited by typing (integer ones first: their step buttons put
 // them in an ImGui group, where the crash was), then Simulate clicked.
