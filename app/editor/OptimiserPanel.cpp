@@ -53,7 +53,10 @@ void plotHistory(const char* id, const std::vector<float>& values, const char* o
 void OptimiserPanel::draw(EditorSession& session, EditorApp& app) {
   EditorDocument& doc = session.document();
   OptimizerRun& run = session.optimisation().optimizer();
-  const Scene* scene = doc.scene();
+  // Held for the frame: a bounds edit below replaces the document's scene while its parameter
+  // list is still being walked.
+  const std::shared_ptr<const Scene> heldScene = doc.sharedScene();
+  const Scene* scene = heldScene.get();
   const bool active = run.active();
 
   // Parameters and bounds.
