@@ -28,15 +28,16 @@ nlohmann::json readJson(const std::string& file) {
   }
 }
 
-std::vector<NodeMatrix> readStates(const std::string& file, std::size_t states, std::size_t nodes,
-                                   bool any) {
+// An array [states, nodes, 3] (positions, velocities, contact forces) as one matrix per state;
+// `states` 0 takes any count of at least one.
+std::vector<NodeMatrix> readStates(const std::string& file, std::size_t nodes, std::size_t states) {
   const NpyArray a = readNpy(file);
-  if (a.shape.size() != 3 || (!any && a.shape[0] != states) || a.shape[1] != nodes ||
+  if (a.shape.size() != 3 || (states > 0 && a.shape[0] != states) || a.shape[1] != nodes ||
       a.shape[2] != 3 || a.shape[0] < 1)
     throw InputError(file, "shape",
-                     "expected [" + (any ? std::string("states") : std::to_string(states)) + ", " +
-                         std::to_string(nodes) + ", 3] for the scene's " + std::to_string(nodes) +
-                         " vertices");
+                     "expected [" + (states > 0 ? std::to_string(states) : std::string("states")) +
+                         ", " + std::to_string(nodes) + ", 3] for the scene's " +
+                         std::to_string(nodes) + " vertices");
   std::vector<NodeMatrix> out(a.shape[0], NodeMatrix(Eigen::Index(nodes), 3));
   for (std::size_t s = 0; s < a.shape[0]; ++s)
     for (std::size_t i = 0; i < nodes; ++i)
@@ -137,10 +138,10 @@ RunFolder loadRunFolder(const std::string& path) {
   if (!fs::exists(positionsFile))
     throw InputError(positionsFile, "RUNDIR", "missing: not a folder written by weft simulate");
   const std::size_t nodes = static_cast<std::size_t>(run.scene.vertexCount());
-  run.states = readStates(positionsFile, 0, nodes, true);
+  run.states = readStates(positionsFile, nodes, 0);
   const std::size_t states = run.states.size();
   const std::string velocitiesFile = path + "/velocities.npy", statsFile = path + "/stats.csv";
-  if (fs::exists(velocitiesFile)) run.velocities = readStates(velocitiesFile, states, nodes, false);
+  if (fs::exists(velocitiesFile)) run.velocities = readStates(velocitiesFile, nodes, states);
   if (fs::exists(statsFile)) run.steps = readStats(statsFile, states);
 
   const std::string branchesFile = path + "/contact_branches.npy",
@@ -159,19 +160,7 @@ RunFolder loadRunFolder(const std::string& path) {
                            "branch ids are 0 (none), 1 (take-off), 2 (stick) or 3 (slip)");
         run.contacts.branches[s][i] = static_cast<std::uint8_t>(v);
       }
-    if (fs::exists(forcesFile)) {
-      const NpyArray f = readNpy(forcesFile);
-      if (f.shape.size() != 3 || f.shape[0] != states || f.shape[1] != nodes || f.shape[2] != 3)
-        throw InputError(
-            forcesFile, "shape",
-            "expected [" + std::to_string(states) + ", " + std::to_string(nodes) + ", 3]");
-      run.contacts.forces.assign(states, NodeMatrix(Eigen::Index(nodes), 3));
-      for (std::size_t s = 0; s < states; ++s)
-        for (std::size_t i = 0; i < nodes; ++i)
-          for (int c = 0; c < 3; ++c)
-            run.contacts.forces[s](Eigen::Index(i), c) =
-                f.data[(s * nodes + i) * 3 + std::size_t(c)];
-    }
+    if (fs::exists(forcesFile)) run.contacts.forces = readStates(forcesFile, nodes, states);
   }
   return run;
 }
