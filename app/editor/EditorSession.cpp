@@ -8,6 +8,14 @@
 #include <filesystem>
 
 namespace weft::editor {
+namespace {
+
+// Two warning texts as one ("" when both are empty).
+std::string joined(const std::string& a, const std::string& b) {
+  return a.empty() ? b : b.empty() ? a : a + "; " + b;
+}
+
+}  // namespace
 
 EditorSession::EditorSession(const std::string& recentStore) : recent_(recentStore) {
   frameCamera(16.0f / 9.0f);
@@ -43,11 +51,10 @@ void EditorSession::afterDocumentReplaced() {
 std::string EditorSession::save() {
   if (document_.file().empty())
     throw InputError("untitled", "-", "the document has no file yet: use Save As");
-  std::string warning = targets_.writeTargets(document_.file());
+  const std::string warning = targets_.writeTargets(document_.file());
   document_.save();
   recent_.add(document_.file());
-  const std::string run = saveRunBeside();
-  return warning.empty() ? run : run.empty() ? warning : warning + "; " + run;
+  return joined(warning, saveRunBeside());
 }
 
 std::string EditorSession::saveAs(const std::string& file) {
@@ -58,8 +65,7 @@ std::string EditorSession::saveAs(const std::string& file) {
   // Rebased references name the same files: the cached run is still the document's own.
   if (current && document_.valid()) cache_.relabel(document_.sharedScene());
   recent_.add(file);
-  const std::string run = saveRunBeside();
-  return warning.empty() ? run : run.empty() ? warning : warning + "; " + run;
+  return joined(warning, saveRunBeside());
 }
 
 std::string EditorSession::runFolderBeside(const std::string& sceneFile) {
